@@ -1,0 +1,256 @@
+//! The command line: a thin layer over the library. Bad input exits with code 2 and a one-line
+//! message naming the bad value; a solve that fails numerically still prints its outputs with
+//! its status (exit code 0: a failure is a result), so scripts read `status`.
+
+use crate::lubricant::{Density, Viscosity};
+use crate::params::{Elasticity, LineCase, Models};
+use crate::solver::line::{solve_line, LineSolveParams};
+use crate::solver::multigrid::CycleType;
+use clap::{Parser, Subcommand, ValueEnum};
+use std::path::PathBuf;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "ehlmap",
+    version,
+    about = "Steady isothermal EHL by full multigrid"
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Solve one contact and print its film thickness, pressure and convergence.
+    Solve(SolveArgs),
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum ContactArg {
+    Line,
+    Point,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum ViscosityArg {
+    Barus,
+    Roelands,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum DensityArg {
+    Incompressible,
+    DowsonHigginson,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum CycleArg {
+    V,
+    W,
+}
+
+#[derive(clap::Args, Debug)]
+#[command(allow_negative_numbers = true)]
+pub struct SolveArgs {
+    #[arg(long, value_enum, default_value = "line")]
+    pub contact: ContactArg,
+    /// Moes load parameter M > 0.
+    #[arg(long = "M")]
+    pub m: f64,
+    /// Moes lubricant parameter L >= 0.
+    #[arg(long = "L", default_value_t = 0.0)]
+    pub l: f64,
+    /// Ellipticity D = Rx/Ry in (0, 1] (point contacts).
+    #[arg(long = "D")]
+    pub d: Option<f64>,
+    #[arg(long, value_parser = ["elastic", "rigid"], default_value = "elastic")]
+    pub elasticity: String,
+    #[arg(long, value_enum, default_value = "barus")]
+    pub viscosity: ViscosityArg,
+    /// Roelands: ambient viscosity eta0 in Pa s (or give --z).
+    #[arg(long)]
+    pub eta0: Option<f64>,
+    /// Roelands pressure-viscosity index z (or give --eta0).
+    #[arg(long)]
+    pub z: Option<f64>,
+    /// Hertzian pressure p_h in Pa (Roelands and Dowson-Higginson need it).
+    #[arg(long)]
+    pub ph: Option<f64>,
+    #[arg(long, value_enum, default_value = "incompressible")]
+    pub density: DensityArg,
+    /// Points of the finest grid (rounded up to 2^k n0 + 1).
+    #[arg(long, default_value_t = 2049)]
+    pub grid: usize,
+    #[arg(long, value_enum, default_value = "v")]
+    pub cycle: CycleArg,
+    /// Cycles allowed on the finest level.
+    #[arg(long, default_value_t = 60)]
+    pub max_cycles: usize,
+    /// Do not retry a failed solve with conservative settings.
+    #[arg(long)]
+    pub no_fallback: bool,
+    /// Print one JSON object instead of the summary.
+    #[arg(long)]
+    pub json: bool,
+    /// Write the X, P, H profile to this Parquet file.
+    #[arg(long)]
+    pub profile: Option<PathBuf>,
+}
+
+/// An input error: printed as one line, exit code 2.
+#[derive(Debug)]
+pub struct InputError(pub String);
+
+fn build_case(a: &SolveArgs) -> Result<LineCase, InputError> {
+    let bad = |e: crate::params::ParamError| InputError(e.to_string());
+    if a.contact == ContactArg::Point {
+        return Err(InputError(
+            "--contact point is not available yet: this build solves line contacts only".into(),
+        ));
+    }
+    if a.d.is_some() {
+        return Err(InputError("--D applies to point contacts only".into()));
+    }
+    if a.grid < 33 {
+        return Err(InputError(format!(
+            "--grid {} is too small: at least 33 points",
+            a.grid
+        )));
+    }
+    if a.grid > (1 << 20) + 1 {
+        return Err(InputError(format!(
+            "--grid {} is too large: at most 1048577 points",
+            a.grid
+        )));
+    }
+    // Validate M and L first so that a bad M is named before model errors.
+    LineCase::new(a.m, a.l).map_err(bad)?;
+    let venner = LineCase::new(a.m, a.l).map_err(bad)?.venner();
+    let need_ph = |what: &str| -> Result<f64, InputError> {
+        a.ph.ok_or_else(|| InputError(format!("{what} needs the Hertzian pressure --ph (Pa)")))
+    };
+    let viscosity = match a.viscosity {
+        ViscosityArg::Barus => {
+            if a.eta0.is_some() || a.z.is_some() {
+                return Err(InputError(
+                    "--eta0 and --z apply to --viscosity roelands only".into(),
+                ));
+            }
+            Viscosity::Barus
+        }
+        ViscosityArg::Roelands => {
+            let ph = need_ph("--viscosity roelands")?;
+            match (a.eta0, a.z) {
+                (Some(eta0), None) => {
+                    Viscosity::roelands_from_eta0(eta0, ph, venner.alpha_bar).map_err(bad)?
+                }
+                (None, Some(z)) => {
+                    let v = Viscosity::Roelands { z, ph_pa: ph };
+                    v.validate().map_err(bad)?;
+                    v
+                }
+                _ => {
+                    return Err(InputError(
+                        "--viscosity roelands needs exactly one of --eta0 (Pa s) or --z".into(),
+                    ))
+                }
+            }
+        }
+    };
+    let density = match a.density {
+        DensityArg::Incompressible => Density::Incompressible,
+        DensityArg::DowsonHigginson => Density::DowsonHigginson {
+            ph_pa: need_ph("--density dowson-higginson")?,
+        },
+    };
+    let elasticity = if a.elasticity == "rigid" {
+        Elasticity::Rigid
+    } else {
+        Elasticity::Elastic
+    };
+    LineCase::with_models(
+        a.m,
+        a.l,
+        Models {
+            elasticity,
+            viscosity,
+            density,
+        },
+    )
+    .map_err(bad)
+}
+
+/// Run `ehlmap solve`; returns the process exit code.
+pub fn run_solve(a: &SolveArgs) -> Result<i32, InputError> {
+    let case = build_case(a)?;
+    let mut p = LineSolveParams::default();
+    p.mg.grid = a.grid;
+    p.mg.max_cycles = a.max_cycles;
+    p.mg.cycle = match a.cycle {
+        CycleArg::V => CycleType::V,
+        CycleArg::W => CycleType::W,
+    };
+    p.fallback = !a.no_fallback;
+    p.keep_profile = a.profile.is_some();
+    let s = solve_line(&case, &p);
+    if let (Some(path), Some(prof)) = (&a.profile, &s.profile) {
+        let meta = [
+            ("contact", "line".to_string()),
+            ("M", case.m.to_string()),
+            ("L", case.l.to_string()),
+            ("status", s.outputs.status.to_string()),
+        ];
+        crate::io::profile::write_profile(path, prof, &meta)
+            .map_err(|e| InputError(format!("--profile: {e}")))?;
+    }
+    if a.json {
+        println!(
+            "{}",
+            serde_json::to_string(&s.outputs).expect("outputs serialise")
+        );
+    } else {
+        print!("{}", summary(&case, &s.outputs));
+    }
+    Ok(0)
+}
+
+fn summary(case: &LineCase, o: &crate::solution::LineOutputs) -> String {
+    let m = &case.models;
+    let spike = o.spike.map_or("none".to_string(), |s| {
+        format!("P = {:.4} at X = {:.4}", s.p, s.x)
+    });
+    format!(
+        "line contact  M = {}  L = {}  ({}, {}, {})\n\
+         status        {}: {}\n\
+         H_c           {:.6}   (film at X = 0, Moes units)\n\
+         H_c_pmax      {:.6}   (film at the pressure maximum)\n\
+         H_min         {:.6}   at X = {:.4}\n\
+         P_max         {:.6}\n\
+         spike         {}\n\
+         H0            {:.6}\n\
+         f R/b         {:.6e}\n\
+         load error    {:.2e}\n\
+         grid          {} points, {} levels, {:.1} work units, {:.3} s\n",
+        case.m,
+        case.l,
+        m.elasticity,
+        m.viscosity.name(),
+        m.density.name(),
+        o.status,
+        o.reason,
+        o.h_c,
+        o.h_c_pmax,
+        o.h_min,
+        o.x_min,
+        o.p_max,
+        spike,
+        o.h0,
+        o.f,
+        o.load_error,
+        o.grid,
+        o.levels,
+        o.work_units,
+        o.wall_s
+    )
+}

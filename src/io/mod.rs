@@ -1,0 +1,3 @@
+//! Storage: Parquet files written with arrow-rs (zstd), readable by polars and pyarrow.
+
+pub mod profile;

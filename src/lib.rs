@@ -1,0 +1,16 @@
+//! ehlmap: steady isothermal elastohydrodynamic lubrication (EHL) by full multigrid.
+//!
+//! The module tree follows the data flow: parameters and lubricant models ([`params`],
+//! [`lubricant`]) -> the discretised problem ([`problem`]) -> solvers ([`solver`]) -> what a solve
+//! reports ([`solution`]) -> storage ([`io`]); [`formulas`] holds the published film formulas the
+//! results are compared with.
+
+pub mod cli;
+pub mod formulas;
+pub mod hertz;
+pub mod io;
+pub mod lubricant;
+pub mod params;
+pub mod problem;
+pub mod solution;
+pub mod solver;

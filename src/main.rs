@@ -1,0 +1,16 @@
+use clap::Parser;
+use ehlmap::cli::{run_solve, Cli, Command};
+
+fn main() {
+    let cli = Cli::parse();
+    let result = match &cli.command {
+        Command::Solve(a) => run_solve(a),
+    };
+    match result {
+        Ok(code) => std::process::exit(code),
+        Err(e) => {
+            eprintln!("ehlmap: {}", e.0);
+            std::process::exit(2);
+        }
+    }
+}

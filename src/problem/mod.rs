@@ -1,0 +1,5 @@
+//! The discretised problem: domain and grids, deformation kernels, and the discrete operators.
+
+pub mod domain;
+pub mod kernel1d;
+pub mod line;

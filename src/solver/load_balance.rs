@@ -1,0 +1,94 @@
+//! The load balance: a safeguarded secant iteration for H0 on the scalar equation
+//! G(H0) = h sum P(H0) - g = 0, where P(H0) is the pressure converged by multigrid cycles at fixed H0.
+//!
+//! G decreases with H0 (a wider gap carries less load). Each accepted evaluation narrows a
+//! bracket [lo, hi] with G(lo) > 0 > G(hi); the next H0 is the secant step from the last two
+//! evaluations, replaced by regula falsi when it leaves the bracket, and limited to `max_step`
+//! (a fraction of the central film) while no bracket exists. The slope is carried from level to
+//! level, so on the finest level one or two steps usually suffice.
+
+/// State of the H0 iteration.
+#[derive(Clone, Debug)]
+pub struct LoadBalance {
+    slope: f64,
+    lo: Option<(f64, f64)>,
+    hi: Option<(f64, f64)>,
+    last: Option<(f64, f64)>,
+}
+
+impl LoadBalance {
+    /// Start with an estimate of dG/dH0 (negative).
+    pub fn new(slope: f64) -> Self {
+        LoadBalance {
+            slope: if slope.is_finite() && slope < 0.0 {
+                slope
+            } else {
+                -1.0
+            },
+            lo: None,
+            hi: None,
+            last: None,
+        }
+    }
+
+    /// Forget the bracket and the last point (a new grid level has a slightly different G).
+    pub fn reset(&mut self) {
+        self.lo = None;
+        self.hi = None;
+        self.last = None;
+    }
+
+    pub fn slope(&self) -> f64 {
+        self.slope
+    }
+
+    /// Record G at `h0` and return the next H0.
+    pub fn next(&mut self, h0: f64, g: f64, max_step: f64) -> f64 {
+        if let Some((h1, g1)) = self.last {
+            let dh = h0 - h1;
+            if dh.abs() > 1e-14 * (1.0 + h0.abs()) {
+                let s = (g - g1) / dh;
+                if s.is_finite() && s < 0.0 {
+                    self.slope = s;
+                }
+            }
+        }
+        self.last = Some((h0, g));
+        if g > 0.0 {
+            self.lo = Some((h0, g));
+        } else {
+            self.hi = Some((h0, g));
+        }
+        let mut cand = h0 - g / self.slope;
+        match (self.lo, self.hi) {
+            (Some((hl, gl)), Some((hh, gh))) => {
+                let (a, b) = (hl.min(hh), hl.max(hh));
+                if !(cand > a && cand < b) {
+                    cand = hl - gl * (hh - hl) / (gh - gl);
+                    if !(cand > a && cand < b) {
+                        cand = 0.5 * (a + b);
+                    }
+                }
+            }
+            _ => cand = h0 + (cand - h0).clamp(-max_step, max_step),
+        }
+        cand
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn finds_root_of_decreasing_function() {
+        // G(H0) = 1/H0 - 2 (rigid-like: load ~ 1/H0), root 0.5, bad initial slope.
+        let g = |h: f64| 1.0 / h - 2.0;
+        let mut lb = LoadBalance::new(-0.1);
+        let mut h = 0.3;
+        for _ in 0..30 {
+            h = lb.next(h, g(h), 0.1);
+        }
+        assert!((h - 0.5).abs() < 1e-10, "{h}");
+    }
+}

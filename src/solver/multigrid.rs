@@ -1,0 +1,477 @@
+//! Full multigrid (FAS) for the line contact (Venner & Lubrecht).
+//!
+//! Levels l = 0 (coarsest, n0 intervals) .. finest (n0 2^l intervals) on one domain chosen by
+//! [`crate::problem::domain`]. A cycle on level l (l > 0): `pre` relaxations; the residual
+//! r = f - L(P), zeroed on the cavitated set P = 0, is restricted by full weighting; P is injected,
+//! P^_H = P_h(2I); the coarse right-hand sides are f_H = L_H(P^_H) + R r and
+//! g_H = h_H sum P^_H + (g_h - h_h sum P_h); `gamma` coarse cycles (1: V, 2: W); the correction
+//! P_H - P^_H is interpolated linearly, added and projected on P >= 0; `post` relaxations.
+//! On the coarsest level `coarse_sweeps` relaxations each followed by the load-balance update
+//! H0 += c (h sum P - g), the only place H0 changes. FMG starts on the coarsest grid from the Hertz
+//! pressure and interpolates each level's result (cubic) as the next level's start.
+//!
+//! The load factor c adapts to the case: the rigid-regime sensitivity of the load to H0 is
+//! d(load)/dH0 = -load/H0, so c = c_base max(1, H_e / H_ref) with H_e the estimated central film.
+
+use crate::params::LineCase;
+use crate::problem::domain::{DomainParams, LineDomain};
+use crate::problem::line::{LineLevel, LinePhysics};
+use crate::solver::load_balance::LoadBalance;
+use crate::solver::newton::{newton_solve, NewtonParams};
+use crate::solver::relax::{relax, RelaxParams};
+use crate::solver::{CycleRecord, SolveInfo, Status};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+use std::time::Instant;
+
+/// V or W cycles.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum CycleType {
+    #[default]
+    V,
+    W,
+}
+
+impl CycleType {
+    fn gamma(self) -> usize {
+        match self {
+            CycleType::V => 1,
+            CycleType::W => 2,
+        }
+    }
+}
+
+/// Multigrid settings; `Default` gives the settings the stability map supports.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LineMgParams {
+    /// Points of the finest level (2^k n0 + 1 for the domain rule's n0; other values are rounded
+    /// up to the next such size).
+    pub grid: usize,
+    pub cycle: CycleType,
+    pub pre: usize,
+    pub post: usize,
+    /// Cycles on each FMG level before moving to the next finer one.
+    pub fmg_cycles: usize,
+    /// Cycles allowed on the finest level after FMG.
+    pub max_cycles: usize,
+    pub relax: RelaxParams,
+    /// Damping of the secant load-balance step on H0 (`None`: 1).
+    pub load_factor: Option<f64>,
+    pub coarse_sweeps: usize,
+    /// Converged when |load error| < tol_load and the relative change of H_c and H_min over a
+    /// cycle is below tol_h.
+    pub tol_load: f64,
+    pub tol_h: f64,
+    pub domain: DomainParams,
+    /// Override the coarsest grid's interval count (a power of two >= 8).
+    pub coarse_intervals: Option<usize>,
+    pub second_order: bool,
+}
+
+impl Default for LineMgParams {
+    fn default() -> Self {
+        LineMgParams {
+            grid: 2049,
+            cycle: CycleType::V,
+            pre: 2,
+            post: 1,
+            fmg_cycles: 2,
+            max_cycles: 60,
+            relax: RelaxParams::default(),
+            load_factor: None,
+            coarse_sweeps: 20,
+            tol_load: 1e-7,
+            tol_h: 1e-6,
+            domain: DomainParams::default(),
+            coarse_intervals: None,
+            second_order: true,
+        }
+    }
+}
+
+/// The state of a line multigrid solve: all levels, H0, counters.
+pub struct LineMultigrid {
+    pub phys: LinePhysics,
+    pub domain: LineDomain,
+    pub levels: Vec<LineLevel>,
+    pub h0: f64,
+    pub params: LineMgParams,
+    /// Injected coarse pressures P^_H per level.
+    p_hat: Vec<Vec<f64>>,
+    pub work_units: f64,
+    /// Estimate of d(h sum P)/dH0 from the coarsest level.
+    load_slope: f64,
+    fine_intervals: usize,
+}
+
+impl LineMultigrid {
+    /// Build the levels for a case. The finest level has at least `params.grid` points.
+    pub fn new(case: &LineCase, params: &LineMgParams) -> Self {
+        let phys = LinePhysics {
+            second_order: params.second_order,
+            ..LinePhysics::from_case(case)
+        };
+        let max_int = (params.grid.max(17) - 1).next_power_of_two();
+        let mut domain = LineDomain::for_case(case.m, case.l, &params.domain, max_int);
+        if let Some(n0) = params.coarse_intervals {
+            domain = LineDomain::aligned(
+                domain.x_in,
+                domain.x_out,
+                n0.min(max_int),
+                domain.h_estimate,
+            );
+        }
+        let mut fine = domain.n0;
+        while fine + 1 < params.grid {
+            fine *= 2;
+        }
+        let mut levels = vec![];
+        let mut n = domain.n0;
+        while n <= fine {
+            levels.push(LineLevel::new(domain.x_in, domain.x_out, n));
+            n *= 2;
+        }
+        let p_hat = levels.iter().map(|l| vec![0.0; l.len()]).collect();
+        LineMultigrid {
+            phys,
+            domain,
+            levels,
+            h0: 0.0,
+            params: *params,
+            p_hat,
+            work_units: 0.0,
+            load_slope: -1.0,
+            fine_intervals: fine,
+        }
+    }
+
+    /// Start on the coarsest level: the Hertz pressure (or, in the dry limit, a wider parabola
+    /// of the same load, so that the solver has to find Hertz), and H0 such that the central
+    /// film equals the estimate.
+    pub fn initialise(&mut self) {
+        let dry = self.phys.dry;
+        let h_e = self.domain.h_estimate;
+        let lv = &mut self.levels[0];
+        for i in 0..lv.len() {
+            let x = lv.x[i];
+            lv.p[i] = if dry {
+                PI / 4.0 * (1.0 - x * x / 2.25).max(0.0)
+            } else {
+                (1.0 - x * x).max(0.0).sqrt()
+            };
+        }
+        let n = lv.len();
+        lv.p[0] = 0.0;
+        lv.p[n - 1] = 0.0;
+        lv.update_film(&self.phys, 0.0);
+        let ic = self.domain.centre_index(n - 1);
+        self.h0 = h_e - lv.film[ic];
+        lv.update_film(&self.phys, self.h0);
+    }
+
+    fn relax(&mut self, l: usize) {
+        let lv = &mut self.levels[l];
+        relax(lv, &self.phys, self.h0, &self.params.relax);
+        self.work_units += (lv.len() - 1) as f64 / self.fine_intervals as f64;
+    }
+
+    /// Solve the coarsest level's FAS problem for P at fixed H0 by Newton; if Newton fails, fall
+    /// back to `coarse_sweeps` relaxations.
+    fn coarse_solve(&mut self) {
+        let lv = &mut self.levels[0];
+        let before = lv.p.clone();
+        let np = NewtonParams {
+            fix_h0: true,
+            ..NewtonParams::default()
+        };
+        let mut h0 = self.h0;
+        let out = newton_solve(lv, &self.phys, &mut h0, &np);
+        // Newton's cost in work units: each iteration counts as n0 relaxations of level 0.
+        self.work_units += (out.iterations * lv.len()) as f64 / self.fine_intervals as f64;
+        if out.converged || (!out.singular && out.residual < 1e-6) {
+            return;
+        }
+        lv.p.copy_from_slice(&before);
+        lv.update_film(&self.phys, self.h0);
+        for _ in 0..self.params.coarse_sweeps {
+            self.relax(0);
+        }
+    }
+
+    /// The load balance on level l (the current top level): one secant step on H0 for
+    /// G(H0) = h sum P - pi/2, with the slope dG/dH0 from the last two cycles (kept negative and
+    /// the step limited to a fraction of the central film), then the film is refreshed.
+    /// Full Newton (with the load equation) on the coarsest level from the initial guess, then the
+    /// slope dG/dH0 from a second fixed-H0 solve at a perturbed H0.
+    fn start_coarse(&mut self) {
+        let lv = &mut self.levels[0];
+        lv.f.fill(0.0);
+        lv.g = PI / 2.0;
+        let out = newton_solve(lv, &self.phys, &mut self.h0, &NewtonParams::default());
+        self.work_units += (out.iterations * lv.len()) as f64 / self.fine_intervals as f64;
+        if !(out.converged || out.residual < 1e-6) {
+            // Relaxation with a gentle H0 update (the classic coarse-grid load balance).
+            lv.update_film(&self.phys, self.h0);
+            for _ in 0..20 * self.params.coarse_sweeps {
+                relax(lv, &self.phys, self.h0, &self.params.relax);
+                self.h0 += 0.02 * (lv.load() - lv.g);
+                lv.update_film(&self.phys, self.h0);
+            }
+        }
+        let saved = (lv.p.clone(), self.h0);
+        let e0 = lv.load() - lv.g;
+        let ic = self.domain.centre_index(lv.len() - 1);
+        let dh = 1e-3 * lv.film[ic].abs().max(1e-3 * self.domain.h_estimate);
+        let mut h1 = self.h0 + dh;
+        let np = NewtonParams {
+            fix_h0: true,
+            ..NewtonParams::default()
+        };
+        let out = newton_solve(lv, &self.phys, &mut h1, &np);
+        let s = (lv.load() - lv.g - e0) / dh;
+        self.load_slope = if out.converged && s.is_finite() && s < 0.0 {
+            s
+        } else {
+            -lv.g / self.domain.h_estimate
+        };
+        lv.p.copy_from_slice(&saved.0);
+        lv.update_film(&self.phys, self.h0);
+    }
+
+    /// One FAS cycle with level `l` as the finest.
+    pub fn cycle(&mut self, l: usize) {
+        if l == 0 {
+            self.coarse_solve();
+            return;
+        }
+        for _ in 0..self.params.pre {
+            self.relax(l);
+        }
+        {
+            let (lo, hi) = self.levels.split_at_mut(l);
+            let (coarse, fine) = (&mut lo[l - 1], &mut hi[0]);
+            let mut r = std::mem::take(&mut fine.delta);
+            // The full residual, cavitated nodes included: there it is the complementarity
+            // margin (L - f < 0), which keeps the coarse problem strictly cavitated where the fine
+            // one is; zeroing it would make P = 0 a degenerate coarse solution.
+            fine.residual(&self.phys, false, &mut r);
+            let nc = coarse.len();
+            for i in 0..nc {
+                coarse.p[i] = fine.p[2 * i];
+            }
+            coarse.update_film(&self.phys, self.h0);
+            coarse.f[0] = 0.0;
+            coarse.f[nc - 1] = 0.0;
+            for i in 1..nc - 1 {
+                coarse.frozen[i] =
+                    (2 * i - 1..=2 * i + 1).any(|k| fine.p[k] <= 0.0 || fine.frozen[k]);
+                let rr = 0.25 * r[2 * i - 1] + 0.5 * r[2 * i] + 0.25 * r[2 * i + 1];
+                coarse.f[i] = coarse.reynolds(&self.phys, i) + rr;
+            }
+            coarse.g = coarse.load() + (fine.g - fine.load());
+            self.p_hat[l - 1].copy_from_slice(&coarse.p);
+            fine.delta = r;
+        }
+        for _ in 0..self.params.cycle.gamma() {
+            self.cycle(l - 1);
+        }
+        {
+            let (lo, hi) = self.levels.split_at_mut(l);
+            let (coarse, fine) = (&lo[l - 1], &mut hi[0]);
+            let ph = &self.p_hat[l - 1];
+            let nc = coarse.len();
+            for i in 0..nc {
+                let e = coarse.p[i] - ph[i];
+                fine.p[2 * i] += e;
+                if i + 1 < nc {
+                    let e1 = coarse.p[i + 1] - ph[i + 1];
+                    fine.p[2 * i + 1] += 0.5 * (e + e1);
+                }
+            }
+            let nf = fine.len();
+            fine.p[0] = 0.0;
+            fine.p[nf - 1] = 0.0;
+            for p in fine.p.iter_mut() {
+                *p = p.max(0.0);
+            }
+            fine.update_film(&self.phys, self.h0);
+        }
+        for _ in 0..self.params.post {
+            self.relax(l);
+        }
+    }
+
+    /// Cubic interpolation of level l-1's pressure as the start on level l (FMG).
+    fn fmg_interpolate(&mut self, l: usize) {
+        let (lo, hi) = self.levels.split_at_mut(l);
+        let (coarse, fine) = (&lo[l - 1], &mut hi[0]);
+        let nc = coarse.len();
+        let pc = &coarse.p;
+        for i in 0..nc {
+            fine.p[2 * i] = pc[i];
+            if i + 1 < nc {
+                fine.p[2 * i + 1] = if i >= 1 && i + 2 < nc {
+                    (-pc[i - 1] + 9.0 * pc[i] + 9.0 * pc[i + 1] - pc[i + 2]) / 16.0
+                } else {
+                    0.5 * (pc[i] + pc[i + 1])
+                };
+            }
+        }
+        for p in fine.p.iter_mut() {
+            *p = p.max(0.0);
+        }
+        fine.f.fill(0.0);
+        fine.frozen.fill(false);
+        fine.g = PI / 2.0;
+        fine.update_film(&self.phys, self.h0);
+    }
+
+    /// Convergence measures of level `l` (the current top level) after a cycle.
+    pub fn record(&mut self, l: usize) -> CycleRecord {
+        let fine = &mut self.levels[l];
+        let mut r = std::mem::take(&mut fine.delta);
+        fine.residual(&self.phys, true, &mut r);
+        let active = fine.p.iter().filter(|&&p| p > 0.0).count().max(1);
+        let residual = r.iter().map(|v| v.abs()).sum::<f64>() / active as f64;
+        fine.delta = r;
+        let load_error = (fine.load() - fine.g) / fine.g;
+        let ic = self.domain.centre_index(fine.len() - 1);
+        CycleRecord {
+            residual,
+            load_error,
+            h_c: fine.film[ic] * self.h_scale(),
+            work_units: self.work_units,
+        }
+    }
+
+    /// H_Moes / H_Venner.
+    pub fn h_scale(&self) -> f64 {
+        8.0 * PI.recip() * (3.0 * PI * PI / (8.0 * self.phys.lambda)).sqrt()
+    }
+
+    /// Run FMG: on each level, cycles at fixed H0 until the load error has settled, then a load
+    /// balance step on H0 ([`LoadBalance`]); on the finest level until converged or failed.
+    pub fn solve(&mut self) -> SolveInfo {
+        let start = Instant::now();
+        self.initialise();
+        let top = self.levels.len() - 1;
+        self.start_coarse();
+        let mut lb = LoadBalance::new(self.load_slope);
+        let mut history = vec![];
+        let mut status = Status::MaxIterations;
+        let mut reason = format!("no convergence in {} cycles", self.params.max_cycles);
+        let mut min_res = f64::INFINITY;
+        for l in 1..=top {
+            self.fmg_interpolate(l);
+            lb.reset();
+            let final_level = l == top;
+            let (tol_e, max) = if final_level {
+                (self.params.tol_load, self.params.max_cycles)
+            } else {
+                (1e-4, 4 * self.params.fmg_cycles)
+            };
+            let mut prev: Option<CycleRecord> = None;
+            let mut first_res = f64::INFINITY;
+            let mut settled_h: Option<f64> = None;
+            for k in 0..max {
+                self.cycle(l);
+                let rec = self.record(l);
+                if final_level {
+                    history.push(rec);
+                }
+                if !(rec.residual.is_finite() && rec.h_c.is_finite() && self.h0.is_finite()) {
+                    status = Status::Diverged;
+                    reason = format!("non-finite residual or film on level {l}");
+                    return self.finish(start, status, reason, history);
+                }
+                if final_level {
+                    min_res = min_res.min(rec.residual);
+                    if rec.residual > 1e4 * min_res.max(1e-14) || rec.load_error.abs() > 10.0 {
+                        reason = format!(
+                            "residual grew to {:.3e} (min {:.3e}), load error {:.3e}",
+                            rec.residual, min_res, rec.load_error
+                        );
+                        return self.finish(start, Status::Diverged, reason, history);
+                    }
+                }
+                // P has settled for this H0 when the residual fell by 20 since the last H0 change
+                // and the load error moved by less than a tenth of itself over the last cycle.
+                first_res = first_res.min(if prev.is_none() {
+                    rec.residual
+                } else {
+                    f64::INFINITY
+                });
+                let settled = prev.is_some_and(|p| {
+                    (rec.load_error - p.load_error).abs()
+                        <= 0.1 * rec.load_error.abs() + 0.25 * tol_e
+                        && rec.residual <= 0.05 * first_res
+                });
+                let dh = prev.map_or(f64::INFINITY, |p| {
+                    (rec.h_c - p.h_c).abs() / rec.h_c.abs().max(1e-300)
+                });
+                if rec.load_error.abs() < tol_e
+                    && (settled || k + 1 == max)
+                    && (!final_level || dh < self.params.tol_h)
+                {
+                    if final_level {
+                        status = Status::Converged;
+                        reason = format!(
+                            "load error {:.1e} and H_c change {:.1e} below tolerances",
+                            rec.load_error, dh
+                        );
+                    }
+                    break;
+                }
+                if settled {
+                    if final_level {
+                        if let Some(hs) = settled_h {
+                            if (rec.h_c - hs).abs() / rec.h_c.abs() < 1e-12
+                                && rec.load_error.abs() > tol_e
+                            {
+                                status = Status::Stalled;
+                                reason = format!("load error stuck at {:.2e}", rec.load_error);
+                                break;
+                            }
+                        }
+                        settled_h = Some(rec.h_c);
+                    }
+                    let lv = &mut self.levels[l];
+                    let ic = self.domain.centre_index(lv.len() - 1);
+                    // H0 is a rigid approach: elastic contacts absorb much of a change of it, so the
+                    // step limit scales with |H0| as well as with the film.
+                    let max_step = 0.3 * lv.film[ic].abs().max(1e-3 * self.domain.h_estimate)
+                        + 0.1 * self.h0.abs();
+                    let g = rec.load_error * lv.g;
+                    let next = lb.next(self.h0, g, max_step);
+                    self.h0 += self.params.load_factor.unwrap_or(1.0) * (next - self.h0);
+                    lv.update_film(&self.phys, self.h0);
+                    prev = None;
+                    first_res = f64::INFINITY;
+                } else {
+                    prev = Some(rec);
+                }
+            }
+        }
+        self.finish(start, status, reason, history)
+    }
+
+    fn finish(
+        &self,
+        start: Instant,
+        status: Status,
+        reason: String,
+        history: Vec<CycleRecord>,
+    ) -> SolveInfo {
+        let fine = self.levels.last().expect("levels");
+        SolveInfo {
+            status,
+            reason,
+            history,
+            work_units: self.work_units,
+            wall_s: start.elapsed().as_secs_f64(),
+            grid: fine.len(),
+            levels: self.levels.len(),
+        }
+    }
+}
