@@ -5,6 +5,7 @@
 //! reports ([`solution`]) -> storage ([`io`]); [`formulas`] holds the published film formulas the
 //! results are compared with.
 
+pub mod accuracy;
 pub mod cli;
 pub mod formulas;
 pub mod hertz;

@@ -7,7 +7,8 @@
 //! with eps = rho H^3/(eta lambda), eps_{i+-1/2} the mean of the nodal values, and D_x the second
 //! order upwind difference (1.5 q_i - 2 q_{i-1} + 0.5 q_{i-2})/h (first order at i = 1, or
 //! everywhere when asked). The film is H_i = H0 + X_i^2/2 - (1/pi) sum_j K_{|i-j|} P_j (the sum
-//! dropped for rigid surfaces) and the load equation is h sum_i P_i = g. On the finest level f = 0
+//! dropped for rigid surfaces) and the load equation is h sum_i P_i = g. A dry contact replaces L_i by
+//! -H_i (the contact condition). On the finest level f = 0
 //! and g = pi/2; coarser levels carry the FAS right-hand sides. In the dry limit eps = 0.
 
 use crate::lubricant::{Density, Viscosity};
@@ -23,7 +24,8 @@ pub struct LinePhysics {
     pub viscosity: Viscosity,
     pub density: Density,
     pub elastic: bool,
-    /// Dry-contact limit (eps = 0): the Reynolds equation reduces to D_x(rho H) = 0 where P > 0.
+    /// Dry contact: the Reynolds equation is switched off and replaced by the contact condition
+    /// L_i = -H_i (so P >= 0, H >= 0, P H = 0: Hertz for a parabolic gap).
     pub dry: bool,
     /// Second-order upwind wedge term (default) or first order.
     pub second_order: bool,
@@ -146,6 +148,9 @@ impl LineLevel {
     /// L_i, the discrete Reynolds operator at interior node i.
     #[inline]
     pub fn reynolds(&self, phys: &LinePhysics, i: usize) -> f64 {
+        if phys.dry {
+            return -self.film[i];
+        }
         let h = self.h;
         let em = 0.5 * (self.eps[i - 1] + self.eps[i]);
         let ep = 0.5 * (self.eps[i] + self.eps[i + 1]);

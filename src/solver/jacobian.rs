@@ -36,6 +36,15 @@ impl JacRow {
     }
 
     fn build(lv: &LineLevel, phys: &LinePhysics, i: usize, frozen_eps: bool) -> Self {
+        if phys.dry {
+            // L_i = -H_i.
+            return JacRow {
+                i,
+                g_h: [0.0, 0.0, -1.0, 0.0],
+                local: [0.0; 5],
+                elastic: phys.elastic,
+            };
+        }
         let h = lv.h;
         let h2 = h * h;
         let deps_dh = |k: usize| {

@@ -17,7 +17,7 @@ use crate::params::LineCase;
 use crate::problem::domain::{DomainParams, LineDomain};
 use crate::problem::line::{LineLevel, LinePhysics};
 use crate::solver::load_balance::LoadBalance;
-use crate::solver::newton::{newton_solve, NewtonParams};
+use crate::solver::newton::{newton_solve, NewtonOutcome, NewtonParams};
 use crate::solver::relax::{relax, RelaxParams};
 use crate::solver::{CycleRecord, SolveInfo, Status};
 use serde::{Deserialize, Serialize};
@@ -113,7 +113,8 @@ impl LineMultigrid {
             ..LinePhysics::from_case(case)
         };
         let max_int = (params.grid.max(17) - 1).next_power_of_two();
-        let mut domain = LineDomain::for_case(case.m, case.l, &params.domain, max_int);
+        let rigid = case.models.elasticity == crate::params::Elasticity::Rigid;
+        let mut domain = LineDomain::for_case(case.m, case.l, rigid, &params.domain, max_int);
         if let Some(n0) = params.coarse_intervals {
             domain = LineDomain::aligned(
                 domain.x_in,
@@ -146,17 +147,23 @@ impl LineMultigrid {
         }
     }
 
-    /// Start on the coarsest level: the Hertz pressure (or, in the dry limit, a wider parabola
-    /// of the same load, so that the solver has to find Hertz), and H0 such that the central
-    /// film equals the estimate.
+    /// Start on the coarsest level: the Hertz pressure for elastic surfaces; for rigid ones a
+    /// parabola over [-2.5, 0.5] l_h (the Martin pressure's extent, l_h = sqrt(2 H_e)); in the dry
+    /// limit a wider parabola than Hertz, so that the solver has to find Hertz. All carry the load
+    /// pi/2. H0 is chosen so that the central film equals the estimate H_e.
     pub fn initialise(&mut self) {
         let dry = self.phys.dry;
+        let rigid = !self.phys.elastic;
         let h_e = self.domain.h_estimate;
+        let half = 1.5 * (2.0 * h_e).sqrt();
         let lv = &mut self.levels[0];
         for i in 0..lv.len() {
             let x = lv.x[i];
             lv.p[i] = if dry {
                 PI / 4.0 * (1.0 - x * x / 2.25).max(0.0)
+            } else if rigid {
+                let s = (x + half / 1.5) / half;
+                3.0 * PI / (8.0 * half) * (1.0 - s * s).max(0.0)
             } else {
                 (1.0 - x * x).max(0.0).sqrt()
             };
@@ -204,11 +211,12 @@ impl LineMultigrid {
     /// the step limited to a fraction of the central film), then the film is refreshed.
     /// Full Newton (with the load equation) on the coarsest level from the initial guess, then the
     /// slope dG/dH0 from a second fixed-H0 solve at a perturbed H0.
-    fn start_coarse(&mut self) {
+    fn start_coarse(&mut self) -> NewtonOutcome {
         let lv = &mut self.levels[0];
         lv.f.fill(0.0);
         lv.g = PI / 2.0;
         let out = newton_solve(lv, &self.phys, &mut self.h0, &NewtonParams::default());
+        let first = out;
         self.work_units += (out.iterations * lv.len()) as f64 / self.fine_intervals as f64;
         if !(out.converged || out.residual < 1e-6) {
             // Relaxation with a gentle H0 update (the classic coarse-grid load balance).
@@ -237,6 +245,7 @@ impl LineMultigrid {
         };
         lv.p.copy_from_slice(&saved.0);
         lv.update_film(&self.phys, self.h0);
+        first
     }
 
     /// One FAS cycle with level `l` as the finest.
@@ -356,7 +365,28 @@ impl LineMultigrid {
         let start = Instant::now();
         self.initialise();
         let top = self.levels.len() - 1;
-        self.start_coarse();
+        let coarse = self.start_coarse();
+        if top == 0 {
+            // A single level: the Newton solve is the whole solve.
+            let rec = self.record(0);
+            let (status, reason) = if coarse.converged {
+                (
+                    Status::Converged,
+                    format!("Newton converged in {} iterations", coarse.iterations),
+                )
+            } else if coarse.singular {
+                (Status::Diverged, "singular Newton system".to_string())
+            } else {
+                (
+                    Status::MaxIterations,
+                    format!(
+                        "Newton residual {:.2e} after {} iterations",
+                        coarse.residual, coarse.iterations
+                    ),
+                )
+            };
+            return self.finish(start, status, reason, vec![rec]);
+        }
         let mut lb = LoadBalance::new(self.load_slope);
         let mut history = vec![];
         let mut status = Status::MaxIterations;

@@ -1,0 +1,215 @@
+//! Line-contact solver against independent references: the exact rigid-isoviscous (Martin)
+//! solution, the Hertz pressure of a dry contact, grid-convergence rates, Moes' 1992 formula,
+//! conservation of load, and honest failure reporting.
+
+use ehlmap::accuracy::richardson3;
+use ehlmap::formulas::moes_line_hc;
+use ehlmap::params::{Elasticity, LineCase, Models};
+use ehlmap::solver::line::{solve_line, LineSolution, LineSolveParams};
+use ehlmap::solver::multigrid::{LineMgParams, LineMultigrid};
+use ehlmap::solver::Status;
+
+fn solve(m: f64, l: f64, models: Models, grid: usize) -> LineSolution {
+    let case = LineCase::with_models(m, l, models).unwrap();
+    let mut p = LineSolveParams::default();
+    p.mg.grid = grid;
+    p.keep_profile = true;
+    solve_line(&case, &p)
+}
+
+fn rigid() -> Models {
+    Models {
+        elasticity: Elasticity::Rigid,
+        ..Models::default()
+    }
+}
+
+#[test]
+fn rigid_isoviscous_is_martin_for_any_m() {
+    // Exact (Martin, Reynolds exit condition): M H(X=0) = 2.4475, M H(p_max) = 3.
+    for m in [0.1, 1.0, 10.0, 100.0, 1000.0] {
+        let s = solve(m, 0.0, rigid(), 2049);
+        let o = &s.outputs;
+        assert_eq!(o.status, Status::Converged, "M={m}: {}", o.reason);
+        assert!(
+            (m * o.h_c / 2.4475 - 1.0).abs() < 0.005,
+            "M={m}: M H_c = {}",
+            m * o.h_c
+        );
+        assert!(
+            (m * o.h_c_pmax / 3.0 - 1.0).abs() < 0.005,
+            "M={m}: M H_pmax = {}",
+            m * o.h_c_pmax
+        );
+    }
+}
+
+#[test]
+fn elastic_low_m_reaches_the_rigid_limit() {
+    let s = solve(0.1, 0.0, Models::default(), 2049);
+    let o = &s.outputs;
+    assert_eq!(o.status, Status::Converged, "{}", o.reason);
+    assert!(
+        (0.1 * o.h_c / 2.4475 - 1.0).abs() < 0.01,
+        "M H_c = {}",
+        0.1 * o.h_c
+    );
+    assert!(
+        (0.1 * o.h_c_pmax / 3.0 - 1.0).abs() < 0.01,
+        "M H_pmax = {}",
+        0.1 * o.h_c_pmax
+    );
+}
+
+#[test]
+fn dry_contact_pressure_tends_to_hertz() {
+    // Reynolds switched off (contact condition H = 0 where P > 0): P -> sqrt(1 - X^2).
+    let case = LineCase::new(1000.0, 0.0).unwrap();
+    let mut errs = vec![];
+    for n in [64usize, 128, 256, 512] {
+        let p = LineMgParams {
+            grid: n + 1,
+            coarse_intervals: Some(n),
+            ..LineMgParams::default()
+        };
+        let mut mg = LineMultigrid::new(&case, &p);
+        mg.phys.dry = true;
+        let info = mg.solve();
+        assert_eq!(info.status, Status::Converged, "{}", info.reason);
+        let lv = mg.levels.last().unwrap();
+        let l1: f64 = (0..lv.len())
+            .map(|i| (lv.p[i] - (1.0 - lv.x[i] * lv.x[i]).max(0.0).sqrt()).abs() * lv.h)
+            .sum();
+        errs.push(l1);
+    }
+    assert!(
+        errs[0] < 5e-3 && errs[3] < 5e-4 && errs[3] < errs[0] / 5.0,
+        "{errs:?}"
+    );
+}
+
+#[test]
+fn second_order_grid_convergence_with_richardson_estimate() {
+    let hc: Vec<_> = [1025, 2049, 4097]
+        .iter()
+        .map(|&g| solve(20.0, 10.0, Models::default(), g))
+        .collect();
+    for s in &hc {
+        assert_eq!(s.outputs.status, Status::Converged, "{}", s.outputs.reason);
+    }
+    let r = richardson3(hc[0].outputs.h_c, hc[1].outputs.h_c, hc[2].outputs.h_c);
+    let rm = richardson3(
+        hc[0].outputs.h_min,
+        hc[1].outputs.h_min,
+        hc[2].outputs.h_min,
+    );
+    println!("H_c: {:?}\nH_min: {:?}", r, rm);
+    assert!(r.order > 1.7 && r.order < 2.3, "H_c order {r:?}");
+    assert!(rm.order > 1.5 && rm.order < 2.5, "H_min order {rm:?}");
+    assert!(r.error_estimate < 2e-3, "{r:?}");
+    // Moes 1992 gives 5.10 here; careful numerics differ from it by a few percent.
+    assert!(
+        (r.extrapolated / moes_line_hc(20.0, 10.0) - 1.0).abs() < 0.06,
+        "{r:?}"
+    );
+}
+
+#[test]
+fn moes_formula_within_8_percent() {
+    let mut worst = (0.0f64, 0.0, 0.0);
+    for m in [5.0, 20.0, 100.0, 300.0, 1000.0] {
+        for l in [0.0, 5.0, 10.0, 20.0] {
+            let s = solve(m, l, Models::default(), 4097);
+            assert_eq!(
+                s.outputs.status,
+                Status::Converged,
+                "M={m} L={l}: {}",
+                s.outputs.reason
+            );
+            println!(
+                "M={m} L={l}: H_c {:.5} Moes {:.5} ({})",
+                s.outputs.h_c,
+                moes_line_hc(m, l),
+                s.outputs.reason
+            );
+            let dev = s.outputs.h_c / moes_line_hc(m, l) - 1.0;
+            if dev.abs() > worst.0.abs() {
+                worst = (dev, m, l);
+            }
+            assert!(
+                dev.abs() < 0.08,
+                "M={m} L={l}: H_c {} vs Moes {}",
+                s.outputs.h_c,
+                moes_line_hc(m, l)
+            );
+        }
+    }
+    println!(
+        "largest deviation from Moes 1992: {:+.2} % at M = {}, L = {}",
+        100.0 * worst.0,
+        worst.1,
+        worst.2
+    );
+}
+
+#[test]
+fn second_order_upwinding_matters() {
+    // First-order upwinding of the wedge term is off by more than the second-order scheme's
+    // whole discretisation error, even on 4097 points.
+    let case = LineCase::new(20.0, 10.0).unwrap();
+    let run = |second: bool| {
+        let mut p = LineSolveParams::default();
+        p.mg.grid = 4097;
+        p.mg.second_order = second;
+        solve_line(&case, &p).outputs.h_c
+    };
+    let (h2, h1) = (run(true), run(false));
+    let reference = 5.2757; // Richardson over 1025..4097 with second order
+    assert!((h2 / reference - 1.0).abs() < 1e-3, "second order {h2}");
+    // Measured: +0.52 % for first order against 0.01 % for second order at this case.
+    assert!((h1 / reference - 1.0).abs() > 3e-3, "first order {h1}");
+    println!("H_c second order {h2:.5}, first order {h1:.5}");
+}
+
+#[test]
+fn load_balance_and_cavitation_hold() {
+    for (m, l) in [(20.0, 10.0), (200.0, 10.0), (1000.0, 0.0)] {
+        let s = solve(m, l, Models::default(), 2049);
+        let o = &s.outputs;
+        assert_eq!(o.status, Status::Converged, "{}", o.reason);
+        assert!(o.load_error.abs() < 1e-6, "load error {}", o.load_error);
+        let prof = s.profile.as_ref().unwrap();
+        assert!(prof.p.iter().all(|&p| p >= 0.0 && p.is_finite()));
+        assert!(prof.h.iter().all(|h| h.is_finite()));
+        // Load from the profile by the trapezoid rule: pi/2.
+        let h = prof.x[1] - prof.x[0];
+        let load: f64 = prof.p.iter().sum::<f64>() * h;
+        assert!((load / std::f64::consts::FRAC_PI_2 - 1.0).abs() < 1e-6);
+    }
+}
+
+#[test]
+fn forced_failures_are_reported_honestly() {
+    let case = LineCase::new(20.0, 10.0).unwrap();
+    let mut p = LineSolveParams::default();
+    p.fallback = false;
+    p.mg.max_cycles = 1;
+    let s = solve_line(&case, &p);
+    assert_ne!(
+        s.outputs.status,
+        Status::Converged,
+        "one cycle cannot converge: {}",
+        s.outputs.reason
+    );
+    let mut p = LineSolveParams::default();
+    p.fallback = false;
+    p.mg.relax.omega_line = 4.0;
+    let s = solve_line(&case, &p);
+    assert_ne!(
+        s.outputs.status,
+        Status::Converged,
+        "absurd relaxation: {}",
+        s.outputs.reason
+    );
+    assert!(!s.outputs.reason.is_empty());
+}
