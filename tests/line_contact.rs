@@ -191,8 +191,10 @@ fn load_balance_and_cavitation_hold() {
 #[test]
 fn forced_failures_are_reported_honestly() {
     let case = LineCase::new(20.0, 10.0).unwrap();
-    let mut p = LineSolveParams::default();
-    p.fallback = false;
+    let mut p = LineSolveParams {
+        fallback: false,
+        ..Default::default()
+    };
     p.mg.max_cycles = 1;
     let s = solve_line(&case, &p);
     assert_ne!(
@@ -201,8 +203,10 @@ fn forced_failures_are_reported_honestly() {
         "one cycle cannot converge: {}",
         s.outputs.reason
     );
-    let mut p = LineSolveParams::default();
-    p.fallback = false;
+    let mut p = LineSolveParams {
+        fallback: false,
+        ..Default::default()
+    };
     p.mg.relax.omega_line = 4.0;
     let s = solve_line(&case, &p);
     assert_ne!(

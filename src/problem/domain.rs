@@ -18,9 +18,11 @@
 //! rigid and every length scales with l_h (the Martin pressure decays like |X|^-3 into the inlet
 //! and cavitates at X = 0.475 l_h), so the domain grows with l_h and the inlet truncation error
 //! stays a fixed, small fraction. For rigid surfaces there is no Hertzian zone at all and the
-//! domain is [-(inlet_factor + inlet_rigid) l_h, outlet_factor l_h] for any M. The coarsest grid has the fewest intervals (a power of two,
-//! >= 16) with spacing h0 <= min(coarse_h_max * max(1, l_h / 2), coarse_lh * l_h): coarse grids that
-//! cannot see the film (h0 >> l_h at high M) make corrections of the wrong kind, and the exact
+//! domain is [-(inlet_factor + inlet_rigid) l_h, outlet_factor l_h] for any M.
+//!
+//! The coarsest grid has the fewest intervals (a power of two, at least 16) with spacing
+//! h0 <= min(coarse_h_max * max(1, l_h / 2), coarse_lh * l_h): coarse grids that cannot see the
+//! film (h0 much larger than l_h at high M) make corrections of the wrong kind, and the exact
 //! coarsest solve is cheap enough to afford a few hundred points. The domain is then shifted so
 //! that X = 0 is a node of every level.
 

@@ -63,6 +63,8 @@ pub struct LineMgParams {
     /// cycle is below tol_h.
     pub tol_load: f64,
     pub tol_h: f64,
+    /// Load tolerance on the coarser FMG levels before moving up.
+    pub tol_load_fmg: f64,
     pub domain: DomainParams,
     /// Override the coarsest grid's interval count (a power of two >= 8).
     pub coarse_intervals: Option<usize>,
@@ -83,6 +85,7 @@ impl Default for LineMgParams {
             coarse_sweeps: 20,
             tol_load: 1e-7,
             tol_h: 1e-6,
+            tol_load_fmg: 1e-4,
             domain: DomainParams::default(),
             coarse_intervals: None,
             second_order: true,
@@ -399,7 +402,7 @@ impl LineMultigrid {
             let (tol_e, max) = if final_level {
                 (self.params.tol_load, self.params.max_cycles)
             } else {
-                (1e-4, 4 * self.params.fmg_cycles)
+                (self.params.tol_load_fmg, 4 * self.params.fmg_cycles)
             };
             let mut prev: Option<CycleRecord> = None;
             let mut first_res = f64::INFINITY;

@@ -116,6 +116,7 @@ pub fn line_sweep(lv: &mut LineLevel, phys: &LinePhysics, h0: f64, rp: &RelaxPar
         })
         .collect();
     let mut a = vec![0.0; m * w];
+    let mut ent = vec![0.0; 2 * bw + 3];
     for i in 1..n - 1 {
         let row = i - 1;
         match kind[i] {
@@ -129,17 +130,21 @@ pub fn line_sweep(lv: &mut LineLevel, phys: &LinePhysics, h0: f64, rp: &RelaxPar
             }
             _ => {
                 let jr = &rows[row];
-                let e = |j: usize| {
-                    if j >= 1 && j < n - 1 {
-                        jr.entry(&lv.kernel, j)
+                // Row entries J(i, j) for j = i-bw-1 ..= i+bw+1 (zero outside the interior).
+                let j0 = i as isize - bw as isize - 1;
+                for (t, v) in ent.iter_mut().enumerate() {
+                    let j = j0 + t as isize;
+                    *v = if j >= 1 && j < n as isize - 1 {
+                        jr.entry(&lv.kernel, j as usize)
                     } else {
                         0.0
-                    }
-                };
+                    };
+                }
                 for j in i.saturating_sub(bw).max(1)..(i + bw + 1).min(n - 1) {
-                    let mut v = e(j);
+                    let t = (j as isize - j0) as usize;
+                    let mut v = ent[t];
                     if jset[j] {
-                        v -= 0.5 * (e(j - 1) + e(j + 1));
+                        v -= 0.5 * (ent[t - 1] + ent[t + 1]);
                     }
                     a[row * w + (j + bw - i)] = v;
                 }
