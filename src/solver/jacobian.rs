@@ -115,8 +115,67 @@ impl JacRow {
         v
     }
 
+    /// Entries dL_i/dP_j for the window j = i-bw-1 ..= i+bw+1 into `out` (length 2 bw + 3), with
+    /// `ksym[bw + 3 + d] = K_|d|` for |d| <= bw + 3. Columns outside 1..n-1 must be cleared by the
+    /// caller.
+    #[inline]
+    pub fn window(&self, ksym: &[f64], bw: usize, out: &mut [f64]) {
+        let len = 2 * bw + 3;
+        let out = &mut out[..len];
+        out.fill(0.0);
+        if self.elastic {
+            // d = (i + t - 2) - j = t + bw - 1 - k for out[k], j = i - bw - 1 + k.
+            for (t, &g) in self.g_h.iter().enumerate() {
+                if g != 0.0 {
+                    let g = -g / PI;
+                    let base = 2 * bw + 2 + t;
+                    for (k, o) in out.iter_mut().enumerate() {
+                        *o += g * ksym[base - k];
+                    }
+                }
+            }
+        }
+        for (off, &v) in self.local.iter().enumerate() {
+            // j - i = off - 2, k = bw + 1 + off - 2.
+            out[bw - 1 + off] += v;
+        }
+    }
+
     /// dL_i/dH0.
     pub fn d_h0(&self) -> f64 {
         self.g_h.iter().sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::params::LineCase;
+
+    #[test]
+    fn window_equals_entries() {
+        let phys = LinePhysics::from_case(&LineCase::new(20.0, 10.0).unwrap());
+        let mut lv = LineLevel::new(-3.0, 1.5, 64);
+        for i in 1..lv.len() - 1 {
+            lv.p[i] = (1.0 - lv.x[i] * lv.x[i]).max(0.0).sqrt() + 0.01;
+        }
+        lv.update_film(&phys, 0.2);
+        let bw = 5;
+        let ksym: Vec<f64> = (0..2 * bw + 7)
+            .map(|q| lv.kernel[(q as isize - bw as isize - 3).unsigned_abs()])
+            .collect();
+        let mut out = vec![0.0; 2 * bw + 3];
+        for i in [10usize, 30, 40] {
+            let row = JacRow::new(&lv, &phys, i);
+            row.window(&ksym, bw, &mut out);
+            for (k, &v) in out.iter().enumerate() {
+                let j = i + k - bw - 1;
+                let e = row.entry(&lv.kernel, j);
+                assert!(
+                    (v - e).abs() <= 1e-12 * (1.0 + e.abs()),
+                    "i={i} j={j}: {v} vs {e}"
+                );
+            }
+        }
     }
 }

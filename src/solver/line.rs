@@ -13,11 +13,38 @@
 use crate::params::LineCase;
 use crate::solution::{line_outputs, LineOutputs, Profile};
 use crate::solver::multigrid::{CycleType, LineMgParams, LineMultigrid};
+use crate::solver::single_grid::solve_relax;
 use crate::solver::{SolveInfo, Status};
+
+/// Which solver.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Method {
+    /// Full multigrid (FAS), the default.
+    #[default]
+    Multigrid,
+    /// Damped Newton-Raphson on the finest grid with a dense Jacobian (baseline; O(N^3)).
+    Newton,
+    /// The multigrid smoother alone on the finest grid (baseline).
+    Relax,
+}
+
+impl Method {
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Method::Multigrid => "multigrid",
+            Method::Newton => "newton",
+            Method::Relax => "relax",
+        }
+    }
+}
 
 /// Parameters of a line solve.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LineSolveParams {
+    pub method: Method,
+    /// Sweeps allowed to the single-grid relaxation baseline.
+    pub relax_max_sweeps: usize,
     pub mg: LineMgParams,
     /// Retry with conservative settings when the first attempt fails.
     pub fallback: bool,
@@ -28,6 +55,8 @@ pub struct LineSolveParams {
 impl Default for LineSolveParams {
     fn default() -> Self {
         LineSolveParams {
+            method: Method::Multigrid,
+            relax_max_sweeps: 20_000,
             mg: LineMgParams::default(),
             fallback: true,
             keep_profile: false,
@@ -58,6 +87,15 @@ fn attempts(p: &LineMgParams) -> Vec<LineMgParams> {
 fn run(case: &LineCase, p: &LineMgParams, keep_profile: bool) -> LineSolution {
     let mut mg = LineMultigrid::new(case, p);
     let info = mg.solve();
+    package(case, &mg, info, keep_profile)
+}
+
+fn package(
+    case: &LineCase,
+    mg: &LineMultigrid,
+    info: SolveInfo,
+    keep_profile: bool,
+) -> LineSolution {
     let fine = mg.levels.last().expect("levels");
     let ic = mg.domain.centre_index(fine.len() - 1);
     let hs = 8.0 * case.m / std::f64::consts::PI;
@@ -83,8 +121,29 @@ fn final_residual(s: &LineSolution) -> f64 {
         .abs()
 }
 
+/// The baselines run on one level: the finest grid itself.
+fn single_level(p: &LineMgParams) -> LineMgParams {
+    LineMgParams {
+        coarse_intervals: Some((p.grid.max(17) - 1).next_power_of_two()),
+        ..*p
+    }
+}
+
 /// Solve a line contact. Never panics on a valid case; numerical failure is a status.
 pub fn solve_line(case: &LineCase, params: &LineSolveParams) -> LineSolution {
+    match params.method {
+        Method::Multigrid => {}
+        Method::Newton => {
+            let mut p = single_level(&params.mg);
+            p.newton_max_iter = p.newton_max_iter.max(200);
+            return run(case, &p, params.keep_profile);
+        }
+        Method::Relax => {
+            let mut mg = LineMultigrid::new(case, &single_level(&params.mg));
+            let info = solve_relax(&mut mg, params.relax_max_sweeps, 10);
+            return package(case, &mg, info, params.keep_profile);
+        }
+    }
     let list = if params.fallback {
         attempts(&params.mg)
     } else {

@@ -8,6 +8,7 @@ pub mod load_balance;
 pub mod multigrid;
 pub mod newton;
 pub mod relax;
+pub mod single_grid;
 
 use serde::{Deserialize, Serialize};
 use std::fmt;

@@ -69,6 +69,8 @@ pub struct LineMgParams {
     /// Override the coarsest grid's interval count (a power of two >= 8).
     pub coarse_intervals: Option<usize>,
     pub second_order: bool,
+    /// Newton iterations allowed for the first coarsest-grid solve (and for the Newton method).
+    pub newton_max_iter: usize,
 }
 
 impl Default for LineMgParams {
@@ -89,6 +91,7 @@ impl Default for LineMgParams {
             domain: DomainParams::default(),
             coarse_intervals: None,
             second_order: true,
+            newton_max_iter: 40,
         }
     }
 }
@@ -214,11 +217,15 @@ impl LineMultigrid {
     /// the step limited to a fraction of the central film), then the film is refreshed.
     /// Full Newton (with the load equation) on the coarsest level from the initial guess, then the
     /// slope dG/dH0 from a second fixed-H0 solve at a perturbed H0.
-    fn start_coarse(&mut self) -> NewtonOutcome {
+    fn start_coarse(&mut self, with_slope: bool) -> NewtonOutcome {
         let lv = &mut self.levels[0];
         lv.f.fill(0.0);
         lv.g = PI / 2.0;
-        let out = newton_solve(lv, &self.phys, &mut self.h0, &NewtonParams::default());
+        let np = NewtonParams {
+            max_iter: self.params.newton_max_iter,
+            ..NewtonParams::default()
+        };
+        let out = newton_solve(lv, &self.phys, &mut self.h0, &np);
         let first = out;
         self.work_units += (out.iterations * lv.len()) as f64 / self.fine_intervals as f64;
         if !(out.converged || out.residual < 1e-6) {
@@ -229,6 +236,9 @@ impl LineMultigrid {
                 self.h0 += 0.02 * (lv.load() - lv.g);
                 lv.update_film(&self.phys, self.h0);
             }
+        }
+        if !with_slope {
+            return out;
         }
         let saved = (lv.p.clone(), self.h0);
         let e0 = lv.load() - lv.g;
@@ -368,7 +378,7 @@ impl LineMultigrid {
         let start = Instant::now();
         self.initialise();
         let top = self.levels.len() - 1;
-        let coarse = self.start_coarse();
+        let coarse = self.start_coarse(top > 0);
         if top == 0 {
             // A single level: the Newton solve is the whole solve.
             let rec = self.record(0);

@@ -117,6 +117,12 @@ pub fn line_sweep(lv: &mut LineLevel, phys: &LinePhysics, h0: f64, rp: &RelaxPar
         .collect();
     let mut a = vec![0.0; m * w];
     let mut ent = vec![0.0; 2 * bw + 3];
+    let ksym: Vec<f64> = (0..2 * bw + 7)
+        .map(|q| {
+            let d = (q as isize - bw as isize - 3).unsigned_abs();
+            lv.kernel.get(d).copied().unwrap_or(0.0)
+        })
+        .collect();
     for i in 1..n - 1 {
         let row = i - 1;
         match kind[i] {
@@ -129,16 +135,14 @@ pub fn line_sweep(lv: &mut LineLevel, phys: &LinePhysics, h0: f64, rp: &RelaxPar
                 rhs[row] = 0.0;
             }
             _ => {
-                let jr = &rows[row];
                 // Row entries J(i, j) for j = i-bw-1 ..= i+bw+1 (zero outside the interior).
                 let j0 = i as isize - bw as isize - 1;
+                rows[row].window(&ksym, bw, &mut ent);
                 for (t, v) in ent.iter_mut().enumerate() {
                     let j = j0 + t as isize;
-                    *v = if j >= 1 && j < n as isize - 1 {
-                        jr.entry(&lv.kernel, j as usize)
-                    } else {
-                        0.0
-                    };
+                    if j < 1 || j >= n as isize - 1 {
+                        *v = 0.0;
+                    }
                 }
                 for j in i.saturating_sub(bw).max(1)..(i + bw + 1).min(n - 1) {
                     let t = (j as isize - j0) as usize;
