@@ -85,7 +85,7 @@ impl Default for LineMgParams {
             relax: RelaxParams::default(),
             load_factor: None,
             coarse_sweeps: 20,
-            tol_load: 1e-7,
+            tol_load: 5e-7,
             tol_h: 1e-6,
             tol_load_fmg: 1e-4,
             domain: DomainParams::default(),
@@ -405,7 +405,15 @@ impl LineMultigrid {
         let mut status = Status::MaxIterations;
         let mut reason = format!("no convergence in {} cycles", self.params.max_cycles);
         let mut min_res = f64::INFINITY;
+        // H0 at the end of each level: it converges at second order in h, so the next level's
+        // H0 is predicted by extrapolating the last change by 1/4 (Richardson).
+        let mut h0_end = vec![self.h0];
         for l in 1..=top {
+            if let [.., a, b] = h0_end[..] {
+                if l >= 3 {
+                    self.h0 = b + 0.25 * (b - a);
+                }
+            }
             self.fmg_interpolate(l);
             lb.reset();
             let final_level = l == top;
@@ -420,6 +428,12 @@ impl LineMultigrid {
             for k in 0..max {
                 self.cycle(l);
                 let rec = self.record(l);
+                if std::env::var("EHLMAP_TRACE").is_ok() {
+                    eprintln!(
+                        "level {l} cycle {k} res {:.3e} load {:.3e} hc {:.7} wu {:.1} h0 {:.8}",
+                        rec.residual, rec.load_error, rec.h_c, rec.work_units, self.h0
+                    );
+                }
                 if final_level {
                     history.push(rec);
                 }
@@ -495,6 +509,7 @@ impl LineMultigrid {
                     prev = Some(rec);
                 }
             }
+            h0_end.push(self.h0);
         }
         self.finish(start, status, reason, history)
     }
