@@ -4,7 +4,7 @@
 
 use crate::lubricant::{Density, Viscosity};
 use crate::params::{Elasticity, LineCase, Models};
-use crate::solver::line::{solve_line, LineSolveParams};
+use crate::solver::line::{solve_line, LineSolveParams, Method};
 use crate::solver::multigrid::CycleType;
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
@@ -24,6 +24,10 @@ pub struct Cli {
 pub enum Command {
     /// Solve one contact and print its film thickness, pressure and convergence.
     Solve(SolveArgs),
+    /// Run a sweep spec (TOML) into a Parquet dataset: resumable, shardable.
+    Sweep(crate::sweep::cli::SweepArgs),
+    /// Fit a Moes-style film formula to sweep datasets; report, fit.json and charts.
+    Fit(crate::fit::cli::FitArgs),
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
@@ -42,6 +46,13 @@ pub enum ViscosityArg {
 pub enum DensityArg {
     Incompressible,
     DowsonHigginson,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum MethodArg {
+    Multigrid,
+    Newton,
+    Relax,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
@@ -79,6 +90,9 @@ pub struct SolveArgs {
     pub ph: Option<f64>,
     #[arg(long, value_enum, default_value = "incompressible")]
     pub density: DensityArg,
+    /// Solver: full multigrid, or the baselines (dense Newton, single-grid relaxation).
+    #[arg(long, value_enum, default_value = "multigrid")]
+    pub method: MethodArg,
     /// Points of the finest grid (rounded up to 2^k n0 + 1).
     #[arg(long, default_value_t = 2049)]
     pub grid: usize,
@@ -192,6 +206,17 @@ pub fn run_solve(a: &SolveArgs) -> Result<i32, InputError> {
         CycleArg::W => CycleType::W,
     };
     p.fallback = !a.no_fallback;
+    p.method = match a.method {
+        MethodArg::Multigrid => Method::Multigrid,
+        MethodArg::Newton => Method::Newton,
+        MethodArg::Relax => Method::Relax,
+    };
+    if p.method == Method::Newton && a.grid > 4097 {
+        return Err(InputError(format!(
+            "--method newton with --grid {}: the dense Jacobian needs O(N^2) memory and O(N^3) time; use at most 4097",
+            a.grid
+        )));
+    }
     p.keep_profile = a.profile.is_some();
     let s = solve_line(&case, &p);
     if let (Some(path), Some(prof)) = (&a.profile, &s.profile) {

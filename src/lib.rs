@@ -10,6 +10,7 @@
 
 pub mod accuracy;
 pub mod cli;
+pub mod fit;
 pub mod formulas;
 pub mod hertz;
 pub mod io;
@@ -18,3 +19,4 @@ pub mod params;
 pub mod problem;
 pub mod solution;
 pub mod solver;
+pub mod sweep;

@@ -5,6 +5,8 @@ fn main() {
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Solve(a) => run_solve(a),
+        Command::Sweep(a) => ehlmap::sweep::cli::run_sweep(a),
+        Command::Fit(a) => ehlmap::fit::cli::run_fit(a),
     };
     match result {
         Ok(code) => std::process::exit(code),

@@ -1,3 +1,4 @@
 //! Storage: Parquet files written with arrow-rs (zstd), readable by polars and pyarrow.
 
 pub mod profile;
+pub mod results;

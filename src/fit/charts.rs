@@ -1,0 +1,241 @@
+//! Charts of a fit (PNG and SVG via plotters; text by ab_glyph with the bundled DejaVu Sans, so
+//! nothing is needed from the system): parity plot, H_c over M per L with the fitted formula and
+//! Moes 1992, and the relative-error map over (log M, L).
+
+use crate::fit::model::LineModel;
+use crate::fit::report::FitPoint;
+use crate::formulas::moes_line_hc;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::Path;
+use std::sync::Once;
+
+static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+static REGISTER: Once = Once::new();
+
+fn ensure_font() {
+    REGISTER.call_once(|| {
+        // The bundled font is a valid TrueType file; failure would only lose the labels.
+        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
+    });
+}
+
+type Res = Result<(), String>;
+
+fn e<T: std::fmt::Debug>(x: T) -> String {
+    format!("{x:?}")
+}
+
+/// Draw with `f` into `stem.png` and `stem.svg`.
+fn both(
+    stem: &Path,
+    size: (u32, u32),
+    f: impl Fn(&DrawingArea<BitMapBackend, Shift>) -> Res + Copy,
+    g: impl Fn(&DrawingArea<SVGBackend, Shift>) -> Res,
+) -> Res {
+    ensure_font();
+    let png = stem.with_extension("png");
+    let svg = stem.with_extension("svg");
+    {
+        let root = BitMapBackend::new(&png, size).into_drawing_area();
+        root.fill(&WHITE).map_err(e)?;
+        f(&root)?;
+        root.present().map_err(e)?;
+    }
+    let root = SVGBackend::new(&svg, size).into_drawing_area();
+    root.fill(&WHITE).map_err(e)?;
+    g(&root)?;
+    root.present().map_err(e)?;
+    Ok(())
+}
+
+fn parity<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    pts: &[FitPoint],
+    model: &LineModel,
+) -> Res {
+    let lo = pts.iter().map(|p| p.h_c).fold(f64::INFINITY, f64::min) * 0.8;
+    let hi = pts.iter().map(|p| p.h_c).fold(0.0, f64::max) * 1.25;
+    let mut ch = ChartBuilder::on(root)
+        .caption("Fitted formula vs numerics (H_c)", ("sans-serif", 22))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(56)
+        .build_cartesian_2d((lo..hi).log_scale(), (lo..hi).log_scale())
+        .map_err(e)?;
+    ch.configure_mesh()
+        .x_desc("H_c numerical")
+        .y_desc("H_c formula")
+        .draw()
+        .map_err(e)?;
+    ch.draw_series(LineSeries::new([(lo, lo), (hi, hi)], BLACK.stroke_width(1)))
+        .map_err(e)?;
+    ch.draw_series(
+        pts.iter()
+            .map(|p| Circle::new((p.h_c, model.eval(p.m, p.l)), 3, BLUE.filled())),
+    )
+    .map_err(e)?
+    .label("fit")
+    .legend(|(x, y)| Circle::new((x, y), 3, BLUE.filled()));
+    ch.draw_series(
+        pts.iter()
+            .map(|p| Cross::new((p.h_c, moes_line_hc(p.m, p.l)), 3, RED.stroke_width(1))),
+    )
+    .map_err(e)?
+    .label("Moes 1992")
+    .legend(|(x, y)| Cross::new((x, y), 3, RED.stroke_width(1)));
+    ch.configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()
+        .map_err(e)?;
+    Ok(())
+}
+
+fn distinct(mut v: Vec<f64>) -> Vec<f64> {
+    v.sort_by(|a, b| a.partial_cmp(b).expect("finite"));
+    v.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * b.abs().max(1.0));
+    v
+}
+
+fn curves<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    pts: &[FitPoint],
+    model: &LineModel,
+) -> Res {
+    let m_lo = pts.iter().map(|p| p.m).fold(f64::INFINITY, f64::min);
+    let m_hi = pts.iter().map(|p| p.m).fold(0.0, f64::max);
+    let h_lo = pts.iter().map(|p| p.h_c).fold(f64::INFINITY, f64::min) * 0.7;
+    let h_hi = pts.iter().map(|p| p.h_c).fold(0.0, f64::max) * 1.4;
+    let mut ch = ChartBuilder::on(root)
+        .caption(
+            "H_c over M per L: numerics (dots), fit (lines), Moes 1992 (dashed)",
+            ("sans-serif", 20),
+        )
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(56)
+        .build_cartesian_2d(
+            (m_lo * 0.8..m_hi * 1.25).log_scale(),
+            (h_lo..h_hi).log_scale(),
+        )
+        .map_err(e)?;
+    ch.configure_mesh()
+        .x_desc("M")
+        .y_desc("H_c (Moes units)")
+        .draw()
+        .map_err(e)?;
+    let ls = distinct(pts.iter().map(|p| p.l).collect());
+    for (k, &l) in ls.iter().enumerate() {
+        let color = Palette99::pick(k).to_rgba();
+        let grid: Vec<f64> = (0..=80)
+            .map(|i| m_lo * 0.8 * ((m_hi * 1.25) / (m_lo * 0.8)).powf(i as f64 / 80.0))
+            .collect();
+        ch.draw_series(LineSeries::new(
+            grid.iter().map(|&m| (m, model.eval(m, l))),
+            color.stroke_width(2),
+        ))
+        .map_err(e)?
+        .label(format!("L = {l}"))
+        .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], color.stroke_width(2)));
+        ch.draw_series(DashedLineSeries::new(
+            grid.iter().map(|&m| (m, moes_line_hc(m, l))),
+            4,
+            4,
+            color.stroke_width(1),
+        ))
+        .map_err(e)?;
+        ch.draw_series(
+            pts.iter()
+                .filter(|p| (p.l - l).abs() <= 1e-9 * l.max(1.0))
+                .map(|p| Circle::new((p.m, p.h_c), 3, color.filled())),
+        )
+        .map_err(e)?;
+    }
+    ch.configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()
+        .map_err(e)?;
+    Ok(())
+}
+
+fn error_map<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    pts: &[FitPoint],
+    model: &LineModel,
+) -> Res {
+    let m_lo = pts.iter().map(|p| p.m).fold(f64::INFINITY, f64::min);
+    let m_hi = pts.iter().map(|p| p.m).fold(0.0, f64::max);
+    let l_hi = pts.iter().map(|p| p.l).fold(0.0, f64::max).max(1.0);
+    let errs: Vec<f64> = pts
+        .iter()
+        .map(|p| model.eval(p.m, p.l) / p.h_c - 1.0)
+        .collect();
+    let emax = errs.iter().fold(1e-6f64, |a, v| a.max(v.abs()));
+    let mut ch = ChartBuilder::on(root)
+        .caption(
+            format!(
+                "Relative error of the fit (red +, blue -; full colour = {:.2} %)",
+                100.0 * emax
+            ),
+            ("sans-serif", 20),
+        )
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(48)
+        .build_cartesian_2d(
+            (m_lo * 0.8..m_hi * 1.25).log_scale(),
+            -0.05 * l_hi..1.05 * l_hi,
+        )
+        .map_err(e)?;
+    ch.configure_mesh()
+        .x_desc("M")
+        .y_desc("L")
+        .draw()
+        .map_err(e)?;
+    ch.draw_series(pts.iter().zip(&errs).map(|(p, &err)| {
+        let t = (err.abs() / emax).clamp(0.0, 1.0);
+        let c = if err >= 0.0 {
+            RGBColor(255, (255.0 * (1.0 - t)) as u8, (255.0 * (1.0 - t)) as u8)
+        } else {
+            RGBColor((255.0 * (1.0 - t)) as u8, (255.0 * (1.0 - t)) as u8, 255)
+        };
+        EmptyElement::at((p.m, p.l))
+            + Circle::new((0, 0), 7, c.filled())
+            + Circle::new((0, 0), 7, BLACK.stroke_width(1))
+    }))
+    .map_err(e)?;
+    Ok(())
+}
+
+/// Write parity, curves and error-map charts (PNG and SVG) into `dir`; returns the file stems.
+pub fn write_charts(
+    dir: &Path,
+    pts: &[FitPoint],
+    model: &LineModel,
+) -> Result<Vec<String>, String> {
+    if pts.is_empty() {
+        return Ok(vec![]);
+    }
+    let size = (900, 650);
+    both(
+        &dir.join("parity"),
+        size,
+        |r| parity(r, pts, model),
+        |r| parity(r, pts, model),
+    )?;
+    both(
+        &dir.join("hc_vs_m"),
+        size,
+        |r| curves(r, pts, model),
+        |r| curves(r, pts, model),
+    )?;
+    both(
+        &dir.join("error_map"),
+        size,
+        |r| error_map(r, pts, model),
+        |r| error_map(r, pts, model),
+    )?;
+    Ok(vec!["parity".into(), "hc_vs_m".into(), "error_map".into()])
+}

@@ -1,0 +1,31 @@
+//! The sweep engine: `ehlmap sweep SPEC` turns a TOML spec of (M, L) axes, models and numerical
+//! settings into a Parquet dataset with one row per case.
+//!
+//! Contract:
+//!
+//! * **Validated up front** ([`spec`]): an unknown key, an empty axis, M <= 0, L < 0, D outside
+//!   (0, 1], a bad range or model combination stops the command with exit code 2 and a message
+//!   `FILE:LINE: KEY: what is wrong`, before anything is solved or written. `contact = "point"`
+//!   and a `D` axis parse, but this build rejects them ("point contacts are not available in
+//!   this build").
+//! * **Stable ids** ([`plan`]): each case has a 64-bit FNV-1a id of its canonical parameter
+//!   string (physics, models, numerics; not the sweep name or output settings). A case id stored
+//!   anywhere in the dataset directory is never solved again: a rerun (with or without
+//!   `--resume`) solves only what is missing.
+//! * **Deterministic results** ([`run`]): each case is one single-threaded solve, independent of
+//!   the others, so every column except `wall_s` is identical whatever `--threads` or `--shard`.
+//!   Work is taken largest estimated cost first. Cases are not warm-started.
+//! * **Shards**: `--shard i/n` (or `SLURM_ARRAY_TASK_ID`/`SLURM_ARRAY_TASK_COUNT`) keeps the cases
+//!   whose mixed id is `i - 1 (mod n)`; the union of shards 1..n is the whole sweep.
+//! * **Storage** ([`crate::io::results`]): `<out>/<name>/part-<i>of<n>-<run>.parquet`, one file
+//!   per process, rewritten atomically (temporary file + rename) after every batch; a `kill -9`
+//!   loses at most the cases solved since the last flush, and never leaves a file that a reader
+//!   chokes on. Failed solves are rows with their `status` and `reason`; non-finite outputs are
+//!   nulls with `valid = false`.
+//! * **Exit codes**: 0 when every case of the shard is stored (numerical failures included),
+//!   1 on an I/O error while running, 2 on a bad spec or bad arguments.
+
+pub mod cli;
+pub mod plan;
+pub mod run;
+pub mod spec;

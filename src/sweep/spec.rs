@@ -1,0 +1,831 @@
+//! Sweep specs: a TOML file parsed with spans and validated up front, so that every error names
+//! the file, the line and the key (`sweeps/x.toml:7: axes.M: M = -1 is invalid: ...`).
+//!
+//! ```toml
+//! name = "smoke"                 # dataset directory <out>/<name>/ (default: the file stem)
+//! contact = "line"               # "line"; "point" parses but is not available in this build
+//! description = "free text"      # optional
+//!
+//! [axes]                         # each axis: a list, or a range table
+//! M = [5, 20, 100, 500]
+//! L = { from = 0, to = 10, count = 3 }                 # scale = "linear" (default) or "log"
+//! # D = { from = 0.05, to = 1, count = 6, scale = "log" } (point contacts only)
+//!
+//! [models]                       # all optional; defaults shown
+//! elasticity = "elastic"         # or "rigid"
+//! viscosity = "barus"            # or "roelands": needs ph and exactly one of eta0, z
+//! density = "incompressible"     # or "dowson-higginson": needs ph
+//! # ph = 1.0e9                   # Hertzian pressure, Pa
+//! # eta0 = 0.05                  # ambient viscosity, Pa s (Roelands z derived per case)
+//! # z = 0.6                      # Roelands pressure-viscosity index
+//!
+//! [numerics]                     # all optional; defaults shown
+//! grid = 2049                    # finest-grid points (the solver rounds up to 2^k n0 + 1)
+//! cycle = "v"                    # or "w"
+//! max_cycles = 60
+//! fallback = true
+//! tol_load = 1e-7
+//! tol_h = 1e-6
+//! error_estimate = false         # true: also solve on the half grid, Richardson error columns
+//!
+//! [output]                       # all optional; defaults shown
+//! dir = "outputs"                # relative to the working directory; --out overrides
+//! batch = 32                     # flush to disk after this many finished cases ...
+//! flush_seconds = 30             # ... or this long after the previous flush
+//! ```
+
+use crate::lubricant::Density;
+use crate::params::Elasticity;
+use crate::solver::multigrid::CycleType;
+use std::collections::BTreeMap;
+use std::fmt;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use toml::de::{DeTable, DeValue};
+use toml::Spanned;
+
+/// Largest number of values one axis may expand to.
+pub const MAX_AXIS_VALUES: usize = 100_000;
+/// Largest number of cases one spec may expand to.
+pub const MAX_CASES: usize = 1_000_000;
+
+/// A spec error: file, line (1-based) and key of the offending entry.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SpecError {
+    pub file: String,
+    pub line: usize,
+    pub key: String,
+    pub message: String,
+}
+
+impl fmt::Display for SpecError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.key.is_empty() {
+            write!(f, "{}:{}: {}", self.file, self.line, self.message)
+        } else {
+            write!(
+                f,
+                "{}:{}: {}: {}",
+                self.file, self.line, self.key, self.message
+            )
+        }
+    }
+}
+
+impl std::error::Error for SpecError {}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Contact {
+    Line,
+    Point,
+}
+
+impl Contact {
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Contact::Line => "line",
+            Contact::Point => "point",
+        }
+    }
+}
+
+/// The viscosity model as the spec gives it (Roelands from eta0 is resolved per case, since z
+/// depends on alpha_bar and so on M and L).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ViscositySpec {
+    Barus,
+    RoelandsZ { z: f64, ph_pa: f64 },
+    RoelandsEta0 { eta0: f64, ph_pa: f64 },
+}
+
+/// Numerical settings of every solve of the sweep.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Numerics {
+    pub grid: usize,
+    pub cycle: CycleType,
+    pub max_cycles: usize,
+    pub fallback: bool,
+    pub tol_load: f64,
+    pub tol_h: f64,
+    pub error_estimate: bool,
+}
+
+impl Default for Numerics {
+    fn default() -> Self {
+        Numerics {
+            grid: 2049,
+            cycle: CycleType::V,
+            max_cycles: 60,
+            fallback: true,
+            tol_load: 1e-7,
+            tol_h: 1e-6,
+            error_estimate: false,
+        }
+    }
+}
+
+/// Where and how often results are written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OutputSpec {
+    pub dir: PathBuf,
+    pub batch: usize,
+    pub flush_seconds: f64,
+}
+
+/// A validated sweep spec.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SweepSpec {
+    /// The file as given on the command line (used in messages).
+    pub file: String,
+    /// The full TOML text (stored in every Parquet footer).
+    pub text: String,
+    pub name: String,
+    pub contact: Contact,
+    pub description: Option<String>,
+    /// Axis values after expansion, in the order given.
+    pub m: Vec<f64>,
+    pub l: Vec<f64>,
+    pub d: Option<Vec<f64>>,
+    pub elasticity: Elasticity,
+    pub viscosity: ViscositySpec,
+    pub density: Density,
+    pub numerics: Numerics,
+    pub output: OutputSpec,
+    /// Line of each key that was given (dotted path, e.g. "axes.M"), for later messages.
+    pub lines: BTreeMap<String, usize>,
+}
+
+impl SweepSpec {
+    /// An error about `key` at the line where the spec gives it (line 1 if absent).
+    pub fn error(&self, key: &str, message: impl Into<String>) -> SpecError {
+        SpecError {
+            file: self.file.clone(),
+            line: self.lines.get(key).copied().unwrap_or(1),
+            key: key.to_string(),
+            message: message.into(),
+        }
+    }
+}
+
+/// Read and validate a spec file.
+pub fn load(path: &Path) -> Result<SweepSpec, SpecError> {
+    let file = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| SpecError {
+        file: file.clone(),
+        line: 0,
+        key: String::new(),
+        message: format!("cannot read the spec: {e}"),
+    })?;
+    let stem = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    parse(&file, &text, &stem)
+}
+
+struct Ctx<'a> {
+    file: &'a str,
+    text: &'a str,
+    lines: BTreeMap<String, usize>,
+}
+
+type Table<'i> = DeTable<'i>;
+type Value<'i> = Spanned<DeValue<'i>>;
+
+impl Ctx<'_> {
+    fn line(&self, span: &Range<usize>) -> usize {
+        let end = span.start.min(self.text.len());
+        self.text.as_bytes()[..end]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count()
+            + 1
+    }
+
+    fn err(&self, span: &Range<usize>, key: &str, message: impl Into<String>) -> SpecError {
+        SpecError {
+            file: self.file.to_string(),
+            line: self.line(span),
+            key: key.to_string(),
+            message: message.into(),
+        }
+    }
+
+    /// Check that `t` has only `allowed` keys; record their lines.
+    fn keys(&mut self, t: &Table, prefix: &str, allowed: &[&str]) -> Result<(), SpecError> {
+        for (k, _) in t.iter() {
+            let name = k.get_ref().as_ref();
+            let path = join(prefix, name);
+            if !allowed.contains(&name) {
+                let want = allowed.join(", ");
+                return Err(self.err(
+                    &k.span(),
+                    &path,
+                    format!("unknown key (expected one of: {want})"),
+                ));
+            }
+            let line = self.line(&k.span());
+            self.lines.insert(path, line);
+        }
+        Ok(())
+    }
+
+    fn number(&self, v: &Value, key: &str) -> Result<f64, SpecError> {
+        let x = match v.get_ref() {
+            DeValue::Integer(i) => i64::from_str_radix(i.as_str(), i.radix())
+                .ok()
+                .map(|n| n as f64),
+            DeValue::Float(f) => f.as_str().parse::<f64>().ok(),
+            other => {
+                return Err(self.err(
+                    &v.span(),
+                    key,
+                    format!("expected a number, found a {}", other.type_str()),
+                ))
+            }
+        };
+        match x {
+            Some(x) if x.is_finite() => Ok(x),
+            _ => Err(self.err(&v.span(), key, "the number must be finite")),
+        }
+    }
+
+    fn integer(&self, v: &Value, key: &str, min: i64, max: i64) -> Result<i64, SpecError> {
+        let n = match v.get_ref() {
+            DeValue::Integer(i) => i64::from_str_radix(i.as_str(), i.radix()).ok(),
+            other => {
+                return Err(self.err(
+                    &v.span(),
+                    key,
+                    format!("expected an integer, found a {}", other.type_str()),
+                ))
+            }
+        };
+        match n {
+            Some(n) if (min..=max).contains(&n) => Ok(n),
+            _ => Err(self.err(
+                &v.span(),
+                key,
+                format!("must be an integer from {min} to {max}"),
+            )),
+        }
+    }
+
+    fn string<'v>(&self, v: &'v Value, key: &str) -> Result<&'v str, SpecError> {
+        v.get_ref().as_str().ok_or_else(|| {
+            self.err(
+                &v.span(),
+                key,
+                format!("expected a string, found a {}", v.get_ref().type_str()),
+            )
+        })
+    }
+
+    fn choice<'v>(&self, v: &'v Value, key: &str, options: &[&str]) -> Result<&'v str, SpecError> {
+        let s = self.string(v, key)?;
+        if options.contains(&s) {
+            Ok(s)
+        } else {
+            Err(self.err(
+                &v.span(),
+                key,
+                format!("\"{s}\" is not one of: {}", options.join(", ")),
+            ))
+        }
+    }
+
+    fn boolean(&self, v: &Value, key: &str) -> Result<bool, SpecError> {
+        v.get_ref().as_bool().ok_or_else(|| {
+            self.err(
+                &v.span(),
+                key,
+                format!("expected true or false, found a {}", v.get_ref().type_str()),
+            )
+        })
+    }
+
+    fn table<'v, 'i>(&self, v: &'v Value<'i>, key: &str) -> Result<&'v Table<'i>, SpecError> {
+        v.get_ref().as_table().ok_or_else(|| {
+            self.err(
+                &v.span(),
+                key,
+                format!("expected a table, found a {}", v.get_ref().type_str()),
+            )
+        })
+    }
+
+    /// Expand one axis: a non-empty list of numbers or a range table. `check` validates each value
+    /// (returns the reason when it is invalid).
+    fn axis(
+        &mut self,
+        v: &Value,
+        key: &str,
+        check: &dyn Fn(f64) -> Option<&'static str>,
+    ) -> Result<Vec<f64>, SpecError> {
+        let short = key.rsplit('.').next().unwrap_or(key);
+        let bad = |ctx: &Ctx, span: &Range<usize>, x: f64, why: &str| {
+            ctx.err(span, key, format!("{short} = {x} is invalid: {why}"))
+        };
+        let values = match v.get_ref() {
+            DeValue::Array(a) => {
+                if a.is_empty() {
+                    return Err(self.err(&v.span(), key, "the axis is empty"));
+                }
+                if a.len() > MAX_AXIS_VALUES {
+                    return Err(self.err(
+                        &v.span(),
+                        key,
+                        format!("more than {MAX_AXIS_VALUES} values"),
+                    ));
+                }
+                let mut out = Vec::with_capacity(a.len());
+                for item in a.iter() {
+                    let x = self.number(item, key)?;
+                    if let Some(why) = check(x) {
+                        return Err(bad(self, &item.span(), x, why));
+                    }
+                    out.push(canonical(x));
+                }
+                out
+            }
+            DeValue::Table(t) => {
+                self.keys(t, key, &["from", "to", "count", "scale"])?;
+                let get = |name: &str| {
+                    t.get(name).ok_or_else(|| {
+                        self.err(
+                            &v.span(),
+                            key,
+                            format!("a range needs `from`, `to` and `count` (missing `{name}`)"),
+                        )
+                    })
+                };
+                let (fv, tv, cv) = (get("from")?, get("to")?, get("count")?);
+                let from = self.number(fv, &join(key, "from"))?;
+                let to = self.number(tv, &join(key, "to"))?;
+                let count =
+                    self.integer(cv, &join(key, "count"), 1, MAX_AXIS_VALUES as i64)? as usize;
+                let log = match t.get("scale") {
+                    None => false,
+                    Some(s) => self.choice(s, &join(key, "scale"), &["linear", "log"])? == "log",
+                };
+                for (x, sv) in [(from, fv), (to, tv)] {
+                    if let Some(why) = check(x) {
+                        return Err(bad(self, &sv.span(), x, why));
+                    }
+                }
+                if count == 1 && from != to {
+                    return Err(self.err(
+                        &cv.span(),
+                        &join(key, "count"),
+                        format!("count = 1 needs from = to (got {from} and {to})"),
+                    ));
+                }
+                if count > 1 && from == to {
+                    return Err(self.err(
+                        &cv.span(),
+                        &join(key, "count"),
+                        format!("from = to = {from} with count = {count} repeats one value"),
+                    ));
+                }
+                if log && (from <= 0.0 || to <= 0.0) {
+                    return Err(self.err(
+                        &v.span(),
+                        &join(key, "scale"),
+                        format!("a log range needs from > 0 and to > 0 (got {from} and {to})"),
+                    ));
+                }
+                expand_range(from, to, count, log)
+            }
+            other => {
+                return Err(self.err(
+                    &v.span(),
+                    key,
+                    format!(
+                        "expected a list of numbers or a range table {{ from, to, count, scale }}, found a {}",
+                        other.type_str()
+                    ),
+                ))
+            }
+        };
+        Ok(values)
+    }
+}
+
+fn join(prefix: &str, name: &str) -> String {
+    if prefix.is_empty() {
+        name.to_string()
+    } else {
+        format!("{prefix}.{name}")
+    }
+}
+
+/// Round to 12 significant digits, so that values computed from ranges (and their case ids) do
+/// not depend on the last bits of `powf`.
+pub fn canonical(x: f64) -> f64 {
+    if x == 0.0 {
+        return 0.0; // also turns -0 into 0
+    }
+    format!("{x:.11e}").parse().unwrap_or(x)
+}
+
+/// `count` values from `from` to `to` (both included), evenly spaced in x or in log x.
+pub fn expand_range(from: f64, to: f64, count: usize, log: bool) -> Vec<f64> {
+    if count == 1 {
+        return vec![canonical(from)];
+    }
+    (0..count)
+        .map(|i| {
+            let t = i as f64 / (count - 1) as f64;
+            let x = if i == 0 {
+                from
+            } else if i == count - 1 {
+                to
+            } else if log {
+                from * (to / from).powf(t)
+            } else {
+                from + (to - from) * t
+            };
+            canonical(x)
+        })
+        .collect()
+}
+
+/// Parse and validate a spec given as text. `file` names it in messages; `default_name` is the
+/// dataset name when the spec has no `name`.
+pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, SpecError> {
+    let mut cx = Ctx {
+        file,
+        text,
+        lines: BTreeMap::new(),
+    };
+    let doc = DeTable::parse(text).map_err(|e| {
+        let span = e.span().unwrap_or(0..0);
+        let msg = e.message().lines().next().unwrap_or("invalid TOML").trim();
+        cx.err(&span, "", format!("invalid TOML: {msg}"))
+    })?;
+    let root = doc.get_ref();
+    cx.keys(
+        root,
+        "",
+        &[
+            "name",
+            "contact",
+            "description",
+            "axes",
+            "models",
+            "numerics",
+            "output",
+        ],
+    )?;
+    let doc_span = 0..0;
+
+    // name
+    let name = match root.get("name") {
+        Some(v) => cx.string(v, "name")?.to_string(),
+        None => default_name.to_string(),
+    };
+    let name_ok = !name.is_empty()
+        && !name.starts_with('.')
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c));
+    if !name_ok {
+        let span = root.get("name").map_or(doc_span.clone(), |v| v.span());
+        return Err(cx.err(
+            &span,
+            "name",
+            format!(
+                "\"{name}\" is not a valid dataset name (letters, digits, '-', '_', '.'; not starting with '.')"
+            ),
+        ));
+    }
+
+    // contact
+    let contact_v = root
+        .get("contact")
+        .ok_or_else(|| cx.err(&doc_span, "contact", "missing: give contact = \"line\""))?;
+    let contact = match cx.choice(contact_v, "contact", &["line", "point"])? {
+        "line" => Contact::Line,
+        _ => Contact::Point,
+    };
+    let description = match root.get("description") {
+        Some(v) => Some(cx.string(v, "description")?.to_string()),
+        None => None,
+    };
+
+    // axes
+    let axes_v = root
+        .get("axes")
+        .ok_or_else(|| cx.err(&doc_span, "axes", "missing: an [axes] table with M and L"))?;
+    let axes = cx.table(axes_v, "axes")?;
+    cx.keys(axes, "axes", &["M", "L", "D"])?;
+    let need = |k: &str| {
+        axes.get(k).ok_or_else(|| {
+            cx.err(
+                &axes_v.span(),
+                &format!("axes.{k}"),
+                "missing: every sweep needs the axes M and L",
+            )
+        })
+    };
+    let (mv, lv) = (need("M")?, need("L")?);
+    let m = cx.axis(mv, "axes.M", &|x| {
+        (x <= 0.0).then_some("the load parameter must be > 0")
+    })?;
+    let l = cx.axis(lv, "axes.L", &|x| {
+        (x < 0.0).then_some("the lubricant parameter must be >= 0")
+    })?;
+    let d = match axes.get("D") {
+        Some(dv) => Some(cx.axis(dv, "axes.D", &|x| {
+            (!(x > 0.0 && x <= 1.0)).then_some("the ellipticity must be in (0, 1]")
+        })?),
+        None => None,
+    };
+
+    // models
+    let mut elasticity = Elasticity::Elastic;
+    let mut viscosity = ViscositySpec::Barus;
+    let mut density = Density::Incompressible;
+    if let Some(mv) = root.get("models") {
+        let t = cx.table(mv, "models")?;
+        cx.keys(
+            t,
+            "models",
+            &["elasticity", "viscosity", "density", "ph", "eta0", "z"],
+        )?;
+        if let Some(v) = t.get("elasticity") {
+            if cx.choice(v, "models.elasticity", &["elastic", "rigid"])? == "rigid" {
+                elasticity = Elasticity::Rigid;
+            }
+        }
+        let pos = |k: &str, why: &'static str| -> Result<Option<(f64, Range<usize>)>, SpecError> {
+            match t.get(k) {
+                None => Ok(None),
+                Some(v) => {
+                    let key = format!("models.{k}");
+                    let x = cx.number(v, &key)?;
+                    if x > 0.0 {
+                        Ok(Some((x, v.span())))
+                    } else {
+                        Err(cx.err(&v.span(), &key, format!("{k} = {x} is invalid: {why}")))
+                    }
+                }
+            }
+        };
+        let ph = pos("ph", "the Hertzian pressure must be > 0 (Pa)")?;
+        let eta0 = pos("eta0", "the ambient viscosity must be > 0 (Pa s)")?;
+        let z = pos("z", "the Roelands index must be > 0")?;
+        let visc = match t.get("viscosity") {
+            Some(v) => cx.choice(v, "models.viscosity", &["barus", "roelands"])?,
+            None => "barus",
+        };
+        let dens = match t.get("density") {
+            Some(v) => cx.choice(v, "models.density", &["incompressible", "dowson-higginson"])?,
+            None => "incompressible",
+        };
+        let model_span = |k: &str| t.get(k).map_or(mv.span(), |v| v.span());
+        let need_ph = |what: &str| {
+            ph.as_ref().map(|p| p.0).ok_or_else(|| {
+                cx.err(
+                    &model_span(what),
+                    &format!("models.{what}"),
+                    "needs the Hertzian pressure models.ph (Pa)",
+                )
+            })
+        };
+        if visc == "roelands" {
+            let ph_pa = need_ph("viscosity")?;
+            viscosity = match (eta0, z) {
+                (Some((eta0, span)), None) => {
+                    if eta0.ln() + 9.67 <= 0.0 {
+                        return Err(cx.err(
+                            &span,
+                            "models.eta0",
+                            format!("eta0 = {eta0} is invalid: Roelands needs ln(eta0) + 9.67 > 0"),
+                        ));
+                    }
+                    if l.contains(&0.0) {
+                        return Err(cx.err(
+                            &lv.span(),
+                            "axes.L",
+                            "L = 0 with Roelands from eta0 gives z = 0: use L > 0 or give models.z",
+                        ));
+                    }
+                    ViscositySpec::RoelandsEta0 { eta0, ph_pa }
+                }
+                (None, Some((z, _))) => ViscositySpec::RoelandsZ { z, ph_pa },
+                _ => {
+                    return Err(cx.err(
+                        &model_span("viscosity"),
+                        "models.viscosity",
+                        "roelands needs exactly one of models.eta0 (Pa s) or models.z",
+                    ))
+                }
+            };
+        } else {
+            for (k, given) in [("eta0", eta0.is_some()), ("z", z.is_some())] {
+                if given {
+                    return Err(cx.err(
+                        &model_span(k),
+                        &format!("models.{k}"),
+                        "applies to viscosity = \"roelands\" only",
+                    ));
+                }
+            }
+        }
+        if dens == "dowson-higginson" {
+            density = Density::DowsonHigginson {
+                ph_pa: need_ph("density")?,
+            };
+        }
+        if ph.is_some() && visc != "roelands" && dens != "dowson-higginson" {
+            return Err(cx.err(
+                &model_span("ph"),
+                "models.ph",
+                "is used only by viscosity = \"roelands\" and density = \"dowson-higginson\"",
+            ));
+        }
+    }
+
+    // numerics
+    let mut numerics = Numerics::default();
+    if let Some(nv) = root.get("numerics") {
+        let t = cx.table(nv, "numerics")?;
+        cx.keys(
+            t,
+            "numerics",
+            &[
+                "grid",
+                "cycle",
+                "max_cycles",
+                "fallback",
+                "tol_load",
+                "tol_h",
+                "error_estimate",
+            ],
+        )?;
+        if let Some(v) = t.get("grid") {
+            numerics.grid = cx.integer(v, "numerics.grid", 33, (1 << 20) + 1)? as usize;
+        }
+        if let Some(v) = t.get("cycle") {
+            numerics.cycle = match cx.choice(v, "numerics.cycle", &["v", "w"])? {
+                "v" => CycleType::V,
+                _ => CycleType::W,
+            };
+        }
+        if let Some(v) = t.get("max_cycles") {
+            numerics.max_cycles = cx.integer(v, "numerics.max_cycles", 1, 100_000)? as usize;
+        }
+        if let Some(v) = t.get("fallback") {
+            numerics.fallback = cx.boolean(v, "numerics.fallback")?;
+        }
+        for (k, slot) in [
+            ("tol_load", &mut numerics.tol_load),
+            ("tol_h", &mut numerics.tol_h),
+        ] {
+            if let Some(v) = t.get(k) {
+                let key = format!("numerics.{k}");
+                let x = cx.number(v, &key)?;
+                if !(x > 0.0 && x < 1.0) {
+                    return Err(cx.err(
+                        &v.span(),
+                        &key,
+                        format!("{k} = {x} is invalid: must be in (0, 1)"),
+                    ));
+                }
+                *slot = x;
+            }
+        }
+        if let Some(v) = t.get("error_estimate") {
+            numerics.error_estimate = cx.boolean(v, "numerics.error_estimate")?;
+            if numerics.error_estimate && numerics.grid < 65 {
+                return Err(cx.err(
+                    &v.span(),
+                    "numerics.error_estimate",
+                    "needs grid >= 65 (the half grid must have at least 33 points)",
+                ));
+            }
+        }
+    }
+
+    // output
+    let mut output = OutputSpec {
+        dir: PathBuf::from("outputs"),
+        batch: 32,
+        flush_seconds: 30.0,
+    };
+    if let Some(ov) = root.get("output") {
+        let t = cx.table(ov, "output")?;
+        cx.keys(t, "output", &["dir", "batch", "flush_seconds"])?;
+        if let Some(v) = t.get("dir") {
+            let s = cx.string(v, "output.dir")?;
+            if s.is_empty() {
+                return Err(cx.err(&v.span(), "output.dir", "must not be empty"));
+            }
+            output.dir = PathBuf::from(s);
+        }
+        if let Some(v) = t.get("batch") {
+            output.batch = cx.integer(v, "output.batch", 1, 1_000_000)? as usize;
+        }
+        if let Some(v) = t.get("flush_seconds") {
+            let x = cx.number(v, "output.flush_seconds")?;
+            if x <= 0.0 {
+                return Err(cx.err(
+                    &v.span(),
+                    "output.flush_seconds",
+                    format!("flush_seconds = {x} is invalid: must be > 0"),
+                ));
+            }
+            output.flush_seconds = x;
+        }
+    }
+
+    let n_cases = m.len() * l.len() * d.as_ref().map_or(1, |d| d.len());
+    if n_cases > MAX_CASES {
+        return Err(cx.err(
+            &axes_v.span(),
+            "axes",
+            format!("{n_cases} cases: at most {MAX_CASES} per spec"),
+        ));
+    }
+
+    // Contact-specific rules, after every value has been checked.
+    match contact {
+        Contact::Point => {
+            return Err(cx.err(
+                &contact_v.span(),
+                "contact",
+                "point contacts are not available in this build",
+            ))
+        }
+        Contact::Line => {
+            if let Some(dv) = axes.get("D") {
+                return Err(cx.err(
+                    &dv.span(),
+                    "axes.D",
+                    "the ellipticity axis D applies to contact = \"point\" only",
+                ));
+            }
+        }
+    }
+
+    Ok(SweepSpec {
+        file: file.to_string(),
+        text: text.to_string(),
+        name,
+        contact,
+        description,
+        m,
+        l,
+        d,
+        elasticity,
+        viscosity,
+        density,
+        numerics,
+        output,
+        lines: cx.lines,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn err(text: &str) -> SpecError {
+        parse("t.toml", text, "t").unwrap_err()
+    }
+
+    const OK: &str =
+        "contact = \"line\"\n[axes]\nM = [5, 20]\nL = { from = 0, to = 10, count = 3 }\n";
+
+    #[test]
+    fn parses_lists_and_ranges() {
+        let s = parse("t.toml", OK, "t").unwrap();
+        assert_eq!(s.m, vec![5.0, 20.0]);
+        assert_eq!(s.l, vec![0.0, 5.0, 10.0]);
+        assert_eq!(s.name, "t");
+        let log = expand_range(1.0, 1000.0, 4, true);
+        assert_eq!(log, vec![1.0, 10.0, 100.0, 1000.0]);
+    }
+
+    #[test]
+    fn errors_name_line_and_key() {
+        let e = err("contact = \"line\"\n[axes]\nM = [5, -1]\nL = [0]\n");
+        assert_eq!((e.line, e.key.as_str()), (3, "axes.M"));
+        assert!(e.to_string().starts_with("t.toml:3: axes.M: M = -1"), "{e}");
+        let e = err("contact = \"line\"\n[axes]\nM = [5]\nL = [0]\nQ = 3\n");
+        assert_eq!((e.line, e.key.as_str()), (5, "axes.Q"));
+        let e = err("contact = \"line\"\n[axes]\nM = []\nL = [0]\n");
+        assert!(e.message.contains("empty") && e.line == 3, "{e}");
+        let e = err("contact = \"point\"\n[axes]\nM = [5]\nL = [0]\nD = [0.5]\n");
+        assert!(e.message.contains("not available in this build") && e.line == 1);
+        let e = err("contact = \"point\"\n[axes]\nM = [5]\nL = [0]\nD = [1.5]\n");
+        assert_eq!((e.line, e.key.as_str()), (5, "axes.D"));
+        let e = err("contact = \"line\"\n[axes]\nM = { from = 0, to = 10, count = 3, scale = \"log\" }\nL = [0]\n");
+        assert_eq!(e.line, 3);
+        let e = err("contact = \"line\"\n[axes]\nM = [1]\nL = [0]\n[numerics]\ngrid = 8\n");
+        assert_eq!((e.line, e.key.as_str()), (6, "numerics.grid"));
+        let e = err("contact = \"line\"\n[axes]\nM = [1\n");
+        assert!(e.message.contains("invalid TOML") && e.line >= 3, "{e}");
+    }
+}
