@@ -18,7 +18,10 @@ fn fitted_formula_beats_moes_on_the_committed_dataset() {
     assert_eq!(input.failed, 0);
     let r = fit_report(&input, false).unwrap();
     let moes = r.moes_1992.as_ref().unwrap();
-    println!("fit H_c max {:+.3}, H_min max {:+.3}, Moes max {:+.3}", r.h_c.overall.max, r.h_min.overall.max, moes.max);
+    println!(
+        "fit H_c max {:+.3}, H_min max {:+.3}, Moes max {:+.3}",
+        r.h_c.overall.max, r.h_min.overall.max, moes.max
+    );
     // Measured: fit 2.4 % (H_c), 1.3 % (H_min); Moes 1992 8.0 % on these cases.
     assert!(r.h_c.overall.max.abs() < 0.03, "{:?}", r.h_c.overall);
     assert!(r.h_min.overall.max.abs() < 0.03, "{:?}", r.h_min.overall);
@@ -46,16 +49,43 @@ fn empty_or_tiny_datasets_are_clear_errors() {
 fn fit_command_writes_report_json_and_charts() {
     let out = std::env::temp_dir().join(format!("ehlmap-fit-{}", std::process::id()));
     let run = Command::new(env!("CARGO_BIN_EXE_ehlmap"))
-        .args(["fit", data().to_str().unwrap(), "--no-limit-solves", "--json", "--out", out.to_str().unwrap()])
+        .args([
+            "fit",
+            data().to_str().unwrap(),
+            "--no-limit-solves",
+            "--json",
+            "--out",
+            out.to_str().unwrap(),
+        ])
         .output()
         .unwrap();
-    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
     let v: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
     assert_eq!(v["converged_cases"], 36);
-    for f in ["report.md", "fit.json", "parity.png", "parity.svg", "hc_vs_m.png", "error_map.svg"] {
-        assert!(out.join(f).metadata().map(|m| m.len() > 100).unwrap_or(false), "{f} missing");
+    for f in [
+        "report.md",
+        "fit.json",
+        "parity.png",
+        "parity.svg",
+        "hc_vs_m.png",
+        "error_map.svg",
+    ] {
+        assert!(
+            out.join(f)
+                .metadata()
+                .map(|m| m.len() > 100)
+                .unwrap_or(false),
+            "{f} missing"
+        );
     }
-    let bad = Command::new(env!("CARGO_BIN_EXE_ehlmap")).args(["fit", "/nonexistent/dataset"]).output().unwrap();
+    let bad = Command::new(env!("CARGO_BIN_EXE_ehlmap"))
+        .args(["fit", "/nonexistent/dataset"])
+        .output()
+        .unwrap();
     assert_eq!(bad.status.code(), Some(2));
     std::fs::remove_dir_all(&out).ok();
 }

@@ -112,7 +112,11 @@ fn fit_quantity(
         let all: Vec<usize> = (0..f.model.x.len()).collect();
         if let Ok(g) = fit(&data, &f.model, &all) {
             let x = &g.model.x;
-            let physical = x[7] > 0.5 && x[8] > 0.5 && x[9] > 0.5 && x[11] > 0.0 && x.iter().all(|v| v.abs() < 50.0);
+            let physical = x[7] > 0.5
+                && x[8] > 0.5
+                && x[9] > 0.5
+                && x[11] > 0.0
+                && x.iter().all(|v| v.abs() < 50.0);
             if physical && g.rms_log < f.rms_log {
                 f = g;
             }
