@@ -105,8 +105,11 @@ fi
 complete "$SPEC" "$WORK/out" || { echo "the dataset is incomplete"; exit 1; }
 
 echo "== sweeps/slurm/submit-nightly.sh (array of nightly.sbatch on $SPEC, then the fit report)"
-jobs=$(OUT=$WORK/out2 SPEC=$SPEC EHLMAP=$EHLMAP DATASET=$WORK/out2/$name REPORT=$WORK/report \
-    sweeps/slurm/submit-nightly.sh | tee /dev/stderr | sed -n 's/^jobs: //p')
+# Capture, then print: `tee /dev/stderr` would truncate a log file that stderr points to.
+submitted=$(OUT=$WORK/out2 SPEC=$SPEC EHLMAP=$EHLMAP DATASET=$WORK/out2/$name REPORT=$WORK/report \
+    sweeps/slurm/submit-nightly.sh)
+echo "$submitted"
+jobs=$(sed -n 's/^jobs: //p' <<<"$submitted")
 for _ in $(seq 600); do
     left=$(squeue -h -j "${jobs// /,}" 2>/dev/null | wc -l)
     [[ $left -eq 0 ]] && break
