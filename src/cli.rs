@@ -28,6 +28,10 @@ pub enum Command {
     Sweep(crate::sweep::cli::SweepArgs),
     /// Fit a Moes-style film formula to sweep datasets; report, fit.json and charts.
     Fit(crate::fit::cli::FitArgs),
+    /// Speed against accuracy of every method over a grid ladder (Parquet table and charts).
+    Bench(crate::bench::cli::BenchArgs),
+    /// Where methods fail: each method's status over an (M, L) map.
+    Stability(crate::bench::cli::StabilityArgs),
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]

@@ -9,6 +9,7 @@
 #![allow(clippy::needless_range_loop)]
 
 pub mod accuracy;
+pub mod bench;
 pub mod cli;
 pub mod fit;
 pub mod formulas;

@@ -1,0 +1,22 @@
+//! Speed against accuracy, and where methods fail (line contacts).
+//!
+//! [`speed`] runs every method on reference cases over a ladder of grids, times them (median of
+//! repeats) and measures the error of H_c and H_min against a Richardson extrapolation of the
+//! two finest multigrid solutions; [`stability`] classifies each method's outcome over an (M, L)
+//! map. Both write a Parquet table and charts. Point contacts join when their solver lands.
+
+pub mod cli;
+pub mod speed;
+pub mod stability;
+
+use plotters::style::RGBColor;
+
+/// Series colours shared by the bench charts.
+pub(crate) const COLORS: [RGBColor; 6] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(255, 127, 14),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+];

@@ -1,0 +1,180 @@
+//! Speed-accuracy benchmark: methods x reference cases x grid ladder.
+
+use crate::accuracy::richardson2;
+use crate::params::LineCase;
+use crate::solver::line::{solve_line, LineSolveParams, Method};
+use crate::solver::multigrid::CycleType;
+use serde::Serialize;
+use std::time::Instant;
+
+/// A benchmarked method: a label, its parameters and the largest grid it is run on.
+#[derive(Clone, Debug)]
+pub struct MethodSpec {
+    pub label: &'static str,
+    pub params: LineSolveParams,
+    pub max_grid: usize,
+}
+
+/// The methods compared: multigrid V and W cycles, dense Newton-Raphson (O(N^3), up to 1025
+/// points), and the multigrid smoother alone (up to 1025 points).
+pub fn methods() -> Vec<MethodSpec> {
+    let v = LineSolveParams::default();
+    let mut w = v;
+    w.mg.cycle = CycleType::W;
+    let newton = LineSolveParams {
+        method: Method::Newton,
+        ..v
+    };
+    let relax = LineSolveParams {
+        method: Method::Relax,
+        relax_max_sweeps: 50_000,
+        ..v
+    };
+    vec![
+        MethodSpec {
+            label: "multigrid-V",
+            params: v,
+            max_grid: 1 << 20,
+        },
+        MethodSpec {
+            label: "multigrid-W",
+            params: w,
+            max_grid: 1 << 20,
+        },
+        MethodSpec {
+            label: "newton",
+            params: newton,
+            max_grid: 1025,
+        },
+        MethodSpec {
+            label: "relax",
+            params: relax,
+            max_grid: 1025,
+        },
+    ]
+}
+
+/// One measurement.
+#[derive(Clone, Debug, Serialize)]
+pub struct BenchRow {
+    pub case: String,
+    pub method: String,
+    pub grid: usize,
+    pub wall_s: f64,
+    pub work_units: f64,
+    pub h_c: f64,
+    pub h_min: f64,
+    pub err_h_c: f64,
+    pub err_h_min: f64,
+    pub status: String,
+}
+
+/// A reference case and its Richardson-extrapolated reference values.
+#[derive(Clone, Debug, Serialize)]
+pub struct Reference {
+    pub case: String,
+    pub m: f64,
+    pub l: f64,
+    pub h_c: f64,
+    pub h_min: f64,
+    pub grids: (usize, usize),
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(|a, b| a.total_cmp(b));
+    v[v.len() / 2]
+}
+
+/// Reference values from multigrid on `fine` and `fine/2 + 1` points (second order assumed).
+pub fn reference(name: &str, case: &LineCase, fine: usize) -> Reference {
+    let run = |g: usize| {
+        let mut p = LineSolveParams::default();
+        p.mg.grid = g;
+        p.mg.tol_load = 1e-9;
+        p.mg.tol_h = 1e-9;
+        solve_line(case, &p).outputs
+    };
+    let (a, b) = (run(fine / 2 + 1), run(fine));
+    Reference {
+        case: name.to_string(),
+        m: case.m,
+        l: case.l,
+        h_c: richardson2(a.h_c, b.h_c).extrapolated,
+        h_min: richardson2(a.h_min, b.h_min).extrapolated,
+        grids: (a.grid, b.grid),
+    }
+}
+
+/// Run every method on every case over `grids`, `repeats` times each (median wall time).
+pub fn run(
+    cases: &[(&str, LineCase)],
+    grids: &[usize],
+    repeats: usize,
+    ref_grid: usize,
+    log: &mut dyn FnMut(&str),
+) -> (Vec<Reference>, Vec<BenchRow>) {
+    let mut refs = vec![];
+    let mut rows = vec![];
+    for (name, case) in cases {
+        let r = reference(name, case, ref_grid);
+        log(&format!(
+            "{name}: reference H_c {:.6}, H_min {:.6} (Richardson over {:?} points)",
+            r.h_c, r.h_min, r.grids
+        ));
+        for m in methods() {
+            for &g in grids.iter().filter(|&&g| g <= m.max_grid) {
+                let mut p = m.params;
+                p.mg.grid = g;
+                let mut times = vec![];
+                let mut last = None;
+                for _ in 0..repeats.max(1) {
+                    let t = Instant::now();
+                    let s = solve_line(case, &p);
+                    times.push(t.elapsed().as_secs_f64());
+                    last = Some(s.outputs);
+                }
+                let o = last.expect("one repeat");
+                let row = BenchRow {
+                    case: name.to_string(),
+                    method: m.label.to_string(),
+                    grid: o.grid,
+                    wall_s: median(times),
+                    work_units: o.work_units,
+                    h_c: o.h_c,
+                    h_min: o.h_min,
+                    err_h_c: (o.h_c / r.h_c - 1.0).abs(),
+                    err_h_min: (o.h_min / r.h_min - 1.0).abs(),
+                    status: o.status.to_string(),
+                };
+                log(&format!(
+                    "  {:<12} {:>6} pts  {:>9.4} s  err H_c {:.2e}  H_min {:.2e}  {}",
+                    row.method, row.grid, row.wall_s, row.err_h_c, row.err_h_min, row.status
+                ));
+                rows.push(row);
+            }
+        }
+        refs.push(r);
+    }
+    (refs, rows)
+}
+
+/// For each case and accuracy target, the fastest converged method and grid reaching it on
+/// both H_c and H_min: the Pareto answer to "which method for which accuracy".
+pub fn pareto(rows: &[BenchRow], targets: &[f64]) -> Vec<(String, f64, Option<BenchRow>)> {
+    let mut out = vec![];
+    let mut cases: Vec<&str> = rows.iter().map(|r| r.case.as_str()).collect();
+    cases.dedup();
+    for c in cases {
+        for &t in targets {
+            let best = rows
+                .iter()
+                .filter(|r| {
+                    r.case == c && r.status == "converged" && r.err_h_c <= t && r.err_h_min <= t
+                })
+                .min_by(|a, b| a.wall_s.total_cmp(&b.wall_s))
+                .cloned();
+            out.push((c.to_string(), t, best));
+        }
+    }
+    out
+}

@@ -1,0 +1,45 @@
+//! The speed-accuracy bench and the stability map on a tiny ladder: every method reports the
+//! same discretisation error on the same grid (same discrete problem), errors fall at second
+//! order, and the Pareto summary picks a converged, accurate-enough run.
+
+use ehlmap::bench::{speed, stability};
+use ehlmap::params::LineCase;
+
+#[test]
+fn methods_share_the_discretisation_error_and_pareto_is_consistent() {
+    let cases = [("line M=20 L=5", LineCase::new(20.0, 5.0).unwrap())];
+    let mut log = |_: &str| {};
+    let (refs, rows) = speed::run(&cases, &[257, 513], 1, 2049, &mut log);
+    assert_eq!(refs.len(), 1);
+    assert!(rows.iter().all(|r| r.status == "converged"), "{rows:?}");
+    for g in [257usize, 513] {
+        let errs: Vec<f64> = rows
+            .iter()
+            .filter(|r| r.grid == g)
+            .map(|r| r.err_h_c)
+            .collect();
+        assert_eq!(errs.len(), 4, "four methods at {g} points");
+        let spread = errs.iter().fold(0.0f64, |a, &e| a.max((e - errs[0]).abs()));
+        assert!(spread < 1e-5, "methods differ on the same grid: {errs:?}");
+    }
+    let e257 = rows.iter().find(|r| r.grid == 257).unwrap().err_h_c;
+    let e513 = rows.iter().find(|r| r.grid == 513).unwrap().err_h_c;
+    let order = (e257 / e513).log2();
+    assert!(order > 1.6 && order < 2.4, "observed order {order}");
+    for (_, t, best) in speed::pareto(&rows, &[0.05, 1e-6]) {
+        match best {
+            Some(b) => assert!(b.err_h_c <= t && b.err_h_min <= t && b.status == "converged"),
+            None => assert!(t < 1e-3, "a 5 % target must be met on this ladder"),
+        }
+    }
+}
+
+#[test]
+fn stability_map_records_every_cell() {
+    let mut log = |_: &str| {};
+    let cells = stability::run(&[20.0], &[0.0, 10.0], 257, &mut log);
+    assert_eq!(cells.len(), 2 * stability::map_methods(257).len());
+    let s = stability::summary(&cells);
+    assert!(s.iter().any(|(n, ok, all)| n == "multigrid" && ok == all));
+    assert!(cells.iter().all(|c| !c.reason.is_empty()));
+}
