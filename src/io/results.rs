@@ -14,15 +14,12 @@
 //! `valid` column is false. The columns are listed in [`columns`] and documented in
 //! `outputs/README.md`.
 
+use crate::io::table::write_batch_file;
 use arrow_array::{
     Array, ArrayRef, BooleanArray, Float64Array, Int64Array, RecordBatch, StringArray,
 };
 use arrow_schema::{DataType, Field, Schema};
 use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
-use parquet::arrow::ArrowWriter;
-use parquet::basic::{Compression, ZstdLevel};
-use parquet::file::metadata::KeyValue;
-use parquet::file::properties::WriterProperties;
 use std::collections::{BTreeMap, HashSet};
 use std::fs::File;
 use std::io::Write;
@@ -308,29 +305,9 @@ pub fn write_part(path: &Path, rows: &[CaseRow], meta: &[(String, String)]) -> R
 
 fn write_file(path: &Path, rows: &[CaseRow], meta: &[(String, String)]) -> Result<(), String> {
     let batch = to_batch(rows)?;
-    let mut kv = vec![
-        KeyValue::new(
-            "ehlmap_version".to_string(),
-            env!("CARGO_PKG_VERSION").to_string(),
-        ),
-        KeyValue::new("ehlmap_schema".to_string(), SCHEMA_VERSION.to_string()),
-    ];
-    kv.extend(
-        meta.iter()
-            .map(|(k, v)| KeyValue::new(k.clone(), v.clone())),
-    );
-    let props = WriterProperties::builder()
-        .set_compression(Compression::ZSTD(ZstdLevel::default()))
-        .set_key_value_metadata(Some(kv))
-        .build();
-    let file = File::create(path).map_err(|e| format!("cannot create {}: {e}", path.display()))?;
-    let mut w = ArrowWriter::try_new(file, batch.schema(), Some(props))
-        .map_err(|e| format!("{}: {e}", path.display()))?;
-    w.write(&batch)
-        .map_err(|e| format!("{}: {e}", path.display()))?;
-    let mut file = w
-        .into_inner()
-        .map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut kv = vec![("ehlmap_schema".to_string(), SCHEMA_VERSION.to_string())];
+    kv.extend(meta.iter().cloned());
+    let mut file = write_batch_file(path, &batch, &kv)?;
     file.flush()
         .and_then(|_| file.sync_all())
         .map_err(|e| format!("cannot sync {}: {e}", path.display()))?;

@@ -1,5 +1,6 @@
-//! A small columnar table written as Parquet (zstd, footer metadata): the bench and stability
-//! results. Columns are f64, i64 or string; NaN is stored as null.
+//! Writing Parquet: [`write_batch_file`] is the one place that sets the writer properties (zstd,
+//! footer key-value metadata headed by `ehlmap_version`); [`write_table`] builds a small columnar
+//! table (f64, i64, string; NaN stored as null) for profiles, bench and stability results.
 
 use arrow_array::{ArrayRef, Float64Array, Int64Array, RecordBatch, StringArray};
 use arrow_schema::{DataType, Field, Schema};
@@ -7,6 +8,7 @@ use parquet::arrow::ArrowWriter;
 use parquet::basic::{Compression, ZstdLevel};
 use parquet::file::metadata::KeyValue;
 use parquet::file::properties::WriterProperties;
+use std::fs::File;
 use std::path::Path;
 use std::sync::Arc;
 
@@ -25,11 +27,9 @@ pub fn write_table(path: &Path, cols: Vec<Column>, meta: &[(&str, String)]) -> R
         match c {
             Column::F64(n, v) => {
                 fields.push(Field::new(n, DataType::Float64, true));
-                arrays.push(Arc::new(Float64Array::from(
-                    v.into_iter()
-                        .map(|x| x.is_finite().then_some(x))
-                        .collect::<Vec<_>>(),
-                )));
+                let v: Vec<Option<f64>> =
+                    v.into_iter().map(|x| x.is_finite().then_some(x)).collect();
+                arrays.push(Arc::new(Float64Array::from(v)));
             }
             Column::I64(n, v) => {
                 fields.push(Field::new(n, DataType::Int64, false));
@@ -42,23 +42,36 @@ pub fn write_table(path: &Path, cols: Vec<Column>, meta: &[(&str, String)]) -> R
         }
     }
     let schema = Arc::new(Schema::new(fields));
-    let batch = RecordBatch::try_new(schema.clone(), arrays).map_err(|e| e.to_string())?;
+    let batch = RecordBatch::try_new(schema, arrays).map_err(|e| e.to_string())?;
+    let meta: Vec<(String, String)> = meta
+        .iter()
+        .map(|(k, v)| (k.to_string(), v.clone()))
+        .collect();
+    write_batch_file(path, &batch, &meta).map(|_| ())
+}
+
+/// Write one record batch to a new Parquet file at `path` (zstd; footer: `ehlmap_version`, then
+/// `meta`). Returns the file, written and closed by the Parquet writer, so callers can sync it.
+pub fn write_batch_file(
+    path: &Path,
+    batch: &RecordBatch,
+    meta: &[(String, String)],
+) -> Result<File, String> {
     let mut kv = vec![KeyValue::new(
         "ehlmap_version".into(),
         env!("CARGO_PKG_VERSION").to_string(),
     )];
     kv.extend(
         meta.iter()
-            .map(|(k, v)| KeyValue::new(k.to_string(), v.clone())),
+            .map(|(k, v)| KeyValue::new(k.clone(), v.clone())),
     );
     let props = WriterProperties::builder()
         .set_compression(Compression::ZSTD(ZstdLevel::default()))
         .set_key_value_metadata(Some(kv))
         .build();
-    let file = std::fs::File::create(path)
-        .map_err(|e| format!("cannot create {}: {e}", path.display()))?;
-    let mut w = ArrowWriter::try_new(file, schema, Some(props)).map_err(|e| e.to_string())?;
-    w.write(&batch).map_err(|e| e.to_string())?;
-    w.close().map_err(|e| e.to_string())?;
-    Ok(())
+    let at = |e: parquet::errors::ParquetError| format!("{}: {e}", path.display());
+    let file = File::create(path).map_err(|e| format!("cannot create {}: {e}", path.display()))?;
+    let mut w = ArrowWriter::try_new(file, batch.schema(), Some(props)).map_err(at)?;
+    w.write(batch).map_err(at)?;
+    w.into_inner().map_err(at)
 }

@@ -6,12 +6,14 @@
 //! P^_H = P_h(2I); the coarse right-hand sides are f_H = L_H(P^_H) + R r and
 //! g_H = h_H sum P^_H + (g_h - h_h sum P_h); `gamma` coarse cycles (1: V, 2: W); the correction
 //! P_H - P^_H is interpolated linearly, added and projected on P >= 0; `post` relaxations.
-//! On the coarsest level `coarse_sweeps` relaxations each followed by the load-balance update
-//! H0 += c (h sum P - g), the only place H0 changes. FMG starts on the coarsest grid from the Hertz
-//! pressure and interpolates each level's result (cubic) as the next level's start.
+//! The coarsest level is solved exactly at fixed H0 by semi-smooth Newton (relaxation only if
+//! Newton fails); coarse nodes next to the cavitated set are held fixed. FMG starts with a full
+//! Newton solve (load equation included) on the coarsest grid, interpolates each level's result
+//! (cubic) as the next level's start, and predicts H0 there by extrapolating its last change.
 //!
-//! The load factor c adapts to the case: the rigid-regime sensitivity of the load to H0 is
-//! d(load)/dH0 = -load/H0, so c = c_base max(1, H_e / H_ref) with H_e the estimated central film.
+//! Load balance: on each level, cycles at fixed H0 until the load error has settled, then a
+//! safeguarded secant step on H0 ([`LoadBalance`]); the slope comes from the coarsest Newton and
+//! is refined level by level. Set `EHLMAP_TRACE=1` to print every cycle to stderr.
 
 use crate::params::LineCase;
 use crate::problem::domain::{DomainParams, LineDomain};

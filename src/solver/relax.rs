@@ -1,5 +1,10 @@
-//! The multigrid smoother for the line contact (Venner & Lubrecht): one sweep over the interior
-//! nodes, switched point by point on xi_i = min(eps_{i-1/2}, eps_{i+1/2})/h^2.
+//! The multigrid smoothers for the line contact.
+//!
+//! [`line_sweep`] (the default) relaxes the whole line at once: one banded solve per sweep of the
+//! Jacobian with the kernel kept within `band` cells, in distributed variables where
+//! xi_i = min(eps_{i-1/2}, eps_{i+1/2})/h^2 < xi_threshold (see its doc).
+//!
+//! [`relax_sweep`] is Venner and Lubrecht's classic point smoother, kept for comparison:
 //!
 //! * xi_i >= xi_threshold: Gauss-Seidel, P_i += omega_gs r_i / (dL_i/dP_i), the derivative including
 //!   the wedge term's dependence on P_i through the kernel, dH_k/dP_i = -(1/pi) K_{|k-i|}. The film
@@ -9,7 +14,7 @@
 //!   P_{i+-1} -= omega_ja delta/2, where dL_i/d delta is the derivative of L_i for that distributed
 //!   change: its kernel is K_|m| - (K_|m-1| + K_|m+1|)/2.
 //!
-//! After the sweep P is projected on P >= 0 (the cavitation condition) and H, rho, eps are
+//! After a sweep P is projected on P >= 0 (the cavitation condition) and H, rho, eps are
 //! recomputed by the fast deformation product.
 
 use crate::problem::line::{LineLevel, LinePhysics};
