@@ -217,3 +217,41 @@ fn forced_failures_are_reported_honestly() {
     );
     assert!(!s.outputs.reason.is_empty());
 }
+
+#[test]
+fn extreme_inputs_never_panic_nor_report_nan() {
+    // Far outside the design range: any status is acceptable, but no panic, no NaN outputs, and
+    // a converged status only with a finite positive central film.
+    for m in [1e-4, 1e6] {
+        for l in [0.0, 100.0] {
+            for elasticity in [Elasticity::Elastic, Elasticity::Rigid] {
+                let case = LineCase::with_models(
+                    m,
+                    l,
+                    Models {
+                        elasticity,
+                        ..Models::default()
+                    },
+                )
+                .unwrap();
+                let mut p = LineSolveParams::default();
+                p.mg.grid = 129;
+                p.mg.max_cycles = 10;
+                let o = solve_line(&case, &p).outputs;
+                for v in [o.h_c, o.h_min, o.h_c_pmax, o.p_max, o.h0, o.load_error] {
+                    assert!(
+                        !v.is_nan(),
+                        "M={m} L={l} {elasticity}: NaN output ({})",
+                        o.reason
+                    );
+                }
+                if o.status == Status::Converged {
+                    assert!(
+                        o.h_c.is_finite() && o.h_c > 0.0 || o.reason.contains("warning"),
+                        "{o:?}"
+                    );
+                }
+            }
+        }
+    }
+}

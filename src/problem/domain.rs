@@ -24,8 +24,8 @@
 //! The coarsest grid has the fewest intervals (a power of two, at least 16) with spacing
 //! h0 <= min(coarse_h_max * max(1, l_h / 2), coarse_lh * l_h): coarse grids that cannot see the
 //! film (h0 much larger than l_h at high M) make corrections of the wrong kind, and the exact
-//! coarsest solve is cheap enough to afford a few hundred points. The domain is then shifted so
-//! that X = 0 is a node of every level.
+//! coarsest solve is cheap enough to afford a few hundred points; for rigid surfaces simply
+//! h0 <= 0.4 l_h. The domain is then shifted so that X = 0 is a node of every level.
 
 use crate::formulas::{moes_line_asymptotes, moes_line_hc};
 use std::f64::consts::PI;
@@ -96,7 +96,13 @@ impl LineDomain {
             )
         };
         let width = x_out - x_in;
-        let h_target = (p.coarse_h_max * (0.5 * lh).max(1.0)).min(p.coarse_lh * lh);
+        // Rigid surfaces have no feature finer than l_h: a coarsest grid of ~120 points suffices
+        // whatever M (the elastic rule below would ask for hundreds at M << 1).
+        let h_target = if rigid {
+            0.4 * lh
+        } else {
+            (p.coarse_h_max * (0.5 * lh).max(1.0)).min(p.coarse_lh * lh)
+        };
         let mut n0 = 16usize;
         while width / n0 as f64 > h_target && n0 < max_intervals {
             n0 *= 2;

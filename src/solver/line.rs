@@ -181,6 +181,11 @@ pub fn solve_line(case: &LineCase, params: &LineSolveParams) -> LineSolution {
         s.info.reason.push_str(&note);
         s.outputs.reason.push_str(&note);
     }
+    if s.info.status == Status::Converged && !(s.outputs.h_min > 0.0) {
+        let note = "; warning: H_min <= 0, the grid does not resolve the film (refine --grid)";
+        s.info.reason.push_str(note);
+        s.outputs.reason.push_str(note);
+    }
     // Cost of the whole solve, failed attempts included.
     s.info.work_units = spent_wu;
     s.info.wall_s = spent_s;
