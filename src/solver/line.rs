@@ -181,7 +181,7 @@ pub fn solve_line(case: &LineCase, params: &LineSolveParams) -> LineSolution {
         s.info.reason.push_str(&note);
         s.outputs.reason.push_str(&note);
     }
-    if s.info.status == Status::Converged && !(s.outputs.h_min > 0.0) {
+    if s.info.status == Status::Converged && (s.outputs.h_min.is_nan() || s.outputs.h_min <= 0.0) {
         let note = "; warning: H_min <= 0, the grid does not resolve the film (refine --grid)";
         s.info.reason.push_str(note);
         s.outputs.reason.push_str(note);
