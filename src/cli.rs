@@ -4,7 +4,7 @@
 
 use crate::lubricant::{Density, Viscosity};
 use crate::params::{Elasticity, LineCase, Models};
-use crate::solver::line::{solve_line, LineSolveParams, Method};
+use crate::solver::line::{solve_line, solve_line_to_accuracy, LineSolveParams, Method};
 use crate::solver::multigrid::CycleType;
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
@@ -102,6 +102,13 @@ pub struct SolveArgs {
     pub grid: usize,
     #[arg(long, value_enum, default_value = "v")]
     pub cycle: CycleArg,
+    /// Target relative accuracy of H_c and H_min: refine the grid from 257 points until the
+    /// Richardson estimate meets it (up to --max-grid); reports error_estimate and accuracy_met.
+    #[arg(long)]
+    pub accuracy: Option<f64>,
+    /// Largest grid the accuracy target may use.
+    #[arg(long, default_value_t = 16385)]
+    pub max_grid: usize,
     /// Cycles allowed on the finest level.
     #[arg(long, default_value_t = 60)]
     pub max_cycles: usize,
@@ -222,7 +229,17 @@ pub fn run_solve(a: &SolveArgs) -> Result<i32, InputError> {
         )));
     }
     p.keep_profile = a.profile.is_some();
-    let s = solve_line(&case, &p);
+    let s = match a.accuracy {
+        Some(t) => {
+            if !(t.is_finite() && t > 0.0 && t < 1.0) {
+                return Err(InputError(format!(
+                    "--accuracy {t} is invalid: give a relative accuracy in (0, 1), e.g. 0.005"
+                )));
+            }
+            solve_line_to_accuracy(&case, &p, t, a.max_grid)
+        }
+        None => solve_line(&case, &p),
+    };
     if let (Some(path), Some(prof)) = (&a.profile, &s.profile) {
         let meta = [
             ("contact", "line".to_string()),

@@ -46,6 +46,13 @@ pub struct LineOutputs {
     pub levels: usize,
     pub work_units: f64,
     pub wall_s: f64,
+    /// With an accuracy target only: the estimated relative discretisation error of H_c and
+    /// H_min (the larger; Richardson between this grid and the one with half the intervals).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub error_estimate: Option<f64>,
+    /// With an accuracy target only: whether the estimate met the target.
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub accuracy_met: Option<bool>,
 }
 
 /// Pressure and film along X on the finest grid (X, P in Hertzian units, H in Moes units).
@@ -142,6 +149,8 @@ pub fn line_outputs(
         levels: info.levels,
         work_units: info.work_units,
         wall_s: info.wall_s,
+        error_estimate: None,
+        accuracy_met: None,
     }
 }
 

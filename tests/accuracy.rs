@@ -1,0 +1,59 @@
+//! Accuracy targets: the reported error estimate must be honest, i.e. the true error against a
+//! much finer solve (Richardson over 4097 and 8193 points) is below the estimate.
+
+use ehlmap::accuracy::richardson2;
+use ehlmap::params::LineCase;
+use ehlmap::solver::line::{solve_line, solve_line_to_accuracy, LineSolveParams};
+use ehlmap::solver::Status;
+
+fn reference(case: &LineCase) -> (f64, f64) {
+    let run = |g: usize| {
+        let mut p = LineSolveParams::default();
+        p.mg.grid = g;
+        solve_line(case, &p).outputs
+    };
+    let (a, b) = (run(4097), run(8193));
+    assert!(
+        a.status == Status::Converged && b.status == Status::Converged,
+        "reference solves"
+    );
+    (
+        richardson2(a.h_c, b.h_c).extrapolated,
+        richardson2(a.h_min, b.h_min).extrapolated,
+    )
+}
+
+#[test]
+fn error_estimates_are_honest_on_a_validation_set() {
+    let mut honest = 0;
+    let mut total = 0;
+    for (m, l) in [
+        (2.0, 0.0),
+        (5.0, 5.0),
+        (20.0, 10.0),
+        (100.0, 0.0),
+        (300.0, 10.0),
+        (1000.0, 10.0),
+    ] {
+        let case = LineCase::new(m, l).unwrap();
+        let (hc, hm) = reference(&case);
+        for target in [0.01, 0.003] {
+            let o =
+                solve_line_to_accuracy(&case, &LineSolveParams::default(), target, 4097).outputs;
+            assert_eq!(o.status, Status::Converged, "M={m} L={l}: {}", o.reason);
+            let est = o.error_estimate.expect("an estimate");
+            let truth = (o.h_c / hc - 1.0).abs().max((o.h_min / hm - 1.0).abs());
+            println!(
+                "M={m} L={l} target {target}: grid {} estimate {est:.2e} true {truth:.2e} met {:?}",
+                o.grid, o.accuracy_met
+            );
+            total += 1;
+            honest += usize::from(truth <= est);
+            if o.accuracy_met == Some(true) {
+                assert!(est <= target);
+            }
+        }
+    }
+    // The issue asks for at least 95 % honest estimates: with 12 cases that is all of them.
+    assert_eq!(honest, total, "{honest}/{total} honest");
+}
