@@ -2,4 +2,5 @@
 
 pub mod domain;
 pub mod kernel1d;
+pub mod kernel2d;
 pub mod line;
