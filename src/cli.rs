@@ -28,6 +28,8 @@ pub enum Command {
     Sweep(crate::sweep::cli::SweepArgs),
     /// Fit a Moes-style film formula to sweep datasets; report, fit.json and charts.
     Fit(crate::fit::cli::FitArgs),
+    /// A dimensional case (SI units in a TOML file): groups, numerical solve, published formulas.
+    Case(CaseArgs),
     /// Speed against accuracy of every method over a grid ladder (Parquet table and charts).
     Bench(crate::bench::cli::BenchArgs),
     /// Where methods fail: each method's status over an (M, L) map.
@@ -121,6 +123,42 @@ pub struct SolveArgs {
     /// Write the X, P, H profile to this Parquet file.
     #[arg(long)]
     pub profile: Option<PathBuf>,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct CaseArgs {
+    /// The case file (TOML, SI units), e.g. sweeps/cases/example-7-1.toml.
+    pub file: PathBuf,
+    /// Print the report as JSON.
+    #[arg(long)]
+    pub json: bool,
+    /// Only the groups and formulas, no numerical solve.
+    #[arg(long)]
+    pub no_solve: bool,
+}
+
+/// Run `ehlmap case`.
+pub fn run_case(a: &CaseArgs) -> Result<i32, InputError> {
+    let path = a.file.display();
+    let text = std::fs::read_to_string(&a.file).map_err(|e| InputError(format!("{path}: {e}")))?;
+    let spec: crate::case::CaseSpec = toml::from_str(&text).map_err(|e| {
+        InputError(format!(
+            "{path}: {}",
+            e.to_string().lines().collect::<Vec<_>>().join(" ")
+        ))
+    })?;
+    let r = spec
+        .report(!a.no_solve)
+        .map_err(|e| InputError(format!("{path}: {e}")))?;
+    if a.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&r).expect("report serialises")
+        );
+    } else {
+        print!("{}", crate::case::summary(&r));
+    }
+    Ok(0)
 }
 
 /// An input error: printed as one line, exit code 2.

@@ -10,6 +10,7 @@
 
 pub mod accuracy;
 pub mod bench;
+pub mod case;
 pub mod cli;
 pub mod fit;
 pub mod formulas;

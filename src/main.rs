@@ -7,6 +7,7 @@ fn main() {
         Command::Solve(a) => run_solve(a),
         Command::Sweep(a) => ehlmap::sweep::cli::run_sweep(a),
         Command::Fit(a) => ehlmap::fit::cli::run_fit(a),
+        Command::Case(a) => ehlmap::cli::run_case(a),
         Command::Bench(a) => ehlmap::bench::cli::run_bench(a),
         Command::Stability(a) => ehlmap::bench::cli::run_stability(a),
     };

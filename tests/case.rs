@@ -1,0 +1,83 @@
+//! `ehlmap case` on the textbook's Example 7-1 (seed 002), worked by hand from the book's data:
+//! R = 16 (-103)/(16 - 103) mm = 18.94 mm, E' = 208 GPa/(1 - 0.09) = 228.6 GPa,
+//! W' = 3000/(0.035 E' R) = 1.98e-5, U = 0.003 x 1.08/(E' R) = 7.48e-13, G = 2.3e-7 E' = 52571,
+//! g_v = G W'^(3/2)/U^(1/2) = 5353 (the book prints 3264 and then uses 5366: an arithmetic slip),
+//! g_e = W'/U^(1/2) = 22.9, regime rigid-piezoviscous (the book's R-V),
+//! h_min = 1.66 g_v^(2/3) U R/W' = 0.364 um (the book's 0.24 um follows from its g_h = 339.2,
+//! which matches neither g_v: a second slip).
+
+use std::process::Command;
+
+fn ehlmap(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_ehlmap"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn textbook_example_7_1() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/sweeps/cases/example-7-1.toml");
+    let out = ehlmap(&["case", path, "--json", "--no-solve"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let f = |k: &str| v[k].as_f64().unwrap();
+    let close = |a: f64, b: f64, tol: f64| (a / b - 1.0).abs() < tol;
+    assert!(close(f("r"), 18.943e-3, 1e-3), "R {}", f("r"));
+    assert!(close(f("e_reduced"), 228.57e9, 1e-3));
+    assert!(close(f("w_prime"), 1.980e-5, 2e-3));
+    assert!(close(f("u_mean"), 7.483e-13, 2e-3));
+    assert!(close(f("g"), 52571.0, 1e-3));
+    assert!(close(f("g_v"), 5353.0, 2e-3), "g_v {}", f("g_v"));
+    assert!(close(f("g_e"), 22.88, 2e-3));
+    assert_eq!(v["regime"], "RigidPiezoviscous");
+    let films = v["films"].as_array().unwrap();
+    let book = films
+        .iter()
+        .find(|x| x[0].as_str().unwrap().starts_with("textbook"))
+        .unwrap();
+    assert!(close(book[2].as_f64().unwrap(), 0.364e-6, 5e-3), "{book}");
+    // Moes (u_s) groups: M = W'/sqrt(2U), L = G (2U)^(1/4).
+    assert!(close(f("m"), 1.980e-5 / (2.0 * 7.483e-13f64).sqrt(), 3e-3));
+    assert!(close(
+        f("l"),
+        52571.0 * (2.0 * 7.483e-13f64).powf(0.25),
+        3e-3
+    ));
+}
+
+#[test]
+fn contradictory_inputs_exit_2_naming_the_input() {
+    let dir = std::env::temp_dir().join(format!("ehlmap-case-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let base = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/sweeps/cases/example-7-1.toml"
+    ))
+    .unwrap();
+    for (from, to, needle) in [
+        (
+            "nu = 0.3\nrq = 0.1e-6\n\n[body2]",
+            "nu = 0.5\nrq = 0.1e-6\n\n[body2]",
+            "body1.nu",
+        ),
+        ("u2 = 1.08", "u2 = -1.08", "u1 + u2"),
+        ("radius_x = -0.103", "radius_x = -0.012", "convex"),
+        ("\neta0 = 0.003\n", "\neta0 = -0.003\n", "eta0"),
+        ("\neta0 = 0.003\n", "\neta0 = 0.003\nbogus = 1\n", "bogus"),
+    ] {
+        let text = base.replacen(from, to, 1);
+        assert_ne!(text, base, "{from}");
+        let p = dir.join("case.toml");
+        std::fs::write(&p, text).unwrap();
+        let out = ehlmap(&["case", p.to_str().unwrap(), "--no-solve"]);
+        assert_eq!(out.status.code(), Some(2), "{needle}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(needle), "{needle}: {err}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
