@@ -67,6 +67,7 @@ fn fit_command_writes_report_json_and_charts() {
     let v: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
     assert_eq!(v["converged_cases"], 36);
     for f in [
+        "regime_map.png",
         "report.md",
         "fit.json",
         "parity.png",

@@ -209,6 +209,126 @@ fn error_map<DB: DrawingBackend>(
     Ok(())
 }
 
+/// Where two asymptote laws of `model` cross, on a log-M grid at fixed L: the M values at which
+/// f(M) changes sign.
+fn crossings(ms: &[f64], f: impl Fn(f64) -> f64) -> Vec<f64> {
+    let mut out = vec![];
+    for w in ms.windows(2) {
+        let (a, b) = (f(w[0]), f(w[1]));
+        if a.is_finite() && b.is_finite() && a.signum() != b.signum() {
+            // Log-linear interpolation of the sign change.
+            let t = a / (a - b);
+            out.push((w[0].ln() + t * (w[1].ln() - w[0].ln())).exp());
+        }
+    }
+    out
+}
+
+fn regime_map<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    pts: &[FitPoint],
+    model: &LineModel,
+) -> Res {
+    let m_lo = pts.iter().map(|p| p.m).fold(f64::INFINITY, f64::min) * 0.8;
+    let m_hi = pts.iter().map(|p| p.m).fold(0.0, f64::max) * 1.25;
+    let l_hi = pts.iter().map(|p| p.l).fold(0.0, f64::max).max(1.0);
+    let mut ch = ChartBuilder::on(root)
+        .caption(
+            "Fitted H_c(M, L) with regime boundaries (where two asymptotes cross)",
+            ("sans-serif", 19),
+        )
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(48)
+        .build_cartesian_2d((m_lo..m_hi).log_scale(), 0.0..l_hi)
+        .map_err(e)?;
+    ch.configure_mesh()
+        .x_desc("M")
+        .y_desc("L")
+        .draw()
+        .map_err(e)?;
+    // Filled map of log H_c on a 60 x 40 raster, light (thin film) to dark blue (thick film).
+    let (nx, ny) = (60usize, 40usize);
+    let mgrid: Vec<f64> = (0..=nx)
+        .map(|i| m_lo * (m_hi / m_lo).powf(i as f64 / nx as f64))
+        .collect();
+    let lgrid: Vec<f64> = (0..=ny).map(|j| l_hi * j as f64 / ny as f64).collect();
+    let (mut hmin, mut hmax) = (f64::INFINITY, 0.0f64);
+    for &m in &mgrid {
+        for &l in &lgrid {
+            let h = model.eval(m, l);
+            hmin = hmin.min(h);
+            hmax = hmax.max(h);
+        }
+    }
+    let shade = |h: f64| {
+        let t = ((h.ln() - hmin.ln()) / (hmax.ln() - hmin.ln())).clamp(0.0, 1.0);
+        RGBColor(
+            (235.0 - 185.0 * t) as u8,
+            (240.0 - 150.0 * t) as u8,
+            (250.0 - 90.0 * t) as u8,
+        )
+    };
+    ch.draw_series((0..nx).flat_map(|i| {
+        let (mg, lg) = (&mgrid, &lgrid);
+        (0..ny).map(move |j| {
+            let h = model.eval((mg[i] * mg[i + 1]).sqrt(), 0.5 * (lg[j] + lg[j + 1]));
+            Rectangle::new([(mg[i], lg[j]), (mg[i + 1], lg[j + 1])], shade(h).filled())
+        })
+    }))
+    .map_err(e)?;
+    // Boundaries: RI = EI (isoviscous), RP = EP (piezoviscous), iso bracket = piezo bracket.
+    let fine: Vec<f64> = (0..=400)
+        .map(|i| m_lo * (m_hi / m_lo).powf(i as f64 / 400.0))
+        .collect();
+    let (p, q) = (model.x[7], model.x[8]);
+    let mut lines: Vec<(&str, RGBColor, Vec<(f64, f64)>)> = vec![
+        ("RI = EI", RGBColor(0, 0, 0), vec![]),
+        ("RP = EP", RGBColor(200, 30, 30), vec![]),
+        ("isoviscous = piezoviscous", RGBColor(30, 130, 30), vec![]),
+    ];
+    for &l in lgrid.iter().skip(1) {
+        let a = |m: f64| model.asymptotes(m, l);
+        for m in crossings(&fine, |m| a(m)[0].ln() - a(m)[1].ln()) {
+            lines[0].2.push((m, l));
+        }
+        for m in crossings(&fine, |m| a(m)[2].ln() - a(m)[3].ln()) {
+            lines[1].2.push((m, l));
+        }
+        let iso = |m: f64| (a(m)[0].powf(p) + a(m)[1].powf(p)).powf(1.0 / p);
+        let piezo = |m: f64| (a(m)[2].powf(-q) + a(m)[3].powf(-q)).powf(-1.0 / q);
+        for m in crossings(&fine, |m| iso(m).ln() - piezo(m).ln()) {
+            lines[2].2.push((m, l));
+        }
+    }
+    for (name, color, pts_line) in lines {
+        if pts_line.is_empty() {
+            continue;
+        }
+        ch.draw_series(
+            pts_line
+                .iter()
+                .map(|&xy| Circle::new(xy, 2, color.filled())),
+        )
+        .map_err(e)?
+        .label(name)
+        .legend(move |(x, y)| Circle::new((x, y), 3, color.filled()));
+    }
+    ch.draw_series(
+        pts.iter()
+            .map(|p| Cross::new((p.m, p.l), 3, RGBColor(90, 90, 90).stroke_width(1))),
+    )
+    .map_err(e)?
+    .label("solved cases")
+    .legend(|(x, y)| Cross::new((x, y), 3, RGBColor(90, 90, 90).stroke_width(1)));
+    ch.configure_series_labels()
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .draw()
+        .map_err(e)?;
+    Ok(())
+}
+
 /// Write parity, curves and error-map charts (PNG and SVG) into `dir`; returns the file stems.
 pub fn write_charts(
     dir: &Path,
@@ -237,5 +357,16 @@ pub fn write_charts(
         |r| error_map(r, pts, model),
         |r| error_map(r, pts, model),
     )?;
-    Ok(vec!["parity".into(), "hc_vs_m".into(), "error_map".into()])
+    both(
+        &dir.join("regime_map"),
+        size,
+        |r| regime_map(r, pts, model),
+        |r| regime_map(r, pts, model),
+    )?;
+    Ok(vec![
+        "parity".into(),
+        "hc_vs_m".into(),
+        "error_map".into(),
+        "regime_map".into(),
+    ])
 }
