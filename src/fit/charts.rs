@@ -224,6 +224,9 @@ fn crossings(ms: &[f64], f: impl Fn(f64) -> f64) -> Vec<f64> {
     out
 }
 
+/// A regime boundary: its name, colour and the (M, L) points found on it.
+type Boundary = (&'static str, RGBColor, Vec<(f64, f64)>);
+
 fn regime_map<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     pts: &[FitPoint],
@@ -282,7 +285,7 @@ fn regime_map<DB: DrawingBackend>(
         .map(|i| m_lo * (m_hi / m_lo).powf(i as f64 / 400.0))
         .collect();
     let (p, q) = (model.x[7], model.x[8]);
-    let mut lines: Vec<(&str, RGBColor, Vec<(f64, f64)>)> = vec![
+    let mut lines: Vec<Boundary> = vec![
         ("RI = EI", RGBColor(0, 0, 0), vec![]),
         ("RP = EP", RGBColor(200, 30, 30), vec![]),
         ("isoviscous = piezoviscous", RGBColor(30, 130, 30), vec![]),
