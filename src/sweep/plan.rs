@@ -84,7 +84,9 @@ impl Case {
             n.tol_load,
             n.tol_h,
             n.error_estimate
-        )
+        ) + &n
+            .accuracy
+            .map_or(String::new(), |a| format!(";accuracy={a:e}"))
     }
 
     pub fn id_hex(&self) -> String {

@@ -9,7 +9,7 @@
 
 use crate::io::results::{self, finite, CaseRow};
 use crate::lubricant::{Density, Viscosity};
-use crate::solver::line::{solve_line, LineSolveParams, ESTIMATE_ORDER};
+use crate::solver::line::{solve_line, solve_line_to_accuracy, LineSolveParams, ESTIMATE_ORDER};
 use crate::solver::multigrid::CycleType;
 use crate::solver::Status;
 use crate::sweep::plan::{Case, Shard};
@@ -145,7 +145,15 @@ pub fn solve_case(case: &Case, sweep: &str) -> CaseRow {
             return row;
         }
     };
-    let s = solve_line(&lc, &solve_params(case, case.numerics.grid));
+    let s = match case.numerics.accuracy {
+        Some(target) => solve_line_to_accuracy(
+            &lc,
+            &solve_params(case, case.numerics.grid),
+            target,
+            case.numerics.grid,
+        ),
+        None => solve_line(&lc, &solve_params(case, case.numerics.grid)),
+    };
     let o = &s.outputs;
     let mut valid = true;
     row.grid = Some(o.grid as i64);
@@ -166,7 +174,11 @@ pub fn solve_case(case: &Case, sweep: &str) -> CaseRow {
     row.reason = o.reason.clone();
     row.attempt = Some(s.attempt as i64);
     let (mut wu, mut wall) = (o.work_units, o.wall_s);
-    if case.numerics.error_estimate && o.grid >= 65 {
+    if let Some(est) = o.error_estimate {
+        // Accuracy target: the estimate of the chosen grid (max over H_c and H_min).
+        row.h_c_err = finite(est, &mut valid);
+        row.h_min_err = row.h_c_err;
+    } else if case.numerics.error_estimate && o.grid >= 65 {
         let coarse = solve_line(&lc, &solve_params(case, (o.grid - 1) / 2 + 1));
         let c = &coarse.outputs;
         wu += c.work_units;

@@ -27,6 +27,7 @@
 //! tol_load = 1e-7
 //! tol_h = 1e-6
 //! error_estimate = false         # true: also solve on the half grid, Richardson error columns
+//! accuracy = 0.005               # optional: refine from 257 points up to `grid` until met
 //!
 //! [output]                       # all optional; defaults shown
 //! dir = "outputs"                # relative to the working directory; --out overrides
@@ -108,6 +109,9 @@ pub struct Numerics {
     pub tol_load: f64,
     pub tol_h: f64,
     pub error_estimate: bool,
+    /// Target relative accuracy of H_c and H_min: refine from 257 points up to `grid` until the
+    /// error estimate meets it (`ehlmap solve --accuracy`); the estimate goes to H_c_err/H_min_err.
+    pub accuracy: Option<f64>,
 }
 
 impl Default for Numerics {
@@ -120,6 +124,7 @@ impl Default for Numerics {
             tol_load: 1e-7,
             tol_h: 1e-6,
             error_estimate: false,
+            accuracy: None,
         }
     }
 }
@@ -662,6 +667,7 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
                 "tol_load",
                 "tol_h",
                 "error_estimate",
+                "accuracy",
             ],
         )?;
         if let Some(v) = t.get("grid") {
@@ -695,6 +701,17 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
                 }
                 *slot = x;
             }
+        }
+        if let Some(v) = t.get("accuracy") {
+            let x = cx.number(v, "numerics.accuracy")?;
+            if !(x > 0.0 && x < 1.0) {
+                return Err(cx.err(
+                    &v.span(),
+                    "numerics.accuracy",
+                    format!("accuracy = {x} is invalid: a relative accuracy in (0, 1), e.g. 0.005"),
+                ));
+            }
+            numerics.accuracy = Some(x);
         }
         if let Some(v) = t.get("error_estimate") {
             numerics.error_estimate = cx.boolean(v, "numerics.error_estimate")?;
