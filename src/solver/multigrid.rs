@@ -110,6 +110,8 @@ pub struct LineMultigrid {
     pub work_units: f64,
     /// Estimate of d(h sum P)/dH0 from the coarsest level.
     load_slope: f64,
+    /// Print every cycle to stderr (`EHLMAP_TRACE` set when the solver was built).
+    trace: bool,
     fine_intervals: usize,
 }
 
@@ -151,6 +153,7 @@ impl LineMultigrid {
             p_hat,
             work_units: 0.0,
             load_slope: -1.0,
+            trace: std::env::var_os("EHLMAP_TRACE").is_some(),
             fine_intervals: fine,
         }
     }
@@ -430,7 +433,7 @@ impl LineMultigrid {
             for k in 0..max {
                 self.cycle(l);
                 let rec = self.record(l);
-                if std::env::var("EHLMAP_TRACE").is_ok() {
+                if self.trace {
                     eprintln!(
                         "level {l} cycle {k} res {:.3e} load {:.3e} hc {:.7} wu {:.1} h0 {:.8}",
                         rec.residual, rec.load_error, rec.h_c, rec.work_units, self.h0
