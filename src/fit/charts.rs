@@ -342,34 +342,22 @@ pub fn write_charts(
         return Ok(vec![]);
     }
     let size = (900, 650);
-    both(
-        &dir.join("parity"),
-        size,
-        |r| parity(r, pts, model),
-        |r| parity(r, pts, model),
-    )?;
-    both(
-        &dir.join("hc_vs_m"),
-        size,
-        |r| curves(r, pts, model),
-        |r| curves(r, pts, model),
-    )?;
-    both(
-        &dir.join("error_map"),
-        size,
-        |r| error_map(r, pts, model),
-        |r| error_map(r, pts, model),
-    )?;
-    both(
-        &dir.join("regime_map"),
-        size,
-        |r| regime_map(r, pts, model),
-        |r| regime_map(r, pts, model),
-    )?;
-    Ok(vec![
-        "parity".into(),
-        "hc_vs_m".into(),
-        "error_map".into(),
-        "regime_map".into(),
-    ])
+    let mut stems = vec![];
+    // One chart function, drawn to both backends (their types differ, hence the macro).
+    macro_rules! chart {
+        ($name:literal, $draw:ident) => {
+            both(
+                &dir.join($name),
+                size,
+                |r| $draw(r, pts, model),
+                |r| $draw(r, pts, model),
+            )?;
+            stems.push($name.to_string());
+        };
+    }
+    chart!("parity", parity);
+    chart!("hc_vs_m", curves);
+    chart!("error_map", error_map);
+    chart!("regime_map", regime_map);
+    Ok(stems)
 }

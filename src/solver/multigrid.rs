@@ -20,7 +20,7 @@ use crate::problem::domain::{DomainParams, LineDomain};
 use crate::problem::line::{LineLevel, LinePhysics};
 use crate::solver::load_balance::LoadBalance;
 use crate::solver::newton::{newton_solve, NewtonOutcome, NewtonParams};
-use crate::solver::relax::{relax, RelaxParams};
+use crate::solver::relax::{relax, LineScratch, RelaxParams};
 use crate::solver::{CycleRecord, SolveInfo, Status};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -110,6 +110,8 @@ pub struct LineMultigrid {
     pub work_units: f64,
     /// Estimate of d(h sum P)/dH0 from the coarsest level.
     load_slope: f64,
+    /// Work buffers of the smoother, shared by all levels.
+    scratch: LineScratch,
     /// Print every cycle to stderr (`EHLMAP_TRACE` set when the solver was built).
     trace: bool,
     fine_intervals: usize,
@@ -153,6 +155,7 @@ impl LineMultigrid {
             p_hat,
             work_units: 0.0,
             load_slope: -1.0,
+            scratch: LineScratch::default(),
             trace: std::env::var_os("EHLMAP_TRACE").is_some(),
             fine_intervals: fine,
         }
@@ -188,9 +191,16 @@ impl LineMultigrid {
         lv.update_film(&self.phys, self.h0);
     }
 
-    fn relax(&mut self, l: usize) {
+    /// One relaxation sweep on level `l`, counted in work units.
+    pub fn relax_level(&mut self, l: usize) {
         let lv = &mut self.levels[l];
-        relax(lv, &self.phys, self.h0, &self.params.relax);
+        relax(
+            lv,
+            &self.phys,
+            self.h0,
+            &self.params.relax,
+            &mut self.scratch,
+        );
         self.work_units += (lv.len() - 1) as f64 / self.fine_intervals as f64;
     }
 
@@ -213,7 +223,7 @@ impl LineMultigrid {
         lv.p.copy_from_slice(&before);
         lv.update_film(&self.phys, self.h0);
         for _ in 0..self.params.coarse_sweeps {
-            self.relax(0);
+            self.relax_level(0);
         }
     }
 
@@ -237,7 +247,13 @@ impl LineMultigrid {
             // Relaxation with a gentle H0 update (the classic coarse-grid load balance).
             lv.update_film(&self.phys, self.h0);
             for _ in 0..20 * self.params.coarse_sweeps {
-                relax(lv, &self.phys, self.h0, &self.params.relax);
+                relax(
+                    lv,
+                    &self.phys,
+                    self.h0,
+                    &self.params.relax,
+                    &mut self.scratch,
+                );
                 self.h0 += 0.02 * (lv.load() - lv.g);
                 lv.update_film(&self.phys, self.h0);
             }
@@ -273,7 +289,7 @@ impl LineMultigrid {
             return;
         }
         for _ in 0..self.params.pre {
-            self.relax(l);
+            self.relax_level(l);
         }
         {
             let (lo, hi) = self.levels.split_at_mut(l);
@@ -325,7 +341,7 @@ impl LineMultigrid {
             fine.update_film(&self.phys, self.h0);
         }
         for _ in 0..self.params.post {
-            self.relax(l);
+            self.relax_level(l);
         }
     }
 

@@ -61,10 +61,30 @@ impl Default for RelaxParams {
     }
 }
 
+/// Work buffers of the line smoother. Owned by the caller and reused across sweeps and levels,
+/// so once they have grown to the finest level's size a sweep allocates nothing.
+#[derive(Default)]
+pub struct LineScratch {
+    rows: Vec<JacRow>,
+    /// 0: active, 1: cavitated, 2: frozen.
+    kind: Vec<u8>,
+    jset: Vec<bool>,
+    a: Vec<f64>,
+    rhs: Vec<f64>,
+    ent: Vec<f64>,
+    ksym: Vec<f64>,
+}
+
 /// One sweep of the chosen smoother.
-pub fn relax(lv: &mut LineLevel, phys: &LinePhysics, h0: f64, rp: &RelaxParams) {
+pub fn relax(
+    lv: &mut LineLevel,
+    phys: &LinePhysics,
+    h0: f64,
+    rp: &RelaxParams,
+    scratch: &mut LineScratch,
+) {
     match rp.smoother {
-        Smoother::Line => line_sweep(lv, phys, h0, rp),
+        Smoother::Line => line_sweep(lv, phys, h0, rp, scratch),
         Smoother::Point => relax_sweep(lv, phys, h0, rp),
     }
 }
@@ -76,24 +96,39 @@ pub fn relax(lv: &mut LineLevel, phys: &LinePhysics, h0: f64, rp: &RelaxParams) 
 /// 1/d^3, so what is dropped is smooth and left to the coarse grids. Cavitated nodes (Newton point
 /// value P_i + r_i/J_ii <= 0) and frozen coarse nodes get the row dP_i = -P_i resp. 0. Then
 /// P += omega_line dP, projected on P >= 0.
-pub fn line_sweep(lv: &mut LineLevel, phys: &LinePhysics, h0: f64, rp: &RelaxParams) {
+pub fn line_sweep(
+    lv: &mut LineLevel,
+    phys: &LinePhysics,
+    h0: f64,
+    rp: &RelaxParams,
+    scratch: &mut LineScratch,
+) {
     let n = lv.len();
     let m = n - 2;
     let bw = rp.band + 1;
     let w = 2 * bw + 1;
     let h2 = lv.h * lv.h;
-    let rows: Vec<JacRow> = (1..n - 1)
-        .map(|i| {
-            if rp.picard {
-                JacRow::picard(lv, phys, i)
-            } else {
-                JacRow::new(lv, phys, i)
-            }
-        })
-        .collect();
-    // 0: active, 1: cavitated, 2: frozen.
-    let mut kind = vec![0u8; n];
-    let mut rhs = vec![0.0; m];
+    let LineScratch {
+        rows,
+        kind,
+        jset,
+        a,
+        rhs,
+        ent,
+        ksym,
+    } = scratch;
+    rows.clear();
+    rows.extend((1..n - 1).map(|i| {
+        if rp.picard {
+            JacRow::picard(lv, phys, i)
+        } else {
+            JacRow::new(lv, phys, i)
+        }
+    }));
+    kind.clear();
+    kind.resize(n, 0);
+    rhs.clear();
+    rhs.resize(m, 0.0);
     for i in 1..n - 1 {
         let r = lv.f[i] - lv.reynolds(phys, i);
         rhs[i - 1] = r;
@@ -108,26 +143,26 @@ pub fn line_sweep(lv: &mut LineLevel, phys: &LinePhysics, h0: f64, rp: &RelaxPar
     }
     kind[0] = 2;
     kind[n - 1] = 2;
-    let jset: Vec<bool> = (0..n)
-        .map(|i| {
-            i >= 1
-                && i + 1 < n
-                && kind[i - 1] == 0
-                && kind[i] == 0
-                && kind[i + 1] == 0
-                && (phys.dry
-                    || 0.5 * (lv.eps[i - 1] + lv.eps[i]).min(lv.eps[i] + lv.eps[i + 1]) / h2
-                        < rp.xi_threshold)
-        })
-        .collect();
-    let mut a = vec![0.0; m * w];
-    let mut ent = vec![0.0; 2 * bw + 3];
-    let ksym: Vec<f64> = (0..2 * bw + 7)
-        .map(|q| {
-            let d = (q as isize - bw as isize - 3).unsigned_abs();
-            lv.kernel.get(d).copied().unwrap_or(0.0)
-        })
-        .collect();
+    jset.clear();
+    jset.extend((0..n).map(|i| {
+        i >= 1
+            && i + 1 < n
+            && kind[i - 1] == 0
+            && kind[i] == 0
+            && kind[i + 1] == 0
+            && (phys.dry
+                || 0.5 * (lv.eps[i - 1] + lv.eps[i]).min(lv.eps[i] + lv.eps[i + 1]) / h2
+                    < rp.xi_threshold)
+    }));
+    a.clear();
+    a.resize(m * w, 0.0);
+    ent.clear();
+    ent.resize(2 * bw + 3, 0.0);
+    ksym.clear();
+    ksym.extend((0..2 * bw + 7).map(|q| {
+        let d = (q as isize - bw as isize - 3).unsigned_abs();
+        lv.kernel.get(d).copied().unwrap_or(0.0)
+    }));
     for i in 1..n - 1 {
         let row = i - 1;
         match kind[i] {
@@ -142,7 +177,7 @@ pub fn line_sweep(lv: &mut LineLevel, phys: &LinePhysics, h0: f64, rp: &RelaxPar
             _ => {
                 // Row entries J(i, j) for j = i-bw-1 ..= i+bw+1 (zero outside the interior).
                 let j0 = i as isize - bw as isize - 1;
-                rows[row].window(&ksym, bw, &mut ent);
+                rows[row].window(ksym, bw, ent);
                 for (t, v) in ent.iter_mut().enumerate() {
                     let j = j0 + t as isize;
                     if j < 1 || j >= n as isize - 1 {
@@ -160,7 +195,7 @@ pub fn line_sweep(lv: &mut LineLevel, phys: &LinePhysics, h0: f64, rp: &RelaxPar
             }
         }
     }
-    if !solve_banded(&mut a, m, bw, &mut rhs) || rhs.iter().any(|v| !v.is_finite()) {
+    if !solve_banded(a, m, bw, rhs) || rhs.iter().any(|v| !v.is_finite()) {
         // A zero pivot (the band is not dominant enough): fall back to the point sweep.
         relax_sweep(lv, phys, h0, rp);
         return;
@@ -223,7 +258,7 @@ pub fn relax_sweep(lv: &mut LineLevel, phys: &LinePhysics, h0: f64, rp: &RelaxPa
             0.0
         }
     };
-    let kern: Vec<f64> = (0..5).map(|d| k(d as isize)).collect();
+    let kern: [f64; 5] = std::array::from_fn(|d| k(d as isize));
     let kv = |d: isize| kern[d.unsigned_abs().min(4)];
     let kdist = |m: isize| kv(m) - 0.5 * (kv(m - 1) + kv(m + 1));
     lv.delta.fill(0.0);

@@ -8,7 +8,6 @@
 
 use crate::solver::load_balance::LoadBalance;
 use crate::solver::multigrid::LineMultigrid;
-use crate::solver::relax::relax;
 use crate::solver::{CycleRecord, SolveInfo, Status};
 use std::time::Instant;
 
@@ -31,11 +30,9 @@ pub fn solve_relax(
     let mut reason = format!("no convergence in {max_sweeps} sweeps");
     while sweeps < max_sweeps {
         for _ in 0..sweeps_per_check {
-            let h0 = mg.h0;
-            relax(&mut mg.levels[l], &mg.phys, h0, &mg.params.relax);
+            mg.relax_level(l);
         }
         sweeps += sweeps_per_check;
-        mg.work_units += sweeps_per_check as f64;
         let rec = mg.record(l);
         history.push(rec);
         if !(rec.residual.is_finite() && rec.h_c.is_finite()) || rec.load_error.abs() > 10.0 {
