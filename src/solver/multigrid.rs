@@ -227,9 +227,6 @@ impl LineMultigrid {
         }
     }
 
-    /// The load balance on level l (the current top level): one secant step on H0 for
-    /// G(H0) = h sum P - pi/2, with the slope dG/dH0 from the last two cycles (kept negative and
-    /// the step limited to a fraction of the central film), then the film is refreshed.
     /// Full Newton (with the load equation) on the coarsest level from the initial guess, then the
     /// slope dG/dH0 from a second fixed-H0 solve at a perturbed H0.
     fn start_coarse(&mut self, with_slope: bool) -> NewtonOutcome {
@@ -247,17 +244,13 @@ impl LineMultigrid {
             // Relaxation with a gentle H0 update (the classic coarse-grid load balance).
             lv.update_film(&self.phys, self.h0);
             for _ in 0..20 * self.params.coarse_sweeps {
-                relax(
-                    lv,
-                    &self.phys,
-                    self.h0,
-                    &self.params.relax,
-                    &mut self.scratch,
-                );
+                self.relax_level(0);
+                let lv = &mut self.levels[0];
                 self.h0 += 0.02 * (lv.load() - lv.g);
                 lv.update_film(&self.phys, self.h0);
             }
         }
+        let lv = &mut self.levels[0];
         if !with_slope {
             return out;
         }
