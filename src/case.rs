@@ -68,7 +68,7 @@ pub struct CaseReport {
     pub g_v: f64,
     pub g_e: f64,
     pub regime: String,
-    pub numerical: Option<crate::solution::LineOutputs>,
+    pub numerical: Option<crate::solution::Outputs>,
     /// Film thicknesses in m: (name, h_c or h_min, value).
     pub films: Vec<(String, String, f64)>,
     pub p_max: Option<f64>,

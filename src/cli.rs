@@ -299,7 +299,7 @@ pub fn run_solve(a: &SolveArgs) -> Result<i32, InputError> {
     Ok(0)
 }
 
-fn summary(case: &LineCase, o: &crate::solution::LineOutputs) -> String {
+fn summary(case: &LineCase, o: &crate::solution::Outputs) -> String {
     let m = &case.models;
     let spike = o.spike.map_or("none".to_string(), |s| {
         format!("P = {:.4} at X = {:.4}", s.p, s.x)

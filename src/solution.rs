@@ -22,9 +22,9 @@ pub struct Spike {
     pub p: f64,
 }
 
-/// The outputs of one line solve, with the JSON field names of the CLI.
+/// The outputs of one solve (line or point), with the JSON field names of the CLI.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct LineOutputs {
+pub struct Outputs {
     #[serde(rename = "H_c")]
     pub h_c: f64,
     #[serde(rename = "H_c_pmax")]
@@ -33,6 +33,14 @@ pub struct LineOutputs {
     pub h_min: f64,
     #[serde(rename = "X_min")]
     pub x_min: f64,
+    /// Point contacts: where the minimum film is across the rolling direction (Y = y/b).
+    #[serde(rename = "Y_min", skip_serializing_if = "Option::is_none", default)]
+    pub y_min: Option<f64>,
+    /// Point contacts: the ellipticity parameter D = Rx/Ry and the Hertz ratio k = a/b.
+    #[serde(rename = "D", skip_serializing_if = "Option::is_none", default)]
+    pub d: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub k: Option<f64>,
     #[serde(rename = "P_max")]
     pub p_max: f64,
     pub spike: Option<Spike>,
@@ -92,7 +100,7 @@ pub fn line_outputs(
     h_scale: f64,
     i_centre: usize,
     info: &SolveInfo,
-) -> LineOutputs {
+) -> Outputs {
     let n = x.len();
     let h = x[1] - x[0];
     let mut imax = 0;
@@ -133,11 +141,14 @@ pub fn line_outputs(
         traction += 0.25 * (film[i] + film[i + 1]) * (p[i + 1] - p[i]);
     }
     let target = std::f64::consts::FRAC_PI_2;
-    LineOutputs {
+    Outputs {
         h_c: film[i_centre] * h_scale,
         h_c_pmax,
         h_min: hm * h_scale,
         x_min: x[imin] + tm * h,
+        y_min: None,
+        d: None,
+        k: None,
         p_max,
         spike,
         h0: h0 * h_scale,

@@ -5,7 +5,7 @@ use ehlmap::params::{Elasticity, LineCase, Models};
 use ehlmap::solver::line::{solve_line, LineSolveParams, Method};
 use ehlmap::solver::Status;
 
-fn run(case: &LineCase, method: Method, grid: usize) -> ehlmap::solution::LineOutputs {
+fn run(case: &LineCase, method: Method, grid: usize) -> ehlmap::solution::Outputs {
     let mut p = LineSolveParams {
         method,
         ..Default::default()

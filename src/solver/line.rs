@@ -13,7 +13,7 @@
 //! The best failed attempt (lowest final residual) is returned with its status if none converges.
 
 use crate::params::LineCase;
-use crate::solution::{line_outputs, LineOutputs, Profile};
+use crate::solution::{line_outputs, Outputs, Profile};
 use crate::solver::multigrid::{CycleType, LineMgParams, LineMultigrid};
 use crate::solver::single_grid::solve_relax;
 use crate::solver::{SolveInfo, Status};
@@ -69,7 +69,7 @@ impl Default for LineSolveParams {
 /// Everything a line solve returns.
 #[derive(Clone, Debug)]
 pub struct LineSolution {
-    pub outputs: LineOutputs,
+    pub outputs: Outputs,
     pub info: SolveInfo,
     pub profile: Option<Profile>,
     /// Which attempt (1-based) produced the result.

@@ -7,6 +7,7 @@ pub mod line;
 pub mod load_balance;
 pub mod multigrid;
 pub mod newton;
+pub mod point;
 pub mod relax;
 pub mod single_grid;
 
