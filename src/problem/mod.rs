@@ -4,3 +4,4 @@ pub mod domain;
 pub mod kernel1d;
 pub mod kernel2d;
 pub mod line;
+pub mod point;

@@ -18,7 +18,7 @@
 use crate::params::LineCase;
 use crate::problem::domain::{DomainParams, LineDomain};
 use crate::problem::line::{LineLevel, LinePhysics};
-use crate::solver::load_balance::LoadBalance;
+use crate::solver::fmg::{fmg_solve, Fas, FmgControl};
 use crate::solver::newton::{newton_solve, NewtonOutcome, NewtonParams};
 use crate::solver::relax::{relax, LineScratch, RelaxParams};
 use crate::solver::{CycleRecord, SolveInfo, Status};
@@ -386,146 +386,9 @@ impl LineMultigrid {
         8.0 * PI.recip() * (3.0 * PI * PI / (8.0 * self.phys.lambda)).sqrt()
     }
 
-    /// Run FMG: on each level, cycles at fixed H0 until the load error has settled, then a load
-    /// balance step on H0 ([`LoadBalance`]); on the finest level until converged or failed.
+    /// Run FMG ([`crate::solver::fmg::fmg_solve`]).
     pub fn solve(&mut self) -> SolveInfo {
-        let start = Instant::now();
-        self.initialise();
-        let top = self.levels.len() - 1;
-        let coarse = self.start_coarse(top > 0);
-        if top == 0 {
-            // A single level: the Newton solve is the whole solve.
-            let rec = self.record(0);
-            let (status, reason) = if coarse.converged {
-                (
-                    Status::Converged,
-                    format!("Newton converged in {} iterations", coarse.iterations),
-                )
-            } else if coarse.singular {
-                (Status::Diverged, "singular Newton system".to_string())
-            } else {
-                (
-                    Status::MaxIterations,
-                    format!(
-                        "Newton residual {:.2e} after {} iterations",
-                        coarse.residual, coarse.iterations
-                    ),
-                )
-            };
-            return self.finish(start, status, reason, vec![rec]);
-        }
-        let mut lb = LoadBalance::new(self.load_slope);
-        let mut history = vec![];
-        let mut status = Status::MaxIterations;
-        let mut reason = format!("no convergence in {} cycles", self.params.max_cycles);
-        let mut min_res = f64::INFINITY;
-        // H0 at the end of each level: it converges at second order in h, so the next level's
-        // H0 is predicted by extrapolating the last change by 1/4 (Richardson).
-        let mut h0_end = vec![self.h0];
-        for l in 1..=top {
-            if let [.., a, b] = h0_end[..] {
-                if l >= 3 {
-                    self.h0 = b + 0.25 * (b - a);
-                }
-            }
-            self.fmg_interpolate(l);
-            lb.reset();
-            let final_level = l == top;
-            let (tol_e, max) = if final_level {
-                (self.params.tol_load, self.params.max_cycles)
-            } else {
-                (self.params.tol_load_fmg, 4 * self.params.fmg_cycles)
-            };
-            let mut prev: Option<CycleRecord> = None;
-            let mut first_res = f64::INFINITY;
-            let mut settled_h: Option<f64> = None;
-            for k in 0..max {
-                self.cycle(l);
-                let rec = self.record(l);
-                if self.trace {
-                    eprintln!(
-                        "level {l} cycle {k} res {:.3e} load {:.3e} hc {:.7} wu {:.1} h0 {:.8}",
-                        rec.residual, rec.load_error, rec.h_c, rec.work_units, self.h0
-                    );
-                }
-                if final_level {
-                    history.push(rec);
-                }
-                if !(rec.residual.is_finite() && rec.h_c.is_finite() && self.h0.is_finite()) {
-                    status = Status::Diverged;
-                    reason = format!("non-finite residual or film on level {l}");
-                    return self.finish(start, status, reason, history);
-                }
-                if final_level {
-                    min_res = min_res.min(rec.residual);
-                    if rec.residual > 1e4 * min_res.max(1e-14) || rec.load_error.abs() > 10.0 {
-                        reason = format!(
-                            "residual grew to {:.3e} (min {:.3e}), load error {:.3e}",
-                            rec.residual, min_res, rec.load_error
-                        );
-                        return self.finish(start, Status::Diverged, reason, history);
-                    }
-                }
-                // P has settled for this H0 when the residual fell by 20 since the last H0 change
-                // and the load error moved by less than a tenth of itself over the last cycle.
-                first_res = first_res.min(if prev.is_none() {
-                    rec.residual
-                } else {
-                    f64::INFINITY
-                });
-                let settled = prev.is_some_and(|p| {
-                    (rec.load_error - p.load_error).abs()
-                        <= 0.1 * rec.load_error.abs() + 0.25 * tol_e
-                        && rec.residual <= 0.05 * first_res
-                });
-                let dh = prev.map_or(f64::INFINITY, |p| {
-                    (rec.h_c - p.h_c).abs() / rec.h_c.abs().max(1e-300)
-                });
-                if rec.load_error.abs() < tol_e
-                    && (settled || k + 1 == max)
-                    && (!final_level || dh < self.params.tol_h)
-                {
-                    if final_level {
-                        status = Status::Converged;
-                        reason = format!(
-                            "load error {:.1e} and H_c change {:.1e} below tolerances",
-                            rec.load_error, dh
-                        );
-                    }
-                    break;
-                }
-                if settled {
-                    if final_level {
-                        if let Some(hs) = settled_h {
-                            if (rec.h_c - hs).abs() / rec.h_c.abs() < 1e-12
-                                && rec.load_error.abs() > tol_e
-                            {
-                                status = Status::Stalled;
-                                reason = format!("load error stuck at {:.2e}", rec.load_error);
-                                break;
-                            }
-                        }
-                        settled_h = Some(rec.h_c);
-                    }
-                    let lv = &mut self.levels[l];
-                    let ic = self.domain.centre_index(lv.len() - 1);
-                    // H0 is a rigid approach: elastic contacts absorb much of a change of it, so the
-                    // step limit scales with |H0| as well as with the film.
-                    let max_step = 0.3 * lv.film[ic].abs().max(1e-3 * self.domain.h_estimate)
-                        + 0.1 * self.h0.abs();
-                    let g = rec.load_error * lv.g;
-                    let next = lb.next(self.h0, g, max_step);
-                    self.h0 += self.params.load_factor.unwrap_or(1.0) * (next - self.h0);
-                    lv.update_film(&self.phys, self.h0);
-                    prev = None;
-                    first_res = f64::INFINITY;
-                } else {
-                    prev = Some(rec);
-                }
-            }
-            h0_end.push(self.h0);
-        }
-        self.finish(start, status, reason, history)
+        fmg_solve(self)
     }
 
     fn finish(
@@ -545,5 +408,69 @@ impl LineMultigrid {
             grid: fine.len(),
             levels: self.levels.len(),
         }
+    }
+}
+
+impl Fas for LineMultigrid {
+    fn control(&self) -> FmgControl {
+        let p = &self.params;
+        FmgControl {
+            fmg_cycles: p.fmg_cycles,
+            max_cycles: p.max_cycles,
+            tol_load: p.tol_load,
+            tol_h: p.tol_h,
+            tol_load_fmg: p.tol_load_fmg,
+            load_factor: p.load_factor,
+        }
+    }
+    fn top(&self) -> usize {
+        self.levels.len() - 1
+    }
+    fn initialise(&mut self) {
+        LineMultigrid::initialise(self)
+    }
+    fn start_coarse(&mut self, with_slope: bool) -> NewtonOutcome {
+        LineMultigrid::start_coarse(self, with_slope)
+    }
+    fn load_slope(&self) -> f64 {
+        self.load_slope
+    }
+    fn fmg_interpolate(&mut self, l: usize) {
+        LineMultigrid::fmg_interpolate(self, l)
+    }
+    fn cycle(&mut self, l: usize) {
+        LineMultigrid::cycle(self, l)
+    }
+    fn record(&mut self, l: usize) -> CycleRecord {
+        LineMultigrid::record(self, l)
+    }
+    fn h0(&self) -> f64 {
+        self.h0
+    }
+    fn set_h0(&mut self, l: usize, h0: f64) {
+        self.h0 = h0;
+        self.levels[l].update_film(&self.phys, h0);
+    }
+    fn centre_film(&self, l: usize) -> f64 {
+        let lv = &self.levels[l];
+        lv.film[self.domain.centre_index(lv.len() - 1)]
+    }
+    fn h_estimate(&self) -> f64 {
+        self.domain.h_estimate
+    }
+    fn load_target(&self, l: usize) -> f64 {
+        self.levels[l].g
+    }
+    fn trace(&self) -> bool {
+        self.trace
+    }
+    fn finish(
+        &self,
+        start: Instant,
+        status: Status,
+        reason: String,
+        history: Vec<CycleRecord>,
+    ) -> SolveInfo {
+        LineMultigrid::finish(self, start, status, reason, history)
     }
 }
