@@ -5,3 +5,4 @@ pub mod kernel1d;
 pub mod kernel2d;
 pub mod line;
 pub mod point;
+pub mod point_domain;

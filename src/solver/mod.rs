@@ -9,6 +9,9 @@ pub mod load_balance;
 pub mod multigrid;
 pub mod newton;
 pub mod point;
+pub mod point_jacobian;
+pub mod point_mg;
+pub mod point_relax;
 pub mod relax;
 pub mod single_grid;
 

@@ -36,7 +36,7 @@ pub enum CycleType {
 }
 
 impl CycleType {
-    fn gamma(self) -> usize {
+    pub(crate) fn gamma(self) -> usize {
         match self {
             CycleType::V => 1,
             CycleType::W => 2,

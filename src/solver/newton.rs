@@ -1,4 +1,5 @@
-//! Damped Newton-Raphson for the discrete line contact on one level (dense Jacobian, LU from
+//! Damped Newton-Raphson for a discrete contact problem on one level (line or point,
+//! through [`NewtonLevel`]; the line contact's Jacobian is built here) (dense Jacobian, LU from
 //! nalgebra), with the cavitation condition as a semi-smooth active set.
 //!
 //! Unknowns: P_1..P_{n-2} and H0. Equations: L_i(P, H0) = f_i on the pressurised set, P_i = 0 on the
@@ -72,19 +73,71 @@ pub fn jacobian(lv: &LineLevel, phys: &LinePhysics) -> DMatrix<f64> {
     jac
 }
 
+/// A discrete level that Newton can solve: unknown pressures at the interior nodes (storage
+/// indices from [`NewtonLevel::unknowns`]) and H0.
+pub trait NewtonLevel {
+    type Phys;
+    /// Storage indices of the unknown pressures, in Jacobian order.
+    fn unknowns(&self) -> Vec<usize>;
+    /// The exact Jacobian of (L at the unknowns, the load sum) with respect to (the unknowns, H0),
+    /// H0 last (film must be up to date).
+    fn dense_jacobian(&self, phys: &Self::Phys, unknowns: &[usize]) -> DMatrix<f64>;
+    /// f - L at storage index c.
+    fn residual_at(&self, phys: &Self::Phys, c: usize) -> f64;
+    fn frozen_at(&self, c: usize) -> bool;
+    fn pressure(&mut self) -> &mut [f64];
+    fn load_sum(&self) -> f64;
+    fn load_rhs(&self) -> f64;
+    /// Recompute the film and coefficients for H0.
+    fn refresh(&mut self, phys: &Self::Phys, h0: f64);
+}
+
+impl NewtonLevel for LineLevel {
+    type Phys = LinePhysics;
+    fn unknowns(&self) -> Vec<usize> {
+        (1..self.len() - 1).collect()
+    }
+    fn dense_jacobian(&self, phys: &LinePhysics, _unknowns: &[usize]) -> DMatrix<f64> {
+        jacobian(self, phys)
+    }
+    fn residual_at(&self, phys: &LinePhysics, c: usize) -> f64 {
+        self.f[c] - self.reynolds(phys, c)
+    }
+    fn frozen_at(&self, c: usize) -> bool {
+        self.frozen[c]
+    }
+    fn pressure(&mut self) -> &mut [f64] {
+        &mut self.p
+    }
+    fn load_sum(&self) -> f64 {
+        self.load()
+    }
+    fn load_rhs(&self) -> f64 {
+        self.g
+    }
+    fn refresh(&mut self, phys: &LinePhysics, h0: f64) {
+        self.update_film(phys, h0)
+    }
+}
+
 /// Build the semi-smooth Newton system at the current state (film must be up to date).
-fn linearise(lv: &LineLevel, phys: &LinePhysics, fix_h0: bool) -> Linearisation {
-    let n = lv.len();
-    let hcol = n - 2;
-    let mut jac = jacobian(lv, phys);
-    let mut rhs = DVector::<f64>::zeros(n - 1);
+fn linearise<T: NewtonLevel>(
+    lv: &mut T,
+    phys: &T::Phys,
+    unknowns: &[usize],
+    fix_h0: bool,
+) -> Linearisation {
+    let m = unknowns.len();
+    let hcol = m;
+    let mut jac = lv.dense_jacobian(phys, unknowns);
+    let mut rhs = DVector::<f64>::zeros(m + 1);
     let mut merit = 0.0;
-    for i in 1..n - 1 {
-        let row = i - 1;
-        let r = lv.f[i] - lv.reynolds(phys, i);
+    for (row, &c) in unknowns.iter().enumerate() {
+        let r = lv.residual_at(phys, c);
         let d = jac[(row, row)];
-        let t = if d < 0.0 { lv.p[i] + r / d } else { lv.p[i] };
-        if lv.frozen[i] {
+        let p = lv.pressure()[c];
+        let t = if d < 0.0 { p + r / d } else { p };
+        if lv.frozen_at(c) {
             jac.row_mut(row).fill(0.0);
             jac[(row, row)] = 1.0;
             rhs[row] = 0.0;
@@ -95,8 +148,8 @@ fn linearise(lv: &LineLevel, phys: &LinePhysics, fix_h0: bool) -> Linearisation 
         } else {
             jac.row_mut(row).fill(0.0);
             jac[(row, row)] = 1.0;
-            rhs[row] = -lv.p[i];
-            merit += lv.p[i] * lv.p[i];
+            rhs[row] = -p;
+            merit += p * p;
         }
     }
     if fix_h0 {
@@ -104,9 +157,10 @@ fn linearise(lv: &LineLevel, phys: &LinePhysics, fix_h0: bool) -> Linearisation 
         jac[(hcol, hcol)] = 1.0;
         rhs[hcol] = 0.0;
     } else {
-        let lr = lv.g - lv.load();
+        let g = lv.load_rhs();
+        let lr = g - lv.load_sum();
         rhs[hcol] = lr;
-        merit += (lr / lv.g) * (lr / lv.g);
+        merit += (lr / g) * (lr / g);
     }
     Linearisation {
         jac,
@@ -116,22 +170,23 @@ fn linearise(lv: &LineLevel, phys: &LinePhysics, fix_h0: bool) -> Linearisation 
 }
 
 /// Newton-solve the level's discrete problem (with its right-hand sides f, g) for P and H0.
-pub fn newton_solve(
-    lv: &mut LineLevel,
-    phys: &LinePhysics,
+pub fn newton_solve<T: NewtonLevel>(
+    lv: &mut T,
+    phys: &T::Phys,
     h0: &mut f64,
     np: &NewtonParams,
 ) -> NewtonOutcome {
-    let n = lv.len();
-    lv.update_film(phys, *h0);
-    let mut lin = linearise(lv, phys, np.fix_h0);
+    let unknowns = lv.unknowns();
+    let m = unknowns.len();
+    lv.refresh(phys, *h0);
+    let mut lin = linearise(lv, phys, &unknowns, np.fix_h0);
     let mut out = NewtonOutcome {
         iterations: 0,
         converged: false,
         residual: lin.merit,
         singular: false,
     };
-    let mut p_old = vec![0.0; n];
+    let mut p_old = vec![0.0; m];
     for it in 0..np.max_iter {
         if lin.merit < np.tol {
             out.converged = true;
@@ -146,17 +201,20 @@ pub fn newton_solve(
             out.singular = true;
             break;
         }
-        p_old.copy_from_slice(&lv.p);
+        for (o, &c) in p_old.iter_mut().zip(&unknowns) {
+            *o = lv.pressure()[c];
+        }
         let h0_old = *h0;
         let mut alpha = 1.0;
         let mut accepted = false;
         for _ in 0..12 {
-            for j in 1..n - 1 {
-                lv.p[j] = (p_old[j] + alpha * step[j - 1]).max(0.0);
+            let p = lv.pressure();
+            for (k, &c) in unknowns.iter().enumerate() {
+                p[c] = (p_old[k] + alpha * step[k]).max(0.0);
             }
-            *h0 = h0_old + alpha * step[n - 2];
-            lv.update_film(phys, *h0);
-            let trial = linearise(lv, phys, np.fix_h0);
+            *h0 = h0_old + alpha * step[m];
+            lv.refresh(phys, *h0);
+            let trial = linearise(lv, phys, &unknowns, np.fix_h0);
             if trial.merit.is_finite() && trial.merit < lin.merit * (1.0 - 1e-4 * alpha) {
                 lin = trial;
                 accepted = true;
@@ -166,7 +224,7 @@ pub fn newton_solve(
         }
         if !accepted {
             // Keep the smallest step anyway: the active set may have to change to make progress.
-            lin = linearise(lv, phys, np.fix_h0);
+            lin = linearise(lv, phys, &unknowns, np.fix_h0);
         }
         out.residual = lin.merit;
     }

@@ -2,12 +2,22 @@
 //!
 //! Outputs use the line contact's names (PHYSICS.md section 7), evaluated on the finest grid:
 //! `H_c` = H(0, 0); `H_c_pmax` the film at the pressure maximum on the centre line Y = 0; `H_min`
-//! with `X_min`, `Y_min`; `P_max`; `spike` on the centre line; `H0`; `f` the rolling traction
-//! integral (H/2) dP/dX over the load; `load_error` against 2 pi k/3; plus `D` and `k`.
+//! with `X_min`, `Y_min` (parabolic refinement in each direction); `P_max`; `spike` on the centre
+//! line; `H0`; `f` the rolling traction integral (H/2) dP/dX dX dY over the load integral P dX dY
+//! (Hertzian units); `load_error` against 2 pi k/3; plus `D` and `k`.
+//!
+//! With `fallback` on (the default) a solve that does not converge is retried with the line
+//! solver's ladder: line under-relaxation 0.3, then distributive relaxation everywhere, then that
+//! with W cycles. The reason names the attempt kept; the best failed attempt is returned with its
+//! status if none converges.
 
 use crate::params::PointCase;
-use crate::solution::Outputs;
+use crate::problem::point_domain::PointDomainParams;
+use crate::solution::{line_outputs, Outputs};
+use crate::solver::fmg::fmg_solve;
 use crate::solver::multigrid::CycleType;
+use crate::solver::point_mg::PointMultigrid;
+use crate::solver::relax::RelaxParams;
 use crate::solver::{SolveInfo, Status};
 
 /// Multigrid settings of a point solve; `Default` gives the settings the stability map supports.
@@ -16,10 +26,22 @@ pub struct PointMgParams {
     /// Points per direction of the finest level (rounded up to 2^k n0 + 1).
     pub grid: usize,
     pub cycle: CycleType,
+    pub pre: usize,
+    pub post: usize,
+    /// Cycles on each FMG level before moving on.
+    pub fmg_cycles: usize,
     /// Cycles allowed on the finest level after FMG.
     pub max_cycles: usize,
     pub tol_load: f64,
     pub tol_h: f64,
+    pub tol_load_fmg: f64,
+    pub load_factor: Option<f64>,
+    pub relax: RelaxParams,
+    /// Relaxations of the coarsest level when its Newton solve fails.
+    pub coarse_sweeps: usize,
+    pub newton_max_iter: usize,
+    pub second_order: bool,
+    pub domain: PointDomainParams,
 }
 
 impl Default for PointMgParams {
@@ -27,9 +49,19 @@ impl Default for PointMgParams {
         PointMgParams {
             grid: 129,
             cycle: CycleType::V,
+            pre: 2,
+            post: 1,
+            fmg_cycles: 2,
             max_cycles: 40,
             tol_load: 1e-6,
-            tol_h: 1e-6,
+            tol_h: 1e-5,
+            tol_load_fmg: 1e-4,
+            load_factor: None,
+            relax: RelaxParams::default(),
+            coarse_sweeps: 20,
+            newton_max_iter: 40,
+            second_order: true,
+            domain: PointDomainParams::default(),
         }
     }
 }
@@ -74,45 +106,144 @@ pub struct PointSolution {
     pub attempt: usize,
 }
 
-/// Solve a point contact.
-pub fn solve_point(case: &PointCase, params: &PointSolveParams) -> PointSolution {
-    // PLACEHOLDER until the point multigrid lands (this commit only fixes the API).
-    let el = case.ellipse();
-    let info = SolveInfo {
-        status: Status::Diverged,
-        reason: "point solver under construction".into(),
-        history: vec![],
-        work_units: 0.0,
-        wall_s: 0.0,
-        grid: params.mg.grid,
-        levels: 0,
-    };
-    let nan = f64::NAN;
-    PointSolution {
-        outputs: Outputs {
-            h_c: nan,
-            h_c_pmax: nan,
-            h_min: nan,
-            x_min: nan,
-            y_min: Some(nan),
-            d: Some(case.d),
-            k: Some(el.k),
-            p_max: nan,
-            spike: None,
-            h0: nan,
-            f: nan,
-            load_error: nan,
-            status: info.status,
-            reason: info.reason.clone(),
-            grid: info.grid,
-            levels: 0,
-            work_units: 0.0,
-            wall_s: 0.0,
-            error_estimate: None,
-            accuracy_met: None,
-        },
+fn attempts(p: &PointMgParams) -> Vec<PointMgParams> {
+    let mut damped = *p;
+    damped.relax.omega_line = (0.6 * p.relax.omega_line).min(0.3);
+    let mut a2 = *p;
+    a2.relax.xi_threshold = f64::INFINITY;
+    let mut a3 = a2;
+    a3.cycle = CycleType::W;
+    vec![*p, damped, a2, a3]
+}
+
+/// Vertex of the parabola through (-1, a), (0, b), (1, c): offset in [-1, 1] and value.
+fn vertex(a: f64, b: f64, c: f64) -> (f64, f64) {
+    let den = a - 2.0 * b + c;
+    if den.abs() < 1e-300 {
+        return (0.0, b);
+    }
+    let t = (0.5 * (a - c) / den).clamp(-1.0, 1.0);
+    (t, b - 0.25 * (a - c) * t)
+}
+
+/// The outputs of a finished solve (see the module docs).
+pub fn point_outputs(mg: &PointMultigrid, info: &SolveInfo) -> Outputs {
+    let top = mg.levels.len() - 1;
+    let lv = &mg.levels[top];
+    let hs = mg.phys.h_scale;
+    let (nx, ny) = (lv.nx, lv.ny);
+    let (ic, jc) = mg.domain.centre(nx - 1);
+    let row = jc * nx..(jc + 1) * nx;
+    let mut out = line_outputs(
+        &lv.x,
+        &lv.p[row.clone()],
+        &lv.film[row],
+        mg.h0,
+        hs,
+        ic,
         info,
-        fields: None,
+    );
+    // Global minimum film over the interior, refined by a parabola in each direction.
+    let mut cmin = lv.at(1, 1);
+    for j in 1..ny - 1 {
+        for i in 1..nx - 1 {
+            let c = lv.at(i, j);
+            if lv.film[c] < lv.film[cmin] {
+                cmin = c;
+            }
+        }
+    }
+    let (i, j) = (cmin % nx, cmin / nx);
+    let f = &lv.film;
+    let (tx, vx) = vertex(f[cmin - 1], f[cmin], f[cmin + 1]);
+    let (ty, vy) = vertex(f[cmin - nx], f[cmin], f[cmin + nx]);
+    out.h_min = (vx + vy - f[cmin]) * hs;
+    out.x_min = lv.x[i] + tx * lv.hx;
+    out.y_min = Some(lv.y[j] + ty * lv.hy);
+    let (mut pmax, mut cmax) = (0.0, 0);
+    for (c, &p) in lv.p.iter().enumerate() {
+        if p > pmax {
+            pmax = p;
+            cmax = c;
+        }
+    }
+    if cmax % nx > 0 && cmax % nx + 1 < nx && cmax / nx > 0 && cmax / nx + 1 < ny {
+        let p = &lv.p;
+        let (_, px) = vertex(p[cmax - 1], p[cmax], p[cmax + 1]);
+        let (_, py) = vertex(p[cmax - nx], p[cmax], p[cmax + nx]);
+        pmax = px + py - p[cmax];
+    }
+    out.p_max = pmax;
+    let load = lv.load();
+    let mut traction = 0.0;
+    for j in 0..ny {
+        for i in 0..nx - 1 {
+            let c = lv.at(i, j);
+            traction += 0.25 * (f[c] + f[c + 1]) * (lv.p[c + 1] - lv.p[c]) * lv.hy;
+        }
+    }
+    out.f = traction / load;
+    out.load_error = (load - mg.phys.load) / mg.phys.load;
+    out.d = Some(mg.phys.d);
+    out.k = Some(mg.phys.k);
+    out
+}
+
+fn run(case: &PointCase, p: &PointMgParams, keep_fields: bool) -> PointSolution {
+    let mut mg = PointMultigrid::new(case, p);
+    let info = fmg_solve(&mut mg);
+    let outputs = point_outputs(&mg, &info);
+    let fields = keep_fields.then(|| {
+        let lv = mg.levels.last().expect("levels");
+        PointFields {
+            x: lv.x.clone(),
+            y: lv.y.clone(),
+            p: lv.p.clone(),
+            h: lv.film.iter().map(|v| v * mg.phys.h_scale).collect(),
+        }
+    });
+    PointSolution {
+        outputs,
+        info,
+        fields,
         attempt: 1,
     }
+}
+
+fn final_residual(s: &PointSolution) -> f64 {
+    s.info
+        .history
+        .last()
+        .map_or(f64::INFINITY, |r| r.residual)
+        .max(0.0)
+}
+
+/// Solve a point contact.
+pub fn solve_point(case: &PointCase, params: &PointSolveParams) -> PointSolution {
+    let list = if params.fallback {
+        attempts(&params.mg)
+    } else {
+        vec![params.mg]
+    };
+    let mut best: Option<PointSolution> = None;
+    let n = list.len();
+    for (k, p) in list.iter().enumerate() {
+        let mut s = run(case, p, params.keep_fields);
+        s.attempt = k + 1;
+        if n > 1 {
+            s.outputs.reason = format!("{} (attempt {}/{n})", s.outputs.reason, k + 1);
+            s.info.reason = s.outputs.reason.clone();
+        }
+        if s.info.status == Status::Converged {
+            return s;
+        }
+        let better = best.as_ref().is_none_or(|b| {
+            let (r, rb) = (final_residual(&s), final_residual(b));
+            r.is_finite() && !(rb <= r)
+        });
+        if better {
+            best = Some(s);
+        }
+    }
+    best.expect("at least one attempt")
 }

@@ -1,0 +1,134 @@
+//! The computational domain and the coarsest grid of a point contact, chosen from (M, L, D).
+//!
+//! Hertzian units X = x/b, Y = y/b: the Hertz contact is the ellipse X^2 + (Y/k)^2 <= 1. Let H_e be
+//! the Nijenbanning-Venner-Moes estimate of the central film in these units (H_NVM / h_scale; for
+//! rigid surfaces the rigid asymptotes alone) and l_h = sqrt(2 H_e) the hydrodynamic length, the
+//! distance over which the rigid gap H_e + X^2/2 doubles. Then
+//!
+//! * inlet   X_in   = -max(1 + clamp(inlet_elastic H_e^(2/3), 0.5, 3.5), inlet_lh l_h)
+//! * outlet  X_out  =  max(1.5, outlet_lh l_h)
+//! * sides   Y_half =  max(k + side / sqrt(D k), side_lh l_h)
+//!
+//! (defaults inlet_elastic = 20, inlet_lh = 4.5, outlet_lh = 1.5, side = 2, side_lh = 3). At
+//! M = 20, L = 10, D = 1 this is the classic [-4.5, 1.5] x [-3, 3]. The inlet shrinks towards -1.5
+//! for thin films (high M), where a fixed -4.5 leaves too few points across the contact, and grows
+//! with l_h for thick ones (low M, rigid), where the pressure spreads over a few l_h. Across the
+//! rolling direction the gap grows like D k (|Y| - k) beyond the contact edge, so the margin
+//! beyond k grows like 1/sqrt(D k) for slender contacts. For rigid surfaces there is no Hertzian
+//! zone: [-inlet_lh l_h, outlet_lh l_h] x [-side_lh l_h, side_lh l_h] (with D Y^2/2 in the gap the
+//! side extent is stretched by 1/sqrt(D)).
+//!
+//! The coarsest grid has `n0` intervals per direction (16 by default: about 300 unknowns for the
+//! exact Newton solve); the domain is shifted so that X = 0 is a node of every level (Y = 0 is one
+//! by symmetry).
+
+use crate::formulas::{nvm_point_asymptotes, nvm_point_hc};
+
+/// Tunable constants of the domain rule.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointDomainParams {
+    pub inlet_elastic: f64,
+    pub inlet_lh: f64,
+    pub outlet_lh: f64,
+    pub side: f64,
+    pub side_lh: f64,
+    /// Intervals per direction of the coarsest grid.
+    pub n0: usize,
+}
+
+impl Default for PointDomainParams {
+    fn default() -> Self {
+        PointDomainParams {
+            inlet_elastic: 20.0,
+            inlet_lh: 4.5,
+            outlet_lh: 1.5,
+            side: 2.0,
+            side_lh: 3.0,
+            n0: 16,
+        }
+    }
+}
+
+/// A point-contact domain [x_in, x_out] x [-y_half, y_half] with n0 x n0 coarsest intervals.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointDomain {
+    pub x_in: f64,
+    pub x_out: f64,
+    pub y_half: f64,
+    pub n0: usize,
+    /// Central film estimate (Hertzian units).
+    pub h_estimate: f64,
+}
+
+impl PointDomain {
+    /// The rule above; `h_scale` = H_Moes/H_Hertzian and `k` = a/b of the case.
+    #[allow(clippy::too_many_arguments)]
+    pub fn for_case(
+        m: f64,
+        l: f64,
+        d: f64,
+        k: f64,
+        h_scale: f64,
+        rigid: bool,
+        p: &PointDomainParams,
+    ) -> Self {
+        let h_moes = if rigid {
+            let [h_ri, _, h_rp, _, _] = nvm_point_asymptotes(m, l, d);
+            (h_ri.powi(3) + h_rp.powi(3)).cbrt()
+        } else {
+            nvm_point_hc(m, l, d)
+        };
+        let h_e = h_moes / h_scale;
+        let lh = (2.0 * h_e).sqrt();
+        let (x_in, x_out, y_half) = if rigid {
+            (
+                -p.inlet_lh * lh,
+                p.outlet_lh * lh,
+                p.side_lh * lh / d.sqrt(),
+            )
+        } else {
+            (
+                -(1.0 + (p.inlet_elastic * h_e.powf(2.0 / 3.0)).clamp(0.5, 3.5))
+                    .max(p.inlet_lh * lh),
+                (1.5f64).max(p.outlet_lh * lh),
+                (k + p.side / (d * k).sqrt()).max(p.side_lh * lh),
+            )
+        };
+        let n0 = p.n0.max(4).next_power_of_two();
+        let h0 = (x_out - x_in) / n0 as f64;
+        let i0 = (-x_in / h0).round().clamp(1.0, n0 as f64 - 1.0);
+        let x_in = -i0 * h0;
+        PointDomain {
+            x_in,
+            x_out: x_in + n0 as f64 * h0,
+            y_half,
+            n0,
+            h_estimate: h_e,
+        }
+    }
+
+    /// Index (i, j) of X = Y = 0 on a grid with n intervals per direction (a multiple of n0).
+    pub fn centre(&self, n: usize) -> (usize, usize) {
+        let i = (-self.x_in / (self.x_out - self.x_in) * n as f64).round() as usize;
+        (i, n / 2)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn classic_domain_for_the_reference_case() {
+        let d = PointDomain::for_case(20.0, 10.0, 1.0, 1.0, 9.655, false, &Default::default());
+        assert!(
+            (d.x_in + 4.5).abs() < 0.2 && (d.x_out - 1.5).abs() < 0.2,
+            "{d:?}"
+        );
+        assert!((d.y_half - 3.0).abs() < 1e-12, "{d:?}");
+        let n = 128;
+        let (i, j) = d.centre(n);
+        let h = (d.x_out - d.x_in) / n as f64;
+        assert!((d.x_in + i as f64 * h).abs() < 1e-9 && j == 64);
+    }
+}
