@@ -30,6 +30,10 @@ pub struct FmgControl {
     pub tol_load_fmg: f64,
     /// Damping of the secant step on H0 (`None`: 1).
     pub load_factor: Option<f64>,
+    /// The cycle budget of a coarser FMG level grows by this factor per level below the finest
+    /// (1: 4 fmg_cycles everywhere). Point contacts use 2: a coarse cycle costs a quarter of the
+    /// next finer one, and a load balance settled on the coarse levels saves fine cycles.
+    pub coarse_budget_growth: usize,
 }
 
 /// What the FMG driver needs from a multilevel solver.
@@ -115,7 +119,10 @@ pub fn fmg_solve<S: Fas>(s: &mut S) -> SolveInfo {
         let (tol_e, max) = if final_level {
             (c.tol_load, c.max_cycles)
         } else {
-            (c.tol_load_fmg, 4 * c.fmg_cycles)
+            (
+                c.tol_load_fmg,
+                4 * c.fmg_cycles * c.coarse_budget_growth.pow((top - l) as u32),
+            )
         };
         let mut prev: Option<CycleRecord> = None;
         let mut first_res = f64::INFINITY;
@@ -163,7 +170,8 @@ pub fn fmg_solve<S: Fas>(s: &mut S) -> SolveInfo {
                     && rec.residual <= 0.05 * first_res
             });
             let dh = prev.map_or(f64::INFINITY, |p| {
-                (rec.h_c - p.h_c).abs() / rec.h_c.abs().max(1e-300)
+                // (a floor for the dry limit, where H_c is zero up to rounding)
+                (rec.h_c - p.h_c).abs() / rec.h_c.abs().max(1e-6)
             });
             if rec.load_error.abs() < tol_e
                 && (settled || k + 1 == max)

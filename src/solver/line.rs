@@ -14,6 +14,7 @@
 
 use crate::params::LineCase;
 use crate::solution::{line_outputs, Outputs, Profile};
+use crate::solver::ladder::{run_ladder, Attempt};
 use crate::solver::multigrid::{CycleType, LineMgParams, LineMultigrid};
 use crate::solver::single_grid::solve_relax;
 use crate::solver::{SolveInfo, Status};
@@ -117,14 +118,6 @@ fn package(
     }
 }
 
-fn final_residual(s: &LineSolution) -> f64 {
-    s.info
-        .history
-        .last()
-        .map_or(f64::INFINITY, |r| r.residual)
-        .abs()
-}
-
 /// The baselines run on one level: the finest grid itself.
 fn single_level(p: &LineMgParams) -> LineMgParams {
     LineMgParams {
@@ -153,57 +146,30 @@ pub fn solve_line(case: &LineCase, params: &LineSolveParams) -> LineSolution {
     } else {
         vec![params.mg]
     };
-    let total = list.len();
-    let mut best: Option<LineSolution> = None;
-    let mut spent_wu = 0.0;
-    let mut spent_s = 0.0;
-    for (k, p) in list.iter().enumerate() {
-        let mut s = run(case, p, params.keep_profile);
-        s.attempt = k + 1;
-        spent_wu += s.info.work_units;
-        spent_s += s.info.wall_s;
-        let ok = s.info.status == Status::Converged;
-        if ok
-            || best
-                .as_ref()
-                .is_none_or(|b| final_residual(&s) < final_residual(b))
-        {
-            best = Some(s);
-        }
-        if ok {
-            break;
-        }
-    }
-    let mut s = best.expect("at least one attempt");
-    if total > 1 && (s.attempt > 1 || s.info.status != Status::Converged) {
-        let note = format!(
-            " (attempt {} of {}; {} used)",
-            s.attempt,
-            total,
-            attempt_name(s.attempt)
-        );
-        s.info.reason.push_str(&note);
-        s.outputs.reason.push_str(&note);
-    }
-    if s.info.status == Status::Converged && (s.outputs.h_min.is_nan() || s.outputs.h_min <= 0.0) {
-        let note = "; warning: H_min <= 0, the grid does not resolve the film (refine --grid)";
-        s.info.reason.push_str(note);
-        s.outputs.reason.push_str(note);
-    }
-    // Cost of the whole solve, failed attempts included.
-    s.info.work_units = spent_wu;
-    s.info.wall_s = spent_s;
-    s.outputs.work_units = spent_wu;
-    s.outputs.wall_s = spent_s;
-    s
+    let names = &ATTEMPT_NAMES[..list.len()];
+    run_ladder(names, |k| run(case, &list[k], params.keep_profile))
 }
 
-fn attempt_name(k: usize) -> &'static str {
-    match k {
-        1 => "default smoother",
-        2 => "default smoother, under-relaxation 0.3",
-        3 => "distributive line relaxation everywhere",
-        _ => "distributive relaxation, W cycles, finer coarsest grid",
+/// What each attempt of the ladder changes.
+const ATTEMPT_NAMES: [&str; 4] = [
+    "default smoother",
+    "default smoother, under-relaxation 0.3",
+    "distributive line relaxation everywhere",
+    "distributive relaxation, W cycles, finer coarsest grid",
+];
+
+impl Attempt for LineSolution {
+    fn parts(&mut self) -> (&mut SolveInfo, &mut Outputs) {
+        (&mut self.info, &mut self.outputs)
+    }
+    fn info(&self) -> &SolveInfo {
+        &self.info
+    }
+    fn set_attempt(&mut self, k: usize) {
+        self.attempt = k;
+    }
+    fn attempt(&self) -> usize {
+        self.attempt
     }
 }
 

@@ -4,6 +4,7 @@
 pub mod banded;
 pub mod fmg;
 pub mod jacobian;
+pub mod ladder;
 pub mod line;
 pub mod load_balance;
 pub mod multigrid;

@@ -421,6 +421,7 @@ impl Fas for LineMultigrid {
             tol_h: p.tol_h,
             tol_load_fmg: p.tol_load_fmg,
             load_factor: p.load_factor,
+            coarse_budget_growth: 1,
         }
     }
     fn top(&self) -> usize {

@@ -15,10 +15,11 @@ use crate::params::PointCase;
 use crate::problem::point_domain::PointDomainParams;
 use crate::solution::{line_outputs, Outputs};
 use crate::solver::fmg::fmg_solve;
+use crate::solver::ladder::{run_ladder, Attempt};
 use crate::solver::multigrid::CycleType;
 use crate::solver::point_mg::PointMultigrid;
 use crate::solver::relax::RelaxParams;
-use crate::solver::{SolveInfo, Status};
+use crate::solver::SolveInfo;
 
 /// Multigrid settings of a point solve; `Default` gives the settings the stability map supports.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -210,40 +211,37 @@ fn run(case: &PointCase, p: &PointMgParams, keep_fields: bool) -> PointSolution 
     }
 }
 
-fn final_residual(s: &PointSolution) -> f64 {
-    s.info
-        .history
-        .last()
-        .map_or(f64::INFINITY, |r| r.residual)
-        .max(0.0)
+/// What each attempt of the ladder changes.
+const ATTEMPT_NAMES: [&str; 4] = [
+    "default smoother",
+    "default smoother, under-relaxation 0.3",
+    "distributive line relaxation everywhere",
+    "distributive relaxation, W cycles",
+];
+
+impl Attempt for PointSolution {
+    fn parts(&mut self) -> (&mut SolveInfo, &mut Outputs) {
+        (&mut self.info, &mut self.outputs)
+    }
+    fn info(&self) -> &SolveInfo {
+        &self.info
+    }
+    fn set_attempt(&mut self, k: usize) {
+        self.attempt = k;
+    }
+    fn attempt(&self) -> usize {
+        self.attempt
+    }
 }
 
-/// Solve a point contact.
+/// Solve a point contact. Never panics on a valid case; numerical failure is a status.
 pub fn solve_point(case: &PointCase, params: &PointSolveParams) -> PointSolution {
     let list = if params.fallback {
         attempts(&params.mg)
     } else {
         vec![params.mg]
     };
-    let mut best: Option<PointSolution> = None;
-    let n = list.len();
-    for (k, p) in list.iter().enumerate() {
-        let mut s = run(case, p, params.keep_fields);
-        s.attempt = k + 1;
-        if n > 1 {
-            s.outputs.reason = format!("{} (attempt {}/{n})", s.outputs.reason, k + 1);
-            s.info.reason = s.outputs.reason.clone();
-        }
-        if s.info.status == Status::Converged {
-            return s;
-        }
-        let better = best.as_ref().is_none_or(|b| {
-            let (r, rb) = (final_residual(&s), final_residual(b));
-            r.is_finite() && !(rb <= r)
-        });
-        if better {
-            best = Some(s);
-        }
-    }
-    best.expect("at least one attempt")
+    run_ladder(&ATTEMPT_NAMES[..list.len()], |k| {
+        run(case, &list[k], params.keep_fields)
+    })
 }

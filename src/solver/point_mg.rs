@@ -237,6 +237,7 @@ impl Fas for PointMultigrid {
             tol_h: p.tol_h,
             tol_load_fmg: p.tol_load_fmg,
             load_factor: p.load_factor,
+            coarse_budget_growth: 2,
         }
     }
 
@@ -244,12 +245,14 @@ impl Fas for PointMultigrid {
         self.levels.len() - 1
     }
 
-    /// The Hertz ellipsoid sqrt(1 - X^2 - (Y/k)^2) (load 2 pi k/3) for elastic surfaces; for rigid
+    /// The Hertz ellipsoid sqrt(1 - X^2 - (Y/k)^2) (load 2 pi k/3) for elastic surfaces (in the dry
+    /// limit one 1.5 times wider with the same load, so the solver has to find Hertz); for rigid
     /// ones a paraboloid of radius 1.5 l_h centred 0.5 l_h upstream, with the same load; H0 so that
     /// the central film equals the estimate.
     fn initialise(&mut self) {
         let h_e = self.domain.h_estimate;
         let rigid = !self.phys.elastic;
+        let dry = self.phys.dry;
         let (k, load) = (self.phys.k, self.phys.load);
         let lh = (2.0 * h_e).sqrt();
         let lv = &mut self.levels[0];
@@ -258,6 +261,10 @@ impl Fas for PointMultigrid {
                 let c = lv.at(i, j);
                 lv.p[c] = if lv.boundary(i, j) {
                     0.0
+                } else if dry {
+                    // Wider than Hertz (the solver has to find Hertz), same load.
+                    let (x, y) = (lv.x[i] / 1.5, lv.y[j] / (1.5 * k));
+                    (1.0 - x * x - y * y).max(0.0).sqrt() / 2.25
                 } else if rigid {
                     let r = 1.5 * lh;
                     let s2 = ((lv.x[i] + 0.5 * lh).powi(2) + lv.y[j].powi(2)) / (r * r);
@@ -287,6 +294,9 @@ impl Fas for PointMultigrid {
         };
         let out = newton_solve(lv, &self.phys, &mut self.h0, &np);
         self.newton_cost(out.iterations);
+        if self.trace {
+            eprintln!("coarsest start: {out:?}, H0 {}", self.h0);
+        }
         if !(out.converged || out.residual < 1e-6) {
             self.levels[0].update_film(&self.phys, self.h0);
             for _ in 0..20 * self.params.coarse_sweeps {

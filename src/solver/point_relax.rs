@@ -8,7 +8,7 @@
 //! Poiseuille terms vanish and the wedge term's kernel dominates) and is the identity elsewhere,
 //! solve (J_band D) dQ = f - L(P) (see [`crate::solver::point_jacobian`]). Cavitated nodes (Newton
 //! point value P + r/J_ii <= 0) get dP = -P, frozen coarse nodes dP = 0. Then
-//! P += omega dP (each change limited to 2/alpha_bar), projected on P >= 0. The film of rows j to
+//! P += omega dP (each change limited to min(1, 2/alpha_bar)), projected on P >= 0. The film of rows j to
 //! j+2 (all that the next row's equations see) is corrected at once for the kernel within 2 band
 //! cells along x; after the sweep H is recomputed exactly by the FFT product.
 
@@ -44,10 +44,12 @@ pub fn point_line_sweep(
     let bw = rp.band + 1;
     let w = 2 * bw + 1;
     let hx2 = lv.hx * lv.hx;
+    // Each change is limited to one Hertz pressure, and to a viscosity change by e^2 (Barus):
+    // far from the solution a full Newton change is not to be trusted.
     let max_dp = if phys.alpha_bar > 0.0 {
-        2.0 / phys.alpha_bar
+        (2.0 / phys.alpha_bar).min(1.0)
     } else {
-        f64::INFINITY
+        1.0
     };
     for j in 1..ny - 1 {
         let PointScratch {

@@ -1,0 +1,67 @@
+//! The fallback ladder shared by the line and point solves: run the attempts in order until one
+//! converges; keep the converged one, or the failed one with the lowest final residual. The
+//! reason names the attempt kept, the cost (work units, wall time) covers all attempts made, and a
+//! converged solve whose H_min <= 0 carries a warning (the grid does not resolve the film).
+
+use crate::solution::Outputs;
+use crate::solver::{SolveInfo, Status};
+
+/// A solve result the ladder can rank and annotate.
+pub trait Attempt {
+    fn parts(&mut self) -> (&mut SolveInfo, &mut Outputs);
+    fn info(&self) -> &SolveInfo;
+    fn set_attempt(&mut self, k: usize);
+    fn attempt(&self) -> usize;
+}
+
+fn final_residual(info: &SolveInfo) -> f64 {
+    info.history
+        .last()
+        .map_or(f64::INFINITY, |r| r.residual)
+        .abs()
+}
+
+/// Run `run(k)` for k = 0..names.len() (stopping at the first converged one) and annotate.
+pub fn run_ladder<S: Attempt>(names: &[&str], mut run: impl FnMut(usize) -> S) -> S {
+    let total = names.len();
+    let mut best: Option<S> = None;
+    let (mut spent_wu, mut spent_s) = (0.0, 0.0);
+    for k in 0..total {
+        let mut s = run(k);
+        s.set_attempt(k + 1);
+        spent_wu += s.info().work_units;
+        spent_s += s.info().wall_s;
+        let ok = s.info().status == Status::Converged;
+        if ok
+            || best
+                .as_ref()
+                .is_none_or(|b| final_residual(s.info()) < final_residual(b.info()))
+        {
+            best = Some(s);
+        }
+        if ok {
+            break;
+        }
+    }
+    let mut s = best.expect("at least one attempt");
+    let attempt = s.attempt();
+    let (info, out) = s.parts();
+    if total > 1 && (attempt > 1 || info.status != Status::Converged) {
+        let note = format!(
+            " (attempt {attempt} of {total}; {} used)",
+            names[attempt - 1]
+        );
+        info.reason.push_str(&note);
+        out.reason.push_str(&note);
+    }
+    if info.status == Status::Converged && (out.h_min.is_nan() || out.h_min <= 0.0) {
+        let note = "; warning: H_min <= 0, the grid does not resolve the film (refine --grid)";
+        info.reason.push_str(note);
+        out.reason.push_str(note);
+    }
+    info.work_units = spent_wu;
+    info.wall_s = spent_s;
+    out.work_units = spent_wu;
+    out.wall_s = spent_s;
+    s
+}

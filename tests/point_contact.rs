@@ -1,0 +1,108 @@
+//! Point contacts against independent references: the Hertz ellipsoid (dry limit), the classic
+//! FMG code's grid-converged circular case (PHYSICS.md section 6), second-order grid convergence,
+//! load conservation and P >= 0, and honest statuses on extreme input.
+
+use ehlmap::params::PointCase;
+use ehlmap::problem::point::PointPhysics;
+use ehlmap::solver::fmg::fmg_solve;
+use ehlmap::solver::point::{solve_point, PointMgParams, PointSolveParams};
+use ehlmap::solver::point_mg::PointMultigrid;
+use ehlmap::solver::Status;
+
+fn solve(m: f64, l: f64, d: f64, grid: usize) -> ehlmap::solver::point::PointSolution {
+    let case = PointCase::new(m, l, d).unwrap();
+    let p = PointSolveParams {
+        mg: PointMgParams {
+            grid,
+            ..Default::default()
+        },
+        keep_fields: true,
+        ..Default::default()
+    };
+    solve_point(&case, &p)
+}
+
+#[test]
+fn dry_contact_gives_the_hertz_ellipsoid() {
+    for d in [1.0, 0.5, 0.15] {
+        let case = PointCase::new(100.0, 0.0, d).unwrap();
+        let phys = PointPhysics {
+            dry: true,
+            ..PointPhysics::from_case(&case)
+        };
+        let mut errs = vec![];
+        let mut h0s = vec![];
+        for grid in [33, 65] {
+            let params = PointMgParams {
+                grid,
+                ..Default::default()
+            };
+            let mut mg = PointMultigrid::with_physics(&case, phys, &params);
+            let info = fmg_solve(&mut mg);
+            assert_eq!(info.status, Status::Converged, "D={d}: {}", info.reason);
+            let lv = mg.levels.last().unwrap();
+            let k = phys.k;
+            let mut err: f64 = 0.0;
+            for j in 0..lv.ny {
+                for i in 0..lv.nx {
+                    let (x, y) = (lv.x[i], lv.y[j] / k);
+                    // Away from the edge, where the square-root profile limits the accuracy.
+                    if x * x + y * y < 0.8 {
+                        let hertz = (1.0 - x * x - y * y).sqrt();
+                        err = err.max((lv.p[lv.at(i, j)] - hertz).abs());
+                    }
+                }
+            }
+            errs.push(err);
+            h0s.push(mg.h0);
+        }
+        // Inside the contact H = 0, so at its centre H0 = -c * integral sqrt(1 - X^2 - (Y/k)^2)/R
+        // = -c pi F (b = 1): H0 = -(1 + D) F/(2 E) exactly (-1 for the circle).
+        let el = case.ellipse();
+        let exact = -(1.0 + d) * el.f / (2.0 * el.e);
+        let rel: Vec<f64> = h0s.iter().map(|h| (h / exact - 1.0).abs()).collect();
+        assert!(
+            rel[1] < 2e-3 && rel[1] < rel[0],
+            "D={d}: H0 {h0s:?} vs {exact}"
+        );
+        // Pointwise error is largest at the edge of the contact (a square-root profile), where
+        // it falls like sqrt(h).
+        assert!(errs[1] < 0.12, "D={d}: max |P - Hertz| {errs:?}");
+        assert!(
+            errs[1] < 0.85 * errs[0],
+            "D={d}: no convergence to Hertz {errs:?}"
+        );
+    }
+}
+
+#[test]
+fn circular_reference_case_and_second_order_convergence() {
+    // Classic FMG code, 512^2 on [-4.5, 1.5] x [-3, 3]: H_c = 4.801, H_min = 2.960 (Moes units).
+    let sols: Vec<_> = [65, 129, 257]
+        .iter()
+        .map(|&g| solve(20.0, 10.0, 1.0, g))
+        .collect();
+    for s in &sols {
+        assert_eq!(s.info.status, Status::Converged, "{}", s.info.reason);
+        assert!(s.outputs.load_error.abs() < 2e-6);
+        let f = s.fields.as_ref().unwrap();
+        assert!(f.p.iter().all(|&p| p >= 0.0 && p.is_finite()));
+    }
+    let hc: Vec<f64> = sols.iter().map(|s| s.outputs.h_c).collect();
+    let hm: Vec<f64> = sols.iter().map(|s| s.outputs.h_min).collect();
+    let fine = &sols[2].outputs;
+    assert!((fine.h_c / 4.80 - 1.0).abs() < 0.005, "H_c {hc:?}");
+    assert!((fine.h_min / 2.96 - 1.0).abs() < 0.01, "H_min {hm:?}");
+    let order = ((hc[1] - hc[0]) / (hc[2] - hc[1])).log2();
+    assert!((order - 2.0).abs() < 0.3, "order {order}, H_c {hc:?}");
+    let extrapolated = hc[2] + (hc[2] - hc[1]) / 3.0;
+    assert!(
+        (extrapolated / 4.801 - 1.0).abs() < 0.002,
+        "Richardson {extrapolated}"
+    );
+    assert_eq!(fine.d, Some(1.0));
+    assert_eq!(fine.k, Some(1.0));
+    // The minimum film sits in the two side lobes, symmetric in Y, near the outlet.
+    let y_min = fine.y_min.unwrap();
+    assert!(y_min.abs() > 0.3 && fine.x_min > 0.0, "{fine:?}");
+}
