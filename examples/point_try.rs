@@ -11,6 +11,12 @@ fn main() {
     if let Ok(v) = std::env::var("N0") {
         p.mg.domain.n0 = v.parse().unwrap();
     }
+    if let Ok(v) = std::env::var("DOM") {
+        let f: Vec<f64> = v.split(',').map(|x| x.parse().unwrap()).collect();
+        p.mg.domain.inlet_lh = f[0];
+        p.mg.domain.outlet_lh = f[1];
+        p.mg.domain.side_lh = f[2];
+    }
     p.fallback = a.get(4).map_or(true, |v| *v > 0.0);
     let s = solve_point(&case, &p);
     let o = &s.outputs;

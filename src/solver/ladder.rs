@@ -1,7 +1,9 @@
-//! The fallback ladder shared by the line and point solves: run the attempts in order until one
+//! The ladders shared by the line and point solves. Fallback ([`run_ladder`]): run the attempts in order until one
 //! converges; keep the converged one, or the failed one with the lowest final residual. The
 //! reason names the attempt kept, the cost (work units, wall time) covers all attempts made, and a
 //! converged solve whose H_min <= 0 carries a warning (the grid does not resolve the film).
+//! Grids ([`refine_to_accuracy`]): solve on grids refined by 2 until a Richardson estimate of the
+//! relative error of H_c and H_min meets a target.
 
 use crate::solution::Outputs;
 use crate::solver::{SolveInfo, Status};
@@ -64,4 +66,59 @@ pub fn run_ladder<S: Attempt>(names: &[&str], mut run: impl FnMut(usize) -> S) -
     out.work_units = spent_wu;
     out.wall_s = spent_s;
     s
+}
+
+/// Solve on `start`, 2 start - 1, ... points (up to `max_grid`) until the error estimate between
+/// the last two grids is below `target`. The estimate is Richardson's with order p,
+/// |Q_h - Q_2h| / ((2^p - 1) |Q_h|), max over H_c and H_min. Returns the finest solution with
+/// `error_estimate` and `accuracy_met` set; the cost of all grids is counted.
+pub fn refine_to_accuracy<S: Attempt>(
+    start: usize,
+    max_grid: usize,
+    target: f64,
+    order: f64,
+    mut solve: impl FnMut(usize) -> S,
+) -> S {
+    let mut grid = start;
+    let mut prev: Option<S> = None;
+    let (mut wu, mut wall) = (0.0, 0.0);
+    loop {
+        let mut s = solve(grid);
+        let (si, so) = s.parts();
+        wu += si.work_units;
+        wall += si.wall_s;
+        let est = prev.as_mut().and_then(|c| {
+            let (ci, co) = c.parts();
+            let ok = ci.status == Status::Converged && si.status == Status::Converged;
+            let factor = 1.0 / (2f64.powf(order) - 1.0);
+            let rel = |coarse: f64, fine: f64| factor * ((fine - coarse) / fine).abs();
+            ok.then(|| rel(co.h_c, so.h_c).max(rel(co.h_min, so.h_min)))
+        });
+        let last = 2 * (so.grid - 1) + 1 > max_grid || si.status != Status::Converged;
+        if est.is_some_and(|e| e <= target) || last {
+            so.error_estimate = est;
+            so.accuracy_met = Some(est.is_some_and(|e| e <= target));
+            let note = match est {
+                Some(e) if e <= target => {
+                    format!("; accuracy {e:.1e} <= target {target:.1e} on {} points", so.grid)
+                }
+                Some(e) => format!(
+                    "; accuracy target {target:.1e} NOT met: estimate {e:.1e} at the finest allowed grid ({} points)",
+                    so.grid
+                ),
+                None => format!(
+                    "; accuracy target {target:.1e} NOT met: no error estimate (a solve did not converge)"
+                ),
+            };
+            so.reason.push_str(&note);
+            si.reason.push_str(&note);
+            so.work_units = wu;
+            so.wall_s = wall;
+            si.work_units = wu;
+            si.wall_s = wall;
+            return s;
+        }
+        grid = 2 * (so.grid - 1) + 1;
+        prev = Some(s);
+    }
 }

@@ -14,10 +14,10 @@
 
 use crate::params::LineCase;
 use crate::solution::{line_outputs, Outputs, Profile};
-use crate::solver::ladder::{run_ladder, Attempt};
+use crate::solver::ladder::{refine_to_accuracy, run_ladder, Attempt};
 use crate::solver::multigrid::{CycleType, LineMgParams, LineMultigrid};
 use crate::solver::single_grid::solve_relax;
-use crate::solver::{SolveInfo, Status};
+use crate::solver::SolveInfo;
 
 /// Which solver.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
@@ -189,39 +189,9 @@ pub fn solve_line_to_accuracy(
     target: f64,
     max_grid: usize,
 ) -> LineSolution {
-    let mut grid = 257usize;
-    let mut prev: Option<LineSolution> = None;
-    let (mut wu, mut wall) = (0.0, 0.0);
-    loop {
+    refine_to_accuracy(257, max_grid, target, ESTIMATE_ORDER, |grid| {
         let mut p = *params;
         p.mg.grid = grid;
-        let mut s = solve_line(case, &p);
-        wu += s.outputs.work_units;
-        wall += s.outputs.wall_s;
-        let est = prev.as_ref().and_then(|c| {
-            let ok = c.outputs.status == Status::Converged && s.outputs.status == Status::Converged;
-            let factor = 1.0 / (2f64.powf(ESTIMATE_ORDER) - 1.0);
-            let rel = |coarse: f64, fine: f64| factor * ((fine - coarse) / fine).abs();
-            ok.then(|| rel(c.outputs.h_c, s.outputs.h_c).max(rel(c.outputs.h_min, s.outputs.h_min)))
-        });
-        let last = 2 * (s.outputs.grid - 1) + 1 > max_grid || s.outputs.status != Status::Converged;
-        if est.is_some_and(|e| e <= target) || last {
-            s.outputs.error_estimate = est;
-            s.outputs.accuracy_met = Some(est.is_some_and(|e| e <= target));
-            let note = match est {
-                Some(e) if e <= target => format!("; accuracy {e:.1e} <= target {target:.1e} on {} points", s.outputs.grid),
-                Some(e) => format!("; accuracy target {target:.1e} NOT met: estimate {e:.1e} at the finest allowed grid ({} points)", s.outputs.grid),
-                None => format!("; accuracy target {target:.1e} NOT met: no error estimate (a solve did not converge)"),
-            };
-            s.outputs.reason.push_str(&note);
-            s.info.reason.push_str(&note);
-            s.outputs.work_units = wu;
-            s.outputs.wall_s = wall;
-            s.info.work_units = wu;
-            s.info.wall_s = wall;
-            return s;
-        }
-        grid = 2 * (s.outputs.grid - 1) + 1;
-        prev = Some(s);
-    }
+        solve_line(case, &p)
+    })
 }

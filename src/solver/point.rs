@@ -15,7 +15,7 @@ use crate::params::PointCase;
 use crate::problem::point_domain::PointDomainParams;
 use crate::solution::{line_outputs, Outputs};
 use crate::solver::fmg::fmg_solve;
-use crate::solver::ladder::{run_ladder, Attempt};
+use crate::solver::ladder::{refine_to_accuracy, run_ladder, Attempt};
 use crate::solver::multigrid::CycleType;
 use crate::solver::point_mg::PointMultigrid;
 use crate::solver::relax::RelaxParams;
@@ -243,5 +243,24 @@ pub fn solve_point(case: &PointCase, params: &PointSolveParams) -> PointSolution
     };
     run_ladder(&ATTEMPT_NAMES[..list.len()], |k| {
         run(case, &list[k], params.keep_fields)
+    })
+}
+
+/// The convergence order assumed by the point solve's accuracy-target estimate (H_c converges at
+/// order 2 on the circular reference case; H_min more slowly, as for the line contact).
+pub const POINT_ESTIMATE_ORDER: f64 = 1.5;
+
+/// Solve to a target relative accuracy of H_c and H_min on 33, 65, 129, ... points per direction
+/// (up to `max_grid`); see [`refine_to_accuracy`].
+pub fn solve_point_to_accuracy(
+    case: &PointCase,
+    params: &PointSolveParams,
+    target: f64,
+    max_grid: usize,
+) -> PointSolution {
+    refine_to_accuracy(33, max_grid, target, POINT_ESTIMATE_ORDER, |grid| {
+        let mut p = *params;
+        p.mg.grid = grid;
+        solve_point(case, &p)
     })
 }
