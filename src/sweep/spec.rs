@@ -3,13 +3,13 @@
 //!
 //! ```toml
 //! name = "smoke"                 # dataset directory <out>/<name>/ (default: the file stem)
-//! contact = "line"               # "line"; "point" parses but is not available in this build
+//! contact = "line"               # or "point" (needs the axis D)
 //! description = "free text"      # optional
 //!
 //! [axes]                         # each axis: a list, or a range table
 //! M = [5, 20, 100, 500]
 //! L = { from = 0, to = 10, count = 3 }                 # scale = "linear" (default) or "log"
-//! # D = { from = 0.05, to = 1, count = 6, scale = "log" } (point contacts only)
+//! # D = { from = 0.05, to = 1, count = 6, scale = "log" } (point contacts: required, in (0, 1])
 //!
 //! [models]                       # all optional; defaults shown
 //! elasticity = "elastic"         # or "rigid"
@@ -20,14 +20,15 @@
 //! # z = 0.6                      # Roelands pressure-viscosity index
 //!
 //! [numerics]                     # all optional; defaults shown
-//! grid = 2049                    # finest-grid points (the solver rounds up to 2^k n0 + 1)
+//! grid = 2049                    # finest-grid points (the solver rounds up to 2^k n0 + 1), 33..=1048577;
+//!                                # point contacts: per direction, default 129, 17..=2049
 //! cycle = "v"                    # or "w"
 //! max_cycles = 60
 //! fallback = true
 //! tol_load = 1e-7
 //! tol_h = 1e-6
 //! error_estimate = false         # true: also solve on the half grid, Richardson error columns
-//! accuracy = 0.005               # optional: refine from 257 points up to `grid` until met
+//! accuracy = 0.005               # optional, line only: refine from 257 points up to `grid` until met
 //!
 //! [output]                       # all optional; defaults shown
 //! dir = "outputs"                # relative to the working directory; --out overrides
@@ -87,6 +88,14 @@ pub enum Contact {
 }
 
 impl Contact {
+    /// Smallest and largest `numerics.grid` (points per direction for point contacts).
+    pub fn grid_range(&self) -> (usize, usize) {
+        match self {
+            Contact::Line => (33, (1 << 20) + 1),
+            Contact::Point => (17, 2049),
+        }
+    }
+
     pub fn as_str(&self) -> &'static str {
         match self {
             Contact::Line => "line",
@@ -130,6 +139,20 @@ impl Default for Numerics {
             tol_h: 1e-6,
             error_estimate: false,
             accuracy: None,
+        }
+    }
+}
+
+impl Numerics {
+    /// The defaults of a contact: 2049 points for line contacts, 129 per direction for point
+    /// contacts; the rest as [`Numerics::default`].
+    pub fn for_contact(contact: Contact) -> Self {
+        match contact {
+            Contact::Line => Numerics::default(),
+            Contact::Point => Numerics {
+                grid: 129,
+                ..Numerics::default()
+            },
         }
     }
 }
@@ -224,6 +247,12 @@ pub fn expand_range(from: f64, to: f64, count: usize, log: bool) -> Vec<f64> {
         .collect()
 }
 
+/// The span of `table.key` in the document root, when given.
+fn cx_span(root: &DeTable, table: &str, key: &str) -> Option<Range<usize>> {
+    let t = root.get(table)?.get_ref().as_table()?;
+    Some(t.get(key)?.span())
+}
+
 /// Parse and validate a spec given as text. `file` names it in messages; `default_name` is the
 /// dataset name when the spec has no `name`.
 pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, SpecError> {
@@ -275,9 +304,13 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
     }
 
     // contact
-    let contact_v = root
-        .get("contact")
-        .ok_or_else(|| cx.err(&doc_span, "contact", "missing: give contact = \"line\""))?;
+    let contact_v = root.get("contact").ok_or_else(|| {
+        cx.err(
+            &doc_span,
+            "contact",
+            "missing: give contact = \"line\" or \"point\"",
+        )
+    })?;
     let contact = match cx.choice(contact_v, "contact", &["line", "point"])? {
         "line" => Contact::Line,
         _ => Contact::Point,
@@ -422,7 +455,8 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
     }
 
     // numerics
-    let mut numerics = Numerics::default();
+    let mut numerics = Numerics::for_contact(contact);
+    let (grid_min, grid_max) = contact.grid_range();
     if let Some(nv) = root.get("numerics") {
         let t = cx.table(nv, "numerics")?;
         cx.keys(
@@ -440,7 +474,8 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
             ],
         )?;
         if let Some(v) = t.get("grid") {
-            numerics.grid = cx.integer(v, "numerics.grid", 33, (1 << 20) + 1)? as usize;
+            numerics.grid =
+                cx.integer(v, "numerics.grid", grid_min as i64, grid_max as i64)? as usize;
         }
         if let Some(v) = t.get("cycle") {
             numerics.cycle = match cx.choice(v, "numerics.cycle", &["v", "w"])? {
@@ -484,11 +519,14 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
         }
         if let Some(v) = t.get("error_estimate") {
             numerics.error_estimate = cx.boolean(v, "numerics.error_estimate")?;
-            if numerics.error_estimate && numerics.grid < 65 {
+            if numerics.error_estimate && numerics.grid < 2 * grid_min - 1 {
                 return Err(cx.err(
                     &v.span(),
                     "numerics.error_estimate",
-                    "needs grid >= 65 (the half grid must have at least 33 points)",
+                    format!(
+                        "needs grid >= {} (the half grid must have at least {grid_min} points)",
+                        2 * grid_min - 1
+                    ),
                 ));
             }
         }
@@ -538,11 +576,21 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
     // Contact-specific rules, after every value has been checked.
     match contact {
         Contact::Point => {
-            return Err(cx.err(
-                &contact_v.span(),
-                "contact",
-                "point contacts are not available in this build",
-            ))
+            if d.is_none() {
+                return Err(cx.err(
+                    &axes_v.span(),
+                    "axes.D",
+                    "missing: contact = \"point\" needs the ellipticity axis D = Rx/Ry, values in (0, 1]",
+                ));
+            }
+            if numerics.accuracy.is_some() {
+                let span = cx_span(root, "numerics", "accuracy").unwrap_or(doc_span);
+                return Err(cx.err(
+                    &span,
+                    "numerics.accuracy",
+                    "accuracy targets are not available for point contacts yet (use error_estimate)",
+                ));
+            }
         }
         Contact::Line => {
             if let Some(dv) = axes.get("D") {
