@@ -1,11 +1,16 @@
 //! The command line: a thin layer over the library. Bad input exits with code 2 and a one-line
 //! message naming the bad value; a solve that fails numerically still prints its outputs with
 //! its status (exit code 0: a failure is a result), so scripts read `status`.
+//!
+//! `--contact point --D d` solves a point contact: `--grid` counts points per direction, the
+//! fields go to `--fields FILE.parquet`; the line-only options (`--method` baselines,
+//! `--profile`, `--accuracy` for now) are input errors there.
 
 use crate::lubricant::{Density, Viscosity};
-use crate::params::{Elasticity, LineCase, Models};
+use crate::params::{Elasticity, LineCase, Models, ParamError, PointCase};
 use crate::solver::line::{solve_line, solve_line_to_accuracy, LineSolveParams, Method};
 use crate::solver::multigrid::CycleType;
+use crate::solver::point::{solve_point, PointSolveParams};
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 
@@ -99,9 +104,10 @@ pub struct SolveArgs {
     /// Solver: full multigrid, or the baselines (dense Newton, single-grid relaxation).
     #[arg(long, value_enum, default_value = "multigrid")]
     pub method: MethodArg,
-    /// Points of the finest grid (rounded up to 2^k n0 + 1).
-    #[arg(long, default_value_t = 2049)]
-    pub grid: usize,
+    /// Points of the finest grid (rounded up to 2^k n0 + 1): default 2049 for line contacts;
+    /// per direction for point contacts, default 129, 17 to 2049.
+    #[arg(long)]
+    pub grid: Option<usize>,
     #[arg(long, value_enum, default_value = "v")]
     pub cycle: CycleArg,
     /// Target relative accuracy of H_c and H_min: refine the grid from 257 points until the
@@ -111,19 +117,30 @@ pub struct SolveArgs {
     /// Largest grid the accuracy target may use.
     #[arg(long, default_value_t = 16385)]
     pub max_grid: usize,
-    /// Cycles allowed on the finest level.
-    #[arg(long, default_value_t = 60)]
-    pub max_cycles: usize,
+    /// Cycles allowed on the finest level (default 60 for line contacts, the point solver's
+    /// default for point contacts).
+    #[arg(long)]
+    pub max_cycles: Option<usize>,
     /// Do not retry a failed solve with conservative settings.
     #[arg(long)]
     pub no_fallback: bool,
     /// Print one JSON object instead of the summary.
     #[arg(long)]
     pub json: bool,
-    /// Write the X, P, H profile to this Parquet file.
+    /// Write the X, P, H profile to this Parquet file (line contacts).
     #[arg(long)]
     pub profile: Option<PathBuf>,
+    /// Write the X, Y, P, H fields, one row per node, to this Parquet file (point contacts).
+    #[arg(long)]
+    pub fields: Option<PathBuf>,
 }
+
+/// Finest-grid default and range of `--grid` for line contacts.
+const LINE_GRID: (usize, usize, usize) = (2049, 33, (1 << 20) + 1);
+/// The same for point contacts, points per direction.
+const POINT_GRID: (usize, usize, usize) = (129, 17, 2049);
+/// `--max-cycles` default for line contacts.
+const LINE_MAX_CYCLES: usize = 60;
 
 #[derive(clap::Args, Debug)]
 pub struct CaseArgs {
@@ -165,31 +182,29 @@ pub fn run_case(a: &CaseArgs) -> Result<i32, InputError> {
 #[derive(Debug)]
 pub struct InputError(pub String);
 
-fn build_case(a: &SolveArgs) -> Result<LineCase, InputError> {
-    let bad = |e: crate::params::ParamError| InputError(e.to_string());
-    if a.contact == ContactArg::Point {
-        return Err(InputError(
-            "--contact point is not available yet: this build solves line contacts only".into(),
-        ));
-    }
-    if a.d.is_some() {
-        return Err(InputError("--D applies to point contacts only".into()));
-    }
-    if a.grid < 33 {
+/// `--grid` checked against `(default, min, max)`; `what` names the unit in messages.
+fn grid_arg(
+    a: &SolveArgs,
+    (default, min, max): (usize, usize, usize),
+    what: &str,
+) -> Result<usize, InputError> {
+    let g = a.grid.unwrap_or(default);
+    if g < min {
         return Err(InputError(format!(
-            "--grid {} is too small: at least 33 points",
-            a.grid
+            "--grid {g} is too small: at least {min} {what}"
         )));
     }
-    if a.grid > (1 << 20) + 1 {
+    if g > max {
         return Err(InputError(format!(
-            "--grid {} is too large: at most 1048577 points",
-            a.grid
+            "--grid {g} is too large: at most {max} {what}"
         )));
     }
-    // Validate M and L first so that a bad M is named before model errors.
-    LineCase::new(a.m, a.l).map_err(bad)?;
-    let venner = LineCase::new(a.m, a.l).map_err(bad)?.venner();
+    Ok(g)
+}
+
+/// The models of the command line; `alpha_bar` of the case converts Roelands' eta0 into z.
+fn build_models(a: &SolveArgs, alpha_bar: f64) -> Result<Models, InputError> {
+    let bad = |e: ParamError| InputError(e.to_string());
     let need_ph = |what: &str| -> Result<f64, InputError> {
         a.ph.ok_or_else(|| InputError(format!("{what} needs the Hertzian pressure --ph (Pa)")))
     };
@@ -206,7 +221,7 @@ fn build_case(a: &SolveArgs) -> Result<LineCase, InputError> {
             let ph = need_ph("--viscosity roelands")?;
             match (a.eta0, a.z) {
                 (Some(eta0), None) => {
-                    Viscosity::roelands_from_eta0(eta0, ph, venner.alpha_bar).map_err(bad)?
+                    Viscosity::roelands_from_eta0(eta0, ph, alpha_bar).map_err(bad)?
                 }
                 (None, Some(z)) => {
                     let v = Viscosity::Roelands { z, ph_pa: ph };
@@ -232,38 +247,89 @@ fn build_case(a: &SolveArgs) -> Result<LineCase, InputError> {
     } else {
         Elasticity::Elastic
     };
-    LineCase::with_models(
-        a.m,
-        a.l,
-        Models {
-            elasticity,
-            viscosity,
-            density,
-        },
-    )
-    .map_err(bad)
+    Ok(Models {
+        elasticity,
+        viscosity,
+        density,
+    })
+}
+
+fn build_case(a: &SolveArgs) -> Result<LineCase, InputError> {
+    let bad = |e: ParamError| InputError(e.to_string());
+    if a.d.is_some() {
+        return Err(InputError("--D applies to point contacts only".into()));
+    }
+    if a.fields.is_some() {
+        return Err(InputError(
+            "--fields applies to point contacts only (use --profile for line contacts)".into(),
+        ));
+    }
+    grid_arg(a, LINE_GRID, "points")?;
+    // Validate M and L first so that a bad M is named before model errors.
+    let venner = LineCase::new(a.m, a.l).map_err(bad)?.venner();
+    let models = build_models(a, venner.alpha_bar)?;
+    LineCase::with_models(a.m, a.l, models).map_err(bad)
+}
+
+fn build_point_case(a: &SolveArgs) -> Result<PointCase, InputError> {
+    let bad = |e: ParamError| InputError(e.to_string());
+    if a.method != MethodArg::Multigrid {
+        let name = if a.method == MethodArg::Newton {
+            "newton"
+        } else {
+            "relax"
+        };
+        return Err(InputError(format!(
+            "--method {name} is not available for point contacts (multigrid only)"
+        )));
+    }
+    if a.profile.is_some() {
+        return Err(InputError(
+            "--profile applies to line contacts only (use --fields for point contacts)".into(),
+        ));
+    }
+    if a.accuracy.is_some() {
+        return Err(InputError(
+            "--accuracy is not available for point contacts yet".into(),
+        ));
+    }
+    let d = a.d.ok_or_else(|| {
+        InputError("--contact point needs --D, the ellipticity Rx/Ry in (0, 1]".into())
+    })?;
+    grid_arg(a, POINT_GRID, "points per direction")?;
+    // M, L and D before the models, so that a bad value is named first.
+    let venner = PointCase::new(a.m, a.l, d).map_err(bad)?.venner();
+    let models = build_models(a, venner.alpha_bar)?;
+    PointCase::with_models(a.m, a.l, d, models).map_err(bad)
+}
+
+fn cycle_type(c: CycleArg) -> CycleType {
+    match c {
+        CycleArg::V => CycleType::V,
+        CycleArg::W => CycleType::W,
+    }
 }
 
 /// Run `ehlmap solve`; returns the process exit code.
 pub fn run_solve(a: &SolveArgs) -> Result<i32, InputError> {
+    if a.contact == ContactArg::Point {
+        return run_solve_point(a);
+    }
     let case = build_case(a)?;
+    let grid = a.grid.unwrap_or(LINE_GRID.0);
     let mut p = LineSolveParams::default();
-    p.mg.grid = a.grid;
-    p.mg.max_cycles = a.max_cycles;
-    p.mg.cycle = match a.cycle {
-        CycleArg::V => CycleType::V,
-        CycleArg::W => CycleType::W,
-    };
+    p.mg.grid = grid;
+    p.mg.max_cycles = a.max_cycles.unwrap_or(LINE_MAX_CYCLES);
+    p.mg.cycle = cycle_type(a.cycle);
     p.fallback = !a.no_fallback;
     p.method = match a.method {
         MethodArg::Multigrid => Method::Multigrid,
         MethodArg::Newton => Method::Newton,
         MethodArg::Relax => Method::Relax,
     };
-    if p.method == Method::Newton && a.grid > 4097 {
+    if p.method == Method::Newton && grid > 4097 {
         return Err(InputError(format!(
-            "--method newton with --grid {}: the dense Jacobian needs O(N^2) memory and O(N^3) time; use at most 4097",
-            a.grid
+            "--method newton with --grid {grid}: the dense Jacobian needs O(N^2) memory and O(N^3) time; use at most 4097"
         )));
     }
     p.keep_profile = a.profile.is_some();
@@ -297,6 +363,97 @@ pub fn run_solve(a: &SolveArgs) -> Result<i32, InputError> {
         print!("{}", summary(&case, &s.outputs));
     }
     Ok(0)
+}
+
+/// `ehlmap solve --contact point`: same exit codes and JSON names as the line solve, plus `D`,
+/// `k` and `Y_min`.
+fn run_solve_point(a: &SolveArgs) -> Result<i32, InputError> {
+    let case = build_point_case(a)?;
+    let mut p = PointSolveParams::default();
+    p.mg.grid = a.grid.unwrap_or(POINT_GRID.0);
+    if let Some(n) = a.max_cycles {
+        p.mg.max_cycles = n;
+    }
+    p.mg.cycle = cycle_type(a.cycle);
+    p.fallback = !a.no_fallback;
+    p.keep_fields = a.fields.is_some();
+    let s = solve_point(&case, &p);
+    if let Some(path) = &a.fields {
+        match &s.fields {
+            Some(f) => {
+                let meta = [
+                    ("contact", "point".to_string()),
+                    ("M", case.m.to_string()),
+                    ("L", case.l.to_string()),
+                    ("D", case.d.to_string()),
+                    ("k", case.ellipse().k.to_string()),
+                    ("status", s.outputs.status.to_string()),
+                ];
+                crate::io::fields::write_fields(path, f, &meta)
+                    .map_err(|e| InputError(format!("--fields: {e}")))?;
+            }
+            // A failed solve is a result (exit 0), but say why the file is missing.
+            None => eprintln!(
+                "ehlmap: --fields: the solve returned no fields ({}), {} not written",
+                s.outputs.status,
+                path.display()
+            ),
+        }
+    }
+    if a.json {
+        println!(
+            "{}",
+            serde_json::to_string(&s.outputs).expect("outputs serialise")
+        );
+    } else {
+        print!("{}", point_summary(&case, &s.outputs));
+    }
+    Ok(0)
+}
+
+fn point_summary(case: &PointCase, o: &crate::solution::Outputs) -> String {
+    let m = &case.models;
+    let spike = o.spike.map_or("none".to_string(), |s| {
+        format!("P = {:.4} at X = {:.4}", s.p, s.x)
+    });
+    let y_min = o.y_min.unwrap_or(f64::NAN);
+    format!(
+        "point contact  M = {}  L = {}  D = {}  (k = {:.6})  ({}, {}, {})\n\
+         status         {}: {}\n\
+         H_c            {:.6}   (film at X = Y = 0, Moes units)\n\
+         H_c_pmax       {:.6}   (film at the pressure maximum)\n\
+         H_min          {:.6}   at X = {:.4}, Y = {:.4}\n\
+         P_max          {:.6}\n\
+         spike          {}\n\
+         H0             {:.6}\n\
+         f Rx/b         {:.6e}\n\
+         load error     {:.2e}\n\
+         grid           {} x {} points, {} levels, {:.1} work units, {:.3} s\n",
+        case.m,
+        case.l,
+        case.d,
+        case.ellipse().k,
+        m.elasticity,
+        m.viscosity.name(),
+        m.density.name(),
+        o.status,
+        o.reason,
+        o.h_c,
+        o.h_c_pmax,
+        o.h_min,
+        o.x_min,
+        y_min,
+        o.p_max,
+        spike,
+        o.h0,
+        o.f,
+        o.load_error,
+        o.grid,
+        o.grid,
+        o.levels,
+        o.work_units,
+        o.wall_s
+    )
 }
 
 fn summary(case: &LineCase, o: &crate::solution::Outputs) -> String {

@@ -115,9 +115,14 @@ fn bad_specs_exit_2_naming_file_line_and_key() {
             ":5: axes.D: D = 1.5 is invalid",
         ),
         (
-            "point.toml",
-            "contact = \"point\"\n[axes]\nM = [5]\nL = [0]\nD = [0.5, 1]\n".to_string(),
-            ":1: contact: point contacts are not available in this build",
+            "point_no_d.toml",
+            "contact = \"point\"\n[axes]\nM = [5]\nL = [0]\n".to_string(),
+            ":2: axes.D: missing: contact = \"point\" needs the ellipticity axis D",
+        ),
+        (
+            "line_d.toml",
+            format!("{head}M = [5]\nL = [0]\nD = [0.5]\n"),
+            ":5: axes.D: the ellipticity axis D applies to contact = \"point\" only",
         ),
         (
             "log_range.toml",

@@ -40,7 +40,7 @@ pub struct CaseRow {
     pub case_id: String,
     /// Name of the sweep (the spec's `name`).
     pub sweep: String,
-    /// "line" (or "point" once point contacts exist).
+    /// "line" or "point".
     pub contact: String,
     pub m: f64,
     pub l: f64,

@@ -8,8 +8,8 @@
 //!   set, else the whole sweep).
 //! * `--resume`: continue an earlier run; refuses to start when the dataset directory holds no
 //!   part file (a plain rerun skips stored cases too, and may start a new dataset).
-//! * `--dry-run`: print the planned cases of the shard (id, M, L, estimated cost, stored or not)
-//!   and exit.
+//! * `--dry-run`: print the planned cases of the shard (id, M, L, D for point contacts, estimated
+//!   cost, stored or not) and exit.
 
 use crate::cli::InputError;
 use crate::io::results;
@@ -107,6 +107,13 @@ pub fn resolve_threads(arg: Option<u32>) -> Result<usize, InputError> {
 pub fn run_sweep(args: &SweepArgs) -> Result<i32, InputError> {
     let spec = spec::load(&args.spec).map_err(|e| InputError(e.to_string()))?;
     let cases = plan::plan(&spec).map_err(|e| InputError(e.to_string()))?;
+    if args.fit && spec.contact != spec::Contact::Line {
+        return Err(InputError(format!(
+            "--fit: the fit report covers line contacts only ({} is a {} sweep)",
+            args.spec.display(),
+            spec.contact.as_str()
+        )));
+    }
     let shard = resolve_shard(args.shard.as_deref())?;
     let threads = resolve_threads(args.threads)?;
     let base = args.out.clone().unwrap_or_else(|| spec.output.dir.clone());
@@ -128,10 +135,12 @@ pub fn run_sweep(args: &SweepArgs) -> Result<i32, InputError> {
             mine.len(),
             dataset.display()
         );
-        println!("# case_id M L cost stored");
+        let point = spec.contact == spec::Contact::Point;
+        println!("# case_id M L{} cost stored", if point { " D" } else { "" });
         for c in mine {
+            let d = c.d.map_or(String::new(), |d| format!(" {d}"));
             println!(
-                "{} {} {} {:.0} {}",
+                "{} {} {}{d} {:.0} {}",
                 c.id_hex(),
                 c.m,
                 c.l,

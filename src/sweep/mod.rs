@@ -1,13 +1,12 @@
-//! The sweep engine: `ehlmap sweep SPEC` turns a TOML spec of (M, L) axes, models and numerical
-//! settings into a Parquet dataset with one row per case.
+//! The sweep engine: `ehlmap sweep SPEC` turns a TOML spec of (M, L) axes (and D for point
+//! contacts), models and numerical settings into a Parquet dataset with one row per case.
 //!
 //! Contract:
 //!
 //! * **Validated up front** ([`spec`]): an unknown key, an empty axis, M <= 0, L < 0, D outside
 //!   (0, 1], a bad range or model combination stops the command with exit code 2 and a message
 //!   `FILE:LINE: KEY: what is wrong`, before anything is solved or written. `contact = "point"`
-//!   and a `D` axis parse, but this build rejects them ("point contacts are not available in
-//!   this build").
+//!   needs the ellipticity axis `D`; a line spec must not give one.
 //! * **Stable ids** ([`plan`]): each case has a 64-bit FNV-1a id of its canonical parameter
 //!   string (physics, models, numerics; not the sweep name or output settings). A case id stored
 //!   anywhere in the dataset directory is never solved again: a rerun (with or without

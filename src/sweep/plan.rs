@@ -8,7 +8,7 @@
 //! so the shards partition the sweep, and a case stays in its shard when the spec gains values.
 
 use crate::lubricant::{Density, Viscosity};
-use crate::params::{LineCase, Models};
+use crate::params::{LineCase, Models, ParamError, PointCase};
 use crate::solver::multigrid::CycleType;
 use crate::sweep::spec::{Contact, Numerics, SpecError, SweepSpec, ViscositySpec};
 use std::collections::HashSet;
@@ -94,8 +94,14 @@ impl Case {
     }
 
     /// The line case to hand to the solver.
-    pub fn line_case(&self) -> Result<LineCase, crate::params::ParamError> {
+    pub fn line_case(&self) -> Result<LineCase, ParamError> {
         LineCase::with_models(self.m, self.l, self.models)
+    }
+
+    /// The point case to hand to the solver (an error when the case has no D).
+    pub fn point_case(&self) -> Result<PointCase, ParamError> {
+        let d = self.d.unwrap_or(f64::NAN);
+        PointCase::with_models(self.m, self.l, d, self.models)
     }
 }
 
@@ -129,53 +135,91 @@ fn cost(m: f64, l: f64, n: &Numerics) -> f64 {
     }
 }
 
+/// Point contacts: each solve costs about grid^2 log2(grid) (the FFT deformation product on
+/// grid x grid nodes), growing slowly with M; the half-grid twin of `error_estimate` adds about a
+/// quarter. Only the order within one sweep matters (a spec holds one contact type).
+fn point_cost(m: f64, n: &Numerics) -> f64 {
+    let g = n.grid as f64;
+    let base = g * g * g.log2() * (1.0 + 0.1 * (1.0 + m).ln());
+    if n.error_estimate {
+        1.25 * base
+    } else {
+        base
+    }
+}
+
 /// Every case of the spec, largest cost first (ties by id), duplicates removed. Fails (naming the
 /// spec key) when a combination of values is not a valid case.
 pub fn plan(spec: &SweepSpec) -> Result<Vec<Case>, SpecError> {
-    if spec.contact != Contact::Line {
-        return Err(spec.error("contact", "point contacts are not available in this build"));
-    }
+    let ds: Vec<Option<f64>> = match (spec.contact, &spec.d) {
+        (Contact::Line, _) => vec![None],
+        (Contact::Point, Some(d)) => d.iter().map(|&d| Some(d)).collect(),
+        (Contact::Point, None) => {
+            return Err(spec.error("axes.D", "missing: point contacts need the axis D"))
+        }
+    };
     let mut cases = vec![];
     let mut seen = HashSet::new();
     for &m in &spec.m {
         for &l in &spec.l {
-            let probe = LineCase::new(m, l).map_err(|e| spec.error("axes", e.to_string()))?;
-            let (viscosity, eta0) = match spec.viscosity {
-                ViscositySpec::Barus => (Viscosity::Barus, None),
-                ViscositySpec::RoelandsZ { z, ph_pa } => (Viscosity::Roelands { z, ph_pa }, None),
-                ViscositySpec::RoelandsEta0 { eta0, ph_pa } => (
-                    Viscosity::roelands_from_eta0(eta0, ph_pa, probe.venner().alpha_bar).map_err(
-                        |e| spec.error("models.eta0", format!("at M = {m}, L = {l}: {e}")),
-                    )?,
-                    Some(eta0),
-                ),
-            };
-            let models = Models {
-                elasticity: spec.elasticity,
-                viscosity,
-                density: spec.density,
-            };
-            LineCase::with_models(m, l, models)
-                .map_err(|e| spec.error("models", format!("at M = {m}, L = {l}: {e}")))?;
-            let mut c = Case {
-                id: 0,
-                contact: Contact::Line,
-                m,
-                l,
-                d: None,
-                models,
-                eta0,
-                numerics: spec.numerics,
-                cost: cost(m, l, &spec.numerics),
-            };
-            c.id = fnv1a64(c.canonical().as_bytes());
-            if seen.insert(c.id) {
-                cases.push(c);
+            for &d in &ds {
+                let c = plan_case(spec, m, l, d)?;
+                if seen.insert(c.id) {
+                    cases.push(c);
+                }
             }
         }
     }
     cases.sort_by(|a, b| b.cost.total_cmp(&a.cost).then(a.id.cmp(&b.id)));
     Ok(cases)
+}
+
+/// The case of one (M, L, D) combination (D for point contacts only), with its id and cost.
+fn plan_case(spec: &SweepSpec, m: f64, l: f64, d: Option<f64>) -> Result<Case, SpecError> {
+    let at = match d {
+        Some(d) => format!("at M = {m}, L = {l}, D = {d}"),
+        None => format!("at M = {m}, L = {l}"),
+    };
+    let alpha_bar = match d {
+        None => LineCase::new(m, l).map(|c| c.venner().alpha_bar),
+        Some(d) => PointCase::new(m, l, d).map(|c| c.venner().alpha_bar),
+    }
+    .map_err(|e| spec.error("axes", e.to_string()))?;
+    let (viscosity, eta0) = match spec.viscosity {
+        ViscositySpec::Barus => (Viscosity::Barus, None),
+        ViscositySpec::RoelandsZ { z, ph_pa } => (Viscosity::Roelands { z, ph_pa }, None),
+        ViscositySpec::RoelandsEta0 { eta0, ph_pa } => (
+            Viscosity::roelands_from_eta0(eta0, ph_pa, alpha_bar)
+                .map_err(|e| spec.error("models.eta0", format!("{at}: {e}")))?,
+            Some(eta0),
+        ),
+    };
+    let models = Models {
+        elasticity: spec.elasticity,
+        viscosity,
+        density: spec.density,
+    };
+    let mut c = Case {
+        id: 0,
+        contact: spec.contact,
+        m,
+        l,
+        d,
+        models,
+        eta0,
+        numerics: spec.numerics,
+        cost: match d {
+            None => cost(m, l, &spec.numerics),
+            Some(_) => point_cost(m, &spec.numerics),
+        },
+    };
+    match d {
+        None => c.line_case().map(|_| ()),
+        Some(_) => c.point_case().map(|_| ()),
+    }
+    .map_err(|e| spec.error("models", format!("{at}: {e}")))?;
+    c.id = fnv1a64(c.canonical().as_bytes());
+    Ok(c)
 }
 
 /// A deterministic slice `index/count` (1-based) of a sweep.
@@ -286,5 +330,52 @@ mod tests {
         }
         assert!(Shard::parse("0/2").is_err() && Shard::parse("3/2").is_err());
         assert_eq!(Shard::parse("2/3").unwrap(), Shard { index: 2, count: 3 });
+    }
+
+    #[test]
+    fn point_cases_hash_d_and_cost_by_grid_squared() {
+        let text = "contact = \"point\"\n[axes]\nM = [10, 100]\nL = [0, 10]\nD = [0.5, 1]\n";
+        let spec = parse("p.toml", text, "p").unwrap();
+        let cases = plan(&spec).unwrap();
+        assert_eq!(cases.len(), 8);
+        let ids: HashSet<u64> = cases.iter().map(|c| c.id).collect();
+        assert_eq!(ids.len(), 8, "D is part of the id");
+        assert!(cases
+            .iter()
+            .all(|c| c.contact == Contact::Point && c.d.is_some()));
+        let c = cases
+            .iter()
+            .find(|c| c.m == 10.0 && c.l == 0.0 && c.d == Some(0.5))
+            .unwrap();
+        // Pinned like the line string above.
+        assert_eq!(
+            c.canonical(),
+            "ehlmap-case-v1;contact=point;M=1e1;L=0e0;D=5e-1;elasticity=elastic;viscosity=barus;\
+             density=incompressible;grid=129;cycle=v;max_cycles=60;fallback=true;tol_load=1e-7;\
+             tol_h=1e-6;error_estimate=false"
+        );
+        assert!(c.point_case().is_ok() && c.line_case().is_ok());
+        assert!(cases.windows(2).all(|w| w[0].cost >= w[1].cost));
+        assert!(cases[0].m == 100.0);
+        // Doubling the grid costs about four times as much (grid^2 log grid).
+        let fine = parse("p.toml", &format!("{text}[numerics]\ngrid = 257\n"), "p").unwrap();
+        let r = plan(&fine).unwrap()[0].cost / cases[0].cost;
+        assert!(r > 4.0 && r < 5.0, "{r}");
+        // Roelands from eta0 derives z from the point-contact alpha_bar, per D.
+        let roe = "contact = \"point\"\n[axes]\nM = [10]\nL = [10]\nD = [0.5, 1]\n\
+                   [models]\nviscosity = \"roelands\"\neta0 = 0.05\nph = 1e9\n";
+        let zs: Vec<f64> = plan(&parse("r.toml", roe, "r").unwrap())
+            .unwrap()
+            .iter()
+            .map(|c| match c.models.viscosity {
+                Viscosity::Roelands { z, .. } => z,
+                Viscosity::Barus => f64::NAN,
+            })
+            .collect();
+        assert_eq!(zs.len(), 2);
+        assert!(
+            zs.iter().all(|z| z.is_finite() && *z > 0.0) && zs[0] != zs[1],
+            "{zs:?}"
+        );
     }
 }

@@ -3,13 +3,13 @@
 //!
 //! ```toml
 //! name = "smoke"                 # dataset directory <out>/<name>/ (default: the file stem)
-//! contact = "line"               # "line"; "point" parses but is not available in this build
+//! contact = "line"               # or "point" (needs the axis D)
 //! description = "free text"      # optional
 //!
 //! [axes]                         # each axis: a list, or a range table
 //! M = [5, 20, 100, 500]
 //! L = { from = 0, to = 10, count = 3 }                 # scale = "linear" (default) or "log"
-//! # D = { from = 0.05, to = 1, count = 6, scale = "log" } (point contacts only)
+//! # D = { from = 0.05, to = 1, count = 6, scale = "log" } (point contacts: required, in (0, 1])
 //!
 //! [models]                       # all optional; defaults shown
 //! elasticity = "elastic"         # or "rigid"
@@ -20,14 +20,15 @@
 //! # z = 0.6                      # Roelands pressure-viscosity index
 //!
 //! [numerics]                     # all optional; defaults shown
-//! grid = 2049                    # finest-grid points (the solver rounds up to 2^k n0 + 1)
+//! grid = 2049                    # finest-grid points (the solver rounds up to 2^k n0 + 1), 33..=1048577;
+//!                                # point contacts: per direction, default 129, 17..=2049
 //! cycle = "v"                    # or "w"
 //! max_cycles = 60
 //! fallback = true
 //! tol_load = 1e-7
 //! tol_h = 1e-6
 //! error_estimate = false         # true: also solve on the half grid, Richardson error columns
-//! accuracy = 0.005               # optional: refine from 257 points up to `grid` until met
+//! accuracy = 0.005               # optional, line only: refine from 257 points up to `grid` until met
 //!
 //! [output]                       # all optional; defaults shown
 //! dir = "outputs"                # relative to the working directory; --out overrides
@@ -42,8 +43,13 @@ use std::collections::BTreeMap;
 use std::fmt;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
-use toml::de::{DeTable, DeValue};
-use toml::Spanned;
+use toml::de::DeTable;
+
+mod ctx;
+#[cfg(test)]
+mod tests;
+
+use ctx::Ctx;
 
 /// Largest number of values one axis may expand to.
 pub const MAX_AXIS_VALUES: usize = 100_000;
@@ -82,6 +88,14 @@ pub enum Contact {
 }
 
 impl Contact {
+    /// Smallest and largest `numerics.grid` (points per direction for point contacts).
+    pub fn grid_range(&self) -> (usize, usize) {
+        match self {
+            Contact::Line => (33, (1 << 20) + 1),
+            Contact::Point => (17, 2049),
+        }
+    }
+
     pub fn as_str(&self) -> &'static str {
         match self {
             Contact::Line => "line",
@@ -125,6 +139,20 @@ impl Default for Numerics {
             tol_h: 1e-6,
             error_estimate: false,
             accuracy: None,
+        }
+    }
+}
+
+impl Numerics {
+    /// The defaults of a contact: 2049 points for line contacts, 129 per direction for point
+    /// contacts; the rest as [`Numerics::default`].
+    pub fn for_contact(contact: Contact) -> Self {
+        match contact {
+            Contact::Line => Numerics::default(),
+            Contact::Point => Numerics {
+                grid: 129,
+                ..Numerics::default()
+            },
         }
     }
 }
@@ -188,242 +216,6 @@ pub fn load(path: &Path) -> Result<SweepSpec, SpecError> {
     parse(&file, &text, &stem)
 }
 
-struct Ctx<'a> {
-    file: &'a str,
-    text: &'a str,
-    lines: BTreeMap<String, usize>,
-}
-
-type Table<'i> = DeTable<'i>;
-type Value<'i> = Spanned<DeValue<'i>>;
-
-impl Ctx<'_> {
-    fn line(&self, span: &Range<usize>) -> usize {
-        let end = span.start.min(self.text.len());
-        self.text.as_bytes()[..end]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count()
-            + 1
-    }
-
-    fn err(&self, span: &Range<usize>, key: &str, message: impl Into<String>) -> SpecError {
-        SpecError {
-            file: self.file.to_string(),
-            line: self.line(span),
-            key: key.to_string(),
-            message: message.into(),
-        }
-    }
-
-    /// Check that `t` has only `allowed` keys; record their lines.
-    fn keys(&mut self, t: &Table, prefix: &str, allowed: &[&str]) -> Result<(), SpecError> {
-        for (k, _) in t.iter() {
-            let name = k.get_ref().as_ref();
-            let path = join(prefix, name);
-            if !allowed.contains(&name) {
-                let want = allowed.join(", ");
-                return Err(self.err(
-                    &k.span(),
-                    &path,
-                    format!("unknown key (expected one of: {want})"),
-                ));
-            }
-            let line = self.line(&k.span());
-            self.lines.insert(path, line);
-        }
-        Ok(())
-    }
-
-    fn number(&self, v: &Value, key: &str) -> Result<f64, SpecError> {
-        let x = match v.get_ref() {
-            DeValue::Integer(i) => i64::from_str_radix(i.as_str(), i.radix())
-                .ok()
-                .map(|n| n as f64),
-            DeValue::Float(f) => f.as_str().parse::<f64>().ok(),
-            other => {
-                return Err(self.err(
-                    &v.span(),
-                    key,
-                    format!("expected a number, found a {}", other.type_str()),
-                ))
-            }
-        };
-        match x {
-            Some(x) if x.is_finite() => Ok(x),
-            _ => Err(self.err(&v.span(), key, "the number must be finite")),
-        }
-    }
-
-    fn integer(&self, v: &Value, key: &str, min: i64, max: i64) -> Result<i64, SpecError> {
-        let n = match v.get_ref() {
-            DeValue::Integer(i) => i64::from_str_radix(i.as_str(), i.radix()).ok(),
-            other => {
-                return Err(self.err(
-                    &v.span(),
-                    key,
-                    format!("expected an integer, found a {}", other.type_str()),
-                ))
-            }
-        };
-        match n {
-            Some(n) if (min..=max).contains(&n) => Ok(n),
-            _ => Err(self.err(
-                &v.span(),
-                key,
-                format!("must be an integer from {min} to {max}"),
-            )),
-        }
-    }
-
-    fn string<'v>(&self, v: &'v Value, key: &str) -> Result<&'v str, SpecError> {
-        v.get_ref().as_str().ok_or_else(|| {
-            self.err(
-                &v.span(),
-                key,
-                format!("expected a string, found a {}", v.get_ref().type_str()),
-            )
-        })
-    }
-
-    fn choice<'v>(&self, v: &'v Value, key: &str, options: &[&str]) -> Result<&'v str, SpecError> {
-        let s = self.string(v, key)?;
-        if options.contains(&s) {
-            Ok(s)
-        } else {
-            Err(self.err(
-                &v.span(),
-                key,
-                format!("\"{s}\" is not one of: {}", options.join(", ")),
-            ))
-        }
-    }
-
-    fn boolean(&self, v: &Value, key: &str) -> Result<bool, SpecError> {
-        v.get_ref().as_bool().ok_or_else(|| {
-            self.err(
-                &v.span(),
-                key,
-                format!("expected true or false, found a {}", v.get_ref().type_str()),
-            )
-        })
-    }
-
-    fn table<'v, 'i>(&self, v: &'v Value<'i>, key: &str) -> Result<&'v Table<'i>, SpecError> {
-        v.get_ref().as_table().ok_or_else(|| {
-            self.err(
-                &v.span(),
-                key,
-                format!("expected a table, found a {}", v.get_ref().type_str()),
-            )
-        })
-    }
-
-    /// Expand one axis: a non-empty list of numbers or a range table. `check` validates each value
-    /// (returns the reason when it is invalid).
-    fn axis(
-        &mut self,
-        v: &Value,
-        key: &str,
-        check: &dyn Fn(f64) -> Option<&'static str>,
-    ) -> Result<Vec<f64>, SpecError> {
-        let short = key.rsplit('.').next().unwrap_or(key);
-        let bad = |ctx: &Ctx, span: &Range<usize>, x: f64, why: &str| {
-            ctx.err(span, key, format!("{short} = {x} is invalid: {why}"))
-        };
-        let values = match v.get_ref() {
-            DeValue::Array(a) => {
-                if a.is_empty() {
-                    return Err(self.err(&v.span(), key, "the axis is empty"));
-                }
-                if a.len() > MAX_AXIS_VALUES {
-                    return Err(self.err(
-                        &v.span(),
-                        key,
-                        format!("more than {MAX_AXIS_VALUES} values"),
-                    ));
-                }
-                let mut out = Vec::with_capacity(a.len());
-                for item in a.iter() {
-                    let x = self.number(item, key)?;
-                    if let Some(why) = check(x) {
-                        return Err(bad(self, &item.span(), x, why));
-                    }
-                    out.push(canonical(x));
-                }
-                out
-            }
-            DeValue::Table(t) => {
-                self.keys(t, key, &["from", "to", "count", "scale"])?;
-                let get = |name: &str| {
-                    t.get(name).ok_or_else(|| {
-                        self.err(
-                            &v.span(),
-                            key,
-                            format!("a range needs `from`, `to` and `count` (missing `{name}`)"),
-                        )
-                    })
-                };
-                let (fv, tv, cv) = (get("from")?, get("to")?, get("count")?);
-                let from = self.number(fv, &join(key, "from"))?;
-                let to = self.number(tv, &join(key, "to"))?;
-                let count =
-                    self.integer(cv, &join(key, "count"), 1, MAX_AXIS_VALUES as i64)? as usize;
-                let log = match t.get("scale") {
-                    None => false,
-                    Some(s) => self.choice(s, &join(key, "scale"), &["linear", "log"])? == "log",
-                };
-                for (x, sv) in [(from, fv), (to, tv)] {
-                    if let Some(why) = check(x) {
-                        return Err(bad(self, &sv.span(), x, why));
-                    }
-                }
-                if count == 1 && from != to {
-                    return Err(self.err(
-                        &cv.span(),
-                        &join(key, "count"),
-                        format!("count = 1 needs from = to (got {from} and {to})"),
-                    ));
-                }
-                if count > 1 && from == to {
-                    return Err(self.err(
-                        &cv.span(),
-                        &join(key, "count"),
-                        format!("from = to = {from} with count = {count} repeats one value"),
-                    ));
-                }
-                if log && (from <= 0.0 || to <= 0.0) {
-                    return Err(self.err(
-                        &v.span(),
-                        &join(key, "scale"),
-                        format!("a log range needs from > 0 and to > 0 (got {from} and {to})"),
-                    ));
-                }
-                expand_range(from, to, count, log)
-            }
-            other => {
-                return Err(self.err(
-                    &v.span(),
-                    key,
-                    format!(
-                        "expected a list of numbers or a range table {{ from, to, count, scale }}, found a {}",
-                        other.type_str()
-                    ),
-                ))
-            }
-        };
-        Ok(values)
-    }
-}
-
-fn join(prefix: &str, name: &str) -> String {
-    if prefix.is_empty() {
-        name.to_string()
-    } else {
-        format!("{prefix}.{name}")
-    }
-}
-
 /// Round to 12 significant digits, so that values computed from ranges (and their case ids) do
 /// not depend on the last bits of `powf`.
 pub fn canonical(x: f64) -> f64 {
@@ -453,6 +245,12 @@ pub fn expand_range(from: f64, to: f64, count: usize, log: bool) -> Vec<f64> {
             canonical(x)
         })
         .collect()
+}
+
+/// The span of `table.key` in the document root, when given.
+fn cx_span(root: &DeTable, table: &str, key: &str) -> Option<Range<usize>> {
+    let t = root.get(table)?.get_ref().as_table()?;
+    Some(t.get(key)?.span())
 }
 
 /// Parse and validate a spec given as text. `file` names it in messages; `default_name` is the
@@ -506,9 +304,13 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
     }
 
     // contact
-    let contact_v = root
-        .get("contact")
-        .ok_or_else(|| cx.err(&doc_span, "contact", "missing: give contact = \"line\""))?;
+    let contact_v = root.get("contact").ok_or_else(|| {
+        cx.err(
+            &doc_span,
+            "contact",
+            "missing: give contact = \"line\" or \"point\"",
+        )
+    })?;
     let contact = match cx.choice(contact_v, "contact", &["line", "point"])? {
         "line" => Contact::Line,
         _ => Contact::Point,
@@ -653,7 +455,8 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
     }
 
     // numerics
-    let mut numerics = Numerics::default();
+    let mut numerics = Numerics::for_contact(contact);
+    let (grid_min, grid_max) = contact.grid_range();
     if let Some(nv) = root.get("numerics") {
         let t = cx.table(nv, "numerics")?;
         cx.keys(
@@ -671,7 +474,8 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
             ],
         )?;
         if let Some(v) = t.get("grid") {
-            numerics.grid = cx.integer(v, "numerics.grid", 33, (1 << 20) + 1)? as usize;
+            numerics.grid =
+                cx.integer(v, "numerics.grid", grid_min as i64, grid_max as i64)? as usize;
         }
         if let Some(v) = t.get("cycle") {
             numerics.cycle = match cx.choice(v, "numerics.cycle", &["v", "w"])? {
@@ -715,11 +519,14 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
         }
         if let Some(v) = t.get("error_estimate") {
             numerics.error_estimate = cx.boolean(v, "numerics.error_estimate")?;
-            if numerics.error_estimate && numerics.grid < 65 {
+            if numerics.error_estimate && numerics.grid < 2 * grid_min - 1 {
                 return Err(cx.err(
                     &v.span(),
                     "numerics.error_estimate",
-                    "needs grid >= 65 (the half grid must have at least 33 points)",
+                    format!(
+                        "needs grid >= {} (the half grid must have at least {grid_min} points)",
+                        2 * grid_min - 1
+                    ),
                 ));
             }
         }
@@ -769,11 +576,21 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
     // Contact-specific rules, after every value has been checked.
     match contact {
         Contact::Point => {
-            return Err(cx.err(
-                &contact_v.span(),
-                "contact",
-                "point contacts are not available in this build",
-            ))
+            if d.is_none() {
+                return Err(cx.err(
+                    &axes_v.span(),
+                    "axes.D",
+                    "missing: contact = \"point\" needs the ellipticity axis D = Rx/Ry, values in (0, 1]",
+                ));
+            }
+            if numerics.accuracy.is_some() {
+                let span = cx_span(root, "numerics", "accuracy").unwrap_or(doc_span);
+                return Err(cx.err(
+                    &span,
+                    "numerics.accuracy",
+                    "accuracy targets are not available for point contacts yet (use error_estimate)",
+                ));
+            }
         }
         Contact::Line => {
             if let Some(dv) = axes.get("D") {
@@ -802,47 +619,4 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
         output,
         lines: cx.lines,
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn err(text: &str) -> SpecError {
-        parse("t.toml", text, "t").unwrap_err()
-    }
-
-    const OK: &str =
-        "contact = \"line\"\n[axes]\nM = [5, 20]\nL = { from = 0, to = 10, count = 3 }\n";
-
-    #[test]
-    fn parses_lists_and_ranges() {
-        let s = parse("t.toml", OK, "t").unwrap();
-        assert_eq!(s.m, vec![5.0, 20.0]);
-        assert_eq!(s.l, vec![0.0, 5.0, 10.0]);
-        assert_eq!(s.name, "t");
-        let log = expand_range(1.0, 1000.0, 4, true);
-        assert_eq!(log, vec![1.0, 10.0, 100.0, 1000.0]);
-    }
-
-    #[test]
-    fn errors_name_line_and_key() {
-        let e = err("contact = \"line\"\n[axes]\nM = [5, -1]\nL = [0]\n");
-        assert_eq!((e.line, e.key.as_str()), (3, "axes.M"));
-        assert!(e.to_string().starts_with("t.toml:3: axes.M: M = -1"), "{e}");
-        let e = err("contact = \"line\"\n[axes]\nM = [5]\nL = [0]\nQ = 3\n");
-        assert_eq!((e.line, e.key.as_str()), (5, "axes.Q"));
-        let e = err("contact = \"line\"\n[axes]\nM = []\nL = [0]\n");
-        assert!(e.message.contains("empty") && e.line == 3, "{e}");
-        let e = err("contact = \"point\"\n[axes]\nM = [5]\nL = [0]\nD = [0.5]\n");
-        assert!(e.message.contains("not available in this build") && e.line == 1);
-        let e = err("contact = \"point\"\n[axes]\nM = [5]\nL = [0]\nD = [1.5]\n");
-        assert_eq!((e.line, e.key.as_str()), (5, "axes.D"));
-        let e = err("contact = \"line\"\n[axes]\nM = { from = 0, to = 10, count = 3, scale = \"log\" }\nL = [0]\n");
-        assert_eq!(e.line, 3);
-        let e = err("contact = \"line\"\n[axes]\nM = [1]\nL = [0]\n[numerics]\ngrid = 8\n");
-        assert_eq!((e.line, e.key.as_str()), (6, "numerics.grid"));
-        let e = err("contact = \"line\"\n[axes]\nM = [1\n");
-        assert!(e.message.contains("invalid TOML") && e.line >= 3, "{e}");
-    }
 }

@@ -1,0 +1,117 @@
+//! Spec parsing: good specs, and errors naming file, line and key.
+
+use super::*;
+
+fn err(text: &str) -> SpecError {
+    parse("t.toml", text, "t").unwrap_err()
+}
+
+const OK: &str = "contact = \"line\"\n[axes]\nM = [5, 20]\nL = { from = 0, to = 10, count = 3 }\n";
+
+#[test]
+fn parses_lists_and_ranges() {
+    let s = parse("t.toml", OK, "t").unwrap();
+    assert_eq!(s.m, vec![5.0, 20.0]);
+    assert_eq!(s.l, vec![0.0, 5.0, 10.0]);
+    assert_eq!(s.name, "t");
+    let log = expand_range(1.0, 1000.0, 4, true);
+    assert_eq!(log, vec![1.0, 10.0, 100.0, 1000.0]);
+}
+
+#[test]
+fn errors_name_line_and_key() {
+    let e = err("contact = \"line\"\n[axes]\nM = [5, -1]\nL = [0]\n");
+    assert_eq!((e.line, e.key.as_str()), (3, "axes.M"));
+    assert!(e.to_string().starts_with("t.toml:3: axes.M: M = -1"), "{e}");
+    let e = err("contact = \"line\"\n[axes]\nM = [5]\nL = [0]\nQ = 3\n");
+    assert_eq!((e.line, e.key.as_str()), (5, "axes.Q"));
+    let e = err("contact = \"line\"\n[axes]\nM = []\nL = [0]\n");
+    assert!(e.message.contains("empty") && e.line == 3, "{e}");
+    let e = err("contact = \"point\"\n[axes]\nM = [5]\nL = [0]\nD = [1.5]\n");
+    assert_eq!((e.line, e.key.as_str()), (5, "axes.D"));
+    let e = err("contact = \"line\"\n[axes]\nM = { from = 0, to = 10, count = 3, scale = \"log\" }\nL = [0]\n");
+    assert_eq!(e.line, 3);
+    let e = err("contact = \"line\"\n[axes]\nM = [1]\nL = [0]\n[numerics]\ngrid = 8\n");
+    assert_eq!((e.line, e.key.as_str()), (6, "numerics.grid"));
+    let e = err("contact = \"line\"\n[axes]\nM = [1\n");
+    assert!(e.message.contains("invalid TOML") && e.line >= 3, "{e}");
+}
+
+const POINT: &str = "contact = \"point\"\n[axes]\nM = [10, 100]\nL = [0, 10]\n";
+
+#[test]
+fn point_specs_parse_with_their_defaults() {
+    let s = parse("p.toml", &format!("{POINT}D = [0.5, 1]\n"), "p").unwrap();
+    assert_eq!(s.contact, Contact::Point);
+    assert_eq!(s.d, Some(vec![0.5, 1.0]));
+    assert_eq!(s.numerics.grid, 129);
+    assert_eq!(s.numerics, Numerics::for_contact(Contact::Point));
+    let text = format!(
+        "{POINT}D = {{ from = 0.05, to = 1, count = 4, scale = \"log\" }}\n\
+         [numerics]\ngrid = 65\nerror_estimate = true\n"
+    );
+    let s = parse("p.toml", &text, "p").unwrap();
+    let d = s.d.unwrap();
+    assert_eq!((d.len(), d[0], d[3]), (4, 0.05, 1.0));
+    assert!(d.windows(2).all(|w| w[0] < w[1]));
+    assert_eq!(s.numerics.grid, 65);
+    assert!(s.numerics.error_estimate);
+    // The line defaults are unchanged.
+    let l = parse("t.toml", OK, "t").unwrap();
+    assert_eq!(l.numerics, Numerics::default());
+    assert_eq!(l.numerics.grid, 2049);
+}
+
+#[test]
+fn bad_point_specs_name_line_and_key() {
+    let e = err(&format!("{POINT}D = [0.5, 0]\n"));
+    assert_eq!((e.line, e.key.as_str()), (5, "axes.D"), "{e}");
+    assert!(e.message.contains("D = 0 is invalid"), "{e}");
+    let e = err(&format!("{POINT}D = [1.5]\n"));
+    assert_eq!((e.line, e.key.as_str()), (5, "axes.D"), "{e}");
+    assert!(e.message.contains("D = 1.5 is invalid"), "{e}");
+    let e = err(&format!("{POINT}D = {{ from = 0.5, to = 2, count = 3 }}\n"));
+    assert_eq!((e.line, e.key.as_str()), (5, "axes.D"), "{e}");
+    let e = err(POINT);
+    assert_eq!(e.key, "axes.D", "{e}");
+    assert!(
+        e.message.contains("missing") && e.message.contains("(0, 1]"),
+        "{e}"
+    );
+    let e = err("contact = \"line\"\n[axes]\nM = [5]\nL = [0]\nD = [0.5]\n");
+    assert_eq!((e.line, e.key.as_str()), (5, "axes.D"), "{e}");
+    assert!(e.message.contains("point\" only"), "{e}");
+    for (grid, ok) in [
+        (9, false),
+        (17, true),
+        (2049, true),
+        (2050, false),
+        (4097, false),
+    ] {
+        let r = parse(
+            "p.toml",
+            &format!("{POINT}D = [1]\n[numerics]\ngrid = {grid}\n"),
+            "p",
+        );
+        assert_eq!(r.is_ok(), ok, "grid {grid}: {r:?}");
+        if let Err(e) = r {
+            assert_eq!((e.line, e.key.as_str()), (7, "numerics.grid"), "{e}");
+            assert!(e.message.contains("from 17 to 2049"), "{e}");
+        }
+    }
+    let e = err(&format!(
+        "{POINT}D = [1]\n[numerics]\ngrid = 17\nerror_estimate = true\n"
+    ));
+    assert_eq!(
+        (e.line, e.key.as_str()),
+        (8, "numerics.error_estimate"),
+        "{e}"
+    );
+    assert!(e.message.contains("grid >= 33"), "{e}");
+    let e = err(&format!("{POINT}D = [1]\n[numerics]\naccuracy = 0.01\n"));
+    assert_eq!((e.line, e.key.as_str()), (7, "numerics.accuracy"), "{e}");
+    assert!(
+        e.message.contains("not available for point contacts"),
+        "{e}"
+    );
+}
