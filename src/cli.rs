@@ -4,13 +4,13 @@
 //!
 //! `--contact point --D d` solves a point contact: `--grid` counts points per direction, the
 //! fields go to `--fields FILE.parquet`; the line-only options (`--method` baselines,
-//! `--profile`, `--accuracy` for now) are input errors there.
+//! `--profile`) are input errors there.
 
 use crate::lubricant::{Density, Viscosity};
 use crate::params::{Elasticity, LineCase, Models, ParamError, PointCase};
 use crate::solver::line::{solve_line, solve_line_to_accuracy, LineSolveParams, Method};
 use crate::solver::multigrid::CycleType;
-use crate::solver::point::{solve_point, PointSolveParams};
+use crate::solver::point::{solve_point, solve_point_to_accuracy, PointSolveParams};
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
 
@@ -288,11 +288,6 @@ fn build_point_case(a: &SolveArgs) -> Result<PointCase, InputError> {
             "--profile applies to line contacts only (use --fields for point contacts)".into(),
         ));
     }
-    if a.accuracy.is_some() {
-        return Err(InputError(
-            "--accuracy is not available for point contacts yet".into(),
-        ));
-    }
     let d = a.d.ok_or_else(|| {
         InputError("--contact point needs --D, the ellipticity Rx/Ry in (0, 1]".into())
     })?;
@@ -334,14 +329,7 @@ pub fn run_solve(a: &SolveArgs) -> Result<i32, InputError> {
     }
     p.keep_profile = a.profile.is_some();
     let s = match a.accuracy {
-        Some(t) => {
-            if !(t.is_finite() && t > 0.0 && t < 1.0) {
-                return Err(InputError(format!(
-                    "--accuracy {t} is invalid: give a relative accuracy in (0, 1), e.g. 0.005"
-                )));
-            }
-            solve_line_to_accuracy(&case, &p, t, a.max_grid)
-        }
+        Some(t) => solve_line_to_accuracy(&case, &p, accuracy_arg(t)?, a.max_grid),
         None => solve_line(&case, &p),
     };
     if let (Some(path), Some(prof)) = (&a.profile, &s.profile) {
@@ -365,6 +353,17 @@ pub fn run_solve(a: &SolveArgs) -> Result<i32, InputError> {
     Ok(0)
 }
 
+/// A valid --accuracy target.
+fn accuracy_arg(t: f64) -> Result<f64, InputError> {
+    if t.is_finite() && t > 0.0 && t < 1.0 {
+        Ok(t)
+    } else {
+        Err(InputError(format!(
+            "--accuracy {t} is invalid: give a relative accuracy in (0, 1), e.g. 0.005"
+        )))
+    }
+}
+
 /// `ehlmap solve --contact point`: same exit codes and JSON names as the line solve, plus `D`,
 /// `k` and `Y_min`.
 fn run_solve_point(a: &SolveArgs) -> Result<i32, InputError> {
@@ -377,7 +376,11 @@ fn run_solve_point(a: &SolveArgs) -> Result<i32, InputError> {
     p.mg.cycle = cycle_type(a.cycle);
     p.fallback = !a.no_fallback;
     p.keep_fields = a.fields.is_some();
-    let s = solve_point(&case, &p);
+    let s = match a.accuracy {
+        // Point grids are per direction: at most 513 x 513 unless --max-grid is lower.
+        Some(t) => solve_point_to_accuracy(&case, &p, accuracy_arg(t)?, a.max_grid.min(513)),
+        None => solve_point(&case, &p),
+    };
     if let Some(path) = &a.fields {
         match &s.fields {
             Some(f) => {

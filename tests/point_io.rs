@@ -1,9 +1,6 @@
-//! Point contacts through the command line, sweep specs, sweeps and storage: the plumbing only.
-//!
-//! The point solver is still a placeholder in this build (status "diverged", NaN outputs), so
-//! these tests assert what the plumbing guarantees (exit codes, columns, D and k, status strings,
-//! no NaN in files, no panic), never converged numbers. Assertions marked `TIGHTEN` should be made
-//! strict once the point solver lands.
+//! Point contacts through the command line, sweep specs, sweeps and storage: exit codes, JSON
+//! names, the fields file, D and k (exact Hertz ellipse), converged rows with error estimates,
+//! and no NaN in any file.
 
 use arrow_array::Float64Array;
 use ehlmap::io::fields::write_fields;
@@ -146,8 +143,8 @@ fn bad_point_input_exits_2_naming_the_value() {
         (vec!["--D", "0.5", "--grid", "4097"], "--grid 4097"),
         (vec!["--D", "0.5", "--profile", "p.parquet"], "--profile"),
         (
-            vec!["--D", "0.5", "--accuracy", "0.01"],
-            "--accuracy is not available for point contacts yet",
+            vec!["--D", "0.5", "--accuracy", "1.5"],
+            "--accuracy 1.5 is invalid",
         ),
         (vec!["--D", "0.5", "--viscosity", "roelands"], "--ph"),
     ] {
@@ -212,7 +209,15 @@ fn point_json_has_the_line_fields_plus_d_k_y_min() {
     assert_eq!(v["D"], 1.0);
     assert_eq!(v["k"], 1.0);
     assert!(STATUSES.contains(&v["status"].as_str().unwrap()));
-    // TIGHTEN: status "converged" and finite H_c, H_min, Y_min once the solver lands.
+    assert_eq!(v["status"], "converged", "{}", v["reason"]);
+    for key in ["H_c", "H_min", "Y_min"] {
+        assert!(
+            v[key].as_f64().is_some_and(|x| x.is_finite()),
+            "{key}: {}",
+            v[key]
+        );
+    }
+    assert!(v["H_c"].as_f64().unwrap() > 0.0);
     let text = ehlmap(&[
         "solve",
         "--contact",
@@ -284,8 +289,7 @@ fn fields_file_round_trips() {
             );
         }
     }
-    // Through the command line: exit 0; with the placeholder solver there are no fields, so the
-    // file may be missing. TIGHTEN: the file must exist with grid^2 rows once the solver lands.
+    // Through the command line: one row per node of the 33 x 33 grid.
     let cli = dir.join("cli.parquet");
     let o = ehlmap(&[
         "solve",
@@ -301,14 +305,9 @@ fn fields_file_round_trips() {
         cli.to_str().unwrap(),
     ]);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
-    if cli.exists() {
-        let b =
-            ParquetRecordBatchReaderBuilder::try_new(std::fs::File::open(&cli).unwrap()).unwrap();
-        let rows = b.metadata().file_metadata().num_rows() as usize;
-        assert!(rows >= 33 * 33, "{rows}");
-    } else {
-        assert!(stderr(&o).contains("--fields"), "{}", stderr(&o));
-    }
+    let b = ParquetRecordBatchReaderBuilder::try_new(std::fs::File::open(&cli).unwrap()).unwrap();
+    let rows = b.metadata().file_metadata().num_rows() as usize;
+    assert_eq!(rows, 33 * 33);
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -318,7 +317,7 @@ fn point_sweep_writes_one_row_per_case() {
     let spec = dir.join("tiny-point.toml");
     std::fs::write(
         &spec,
-        "name = \"tiny-point\"\ncontact = \"point\"\n[axes]\nM = [10, 100]\nL = [0]\n\
+        "name = \"tiny-point\"\ncontact = \"point\"\n[axes]\nM = [10, 30]\nL = [0]\n\
          D = [0.25, 1]\n[numerics]\ngrid = 33\nerror_estimate = true\n",
     )
     .unwrap();
@@ -363,8 +362,11 @@ fn point_sweep_writes_one_row_per_case() {
         if outs.iter().any(|v| v.is_none()) {
             assert!(!r.valid);
         }
-        // TIGHTEN once the solver lands: status == "converged", valid, every output above
-        // Some and positive films, Y_min Some, H_c_err/H_min_err Some (error_estimate = true).
+        assert_eq!(r.status, "converged", "{}", r.reason);
+        assert!(r.valid);
+        assert!(outs.iter().all(|v| v.is_some()));
+        assert!(r.h_c.unwrap() > 0.0 && r.h_min.unwrap() > 0.0);
+        assert!(r.h_c_err.is_some() && r.h_min_err.is_some());
     }
     // A rerun solves nothing: the case ids are stored.
     let o = ehlmap(&args);

@@ -201,7 +201,7 @@ impl PointMultigrid {
             for j in 0..fine.ny {
                 for i in 0..fine.nx {
                     let (ic, jc) = (i / 2, j / 2);
-                    let (ic1, jc1) = ((i + 1) / 2, (j + 1) / 2);
+                    let (ic1, jc1) = (i.div_ceil(2), j.div_ceil(2));
                     let v = 0.25 * (e(ic, jc) + e(ic1, jc) + e(ic, jc1) + e(ic1, jc1));
                     let c = fine.at(i, j);
                     if !fine.boundary(i, j) {

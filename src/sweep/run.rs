@@ -708,9 +708,9 @@ mod tests {
             if all.iter().any(|v| v.is_none()) {
                 assert!(!row.valid);
             }
-            // TIGHTEN once the point solver lands: status "converged", valid, finite H_c and
-            // H_min, Y_min present, and H_c_err/H_min_err set (error_estimate = true).
-            assert!(!row.status.is_empty() && row.status != "not-run");
+            assert_eq!(row.status, "converged", "{}", row.reason);
+            assert!(row.valid && row.y_min.is_some());
+            assert!(row.h_c_err.is_some() && row.h_min_err.is_some());
         }
         // Line rows keep D, k and Y_min null.
         let line = crate::sweep::spec::parse(
