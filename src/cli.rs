@@ -124,6 +124,10 @@ pub struct SolveArgs {
     /// Do not retry a failed solve with conservative settings.
     #[arg(long)]
     pub no_fallback: bool,
+    /// Point contacts: relax the grid rows in parallel (zebra order) on this many threads
+    /// (default: one thread, Gauss-Seidel row order).
+    #[arg(long)]
+    pub threads: Option<usize>,
     /// Print one JSON object instead of the summary.
     #[arg(long)]
     pub json: bool,
@@ -376,10 +380,23 @@ fn run_solve_point(a: &SolveArgs) -> Result<i32, InputError> {
     p.mg.cycle = cycle_type(a.cycle);
     p.fallback = !a.no_fallback;
     p.keep_fields = a.fields.is_some();
-    let s = match a.accuracy {
+    let accuracy = a.accuracy.map(accuracy_arg).transpose()?;
+    let run = |p: &PointSolveParams| match accuracy {
         // Point grids are per direction: at most 513 x 513 unless --max-grid is lower.
-        Some(t) => solve_point_to_accuracy(&case, &p, accuracy_arg(t)?, a.max_grid.min(513)),
-        None => solve_point(&case, &p),
+        Some(t) => solve_point_to_accuracy(&case, p, t, a.max_grid.min(513)),
+        None => solve_point(&case, p),
+    };
+    let s = match a.threads {
+        Some(0) => return Err(InputError("--threads 0 is invalid: give 1 or more".into())),
+        Some(n) => {
+            p.mg.parallel = true;
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .map_err(|e| InputError(format!("--threads {n}: {e}")))?;
+            pool.install(|| run(&p))
+        }
+        None => run(&p),
     };
     if let Some(path) = &a.fields {
         match &s.fields {

@@ -43,6 +43,10 @@ pub struct PointMgParams {
     pub newton_max_iter: usize,
     pub second_order: bool,
     pub domain: PointDomainParams,
+    /// Relax the rows of each colour in parallel (zebra order) on the current rayon pool, on
+    /// levels of 65 rows or more. Off by default: a sweep already runs one solve per thread, and
+    /// the default Gauss-Seidel row order converges faster per sweep.
+    pub parallel: bool,
 }
 
 impl Default for PointMgParams {
@@ -63,6 +67,7 @@ impl Default for PointMgParams {
             newton_max_iter: 40,
             second_order: true,
             domain: PointDomainParams::default(),
+            parallel: false,
         }
     }
 }

@@ -99,12 +99,15 @@ impl PointMultigrid {
     /// One relaxation sweep on level l, counted in work units.
     pub fn relax_level(&mut self, l: usize) {
         let lv = &mut self.levels[l];
+        // Zebra rows on the rayon pool only where a level has enough rows to share.
+        let parallel = self.params.parallel && lv.ny >= 65;
         point_line_sweep(
             lv,
             &self.phys,
             self.h0,
             &self.params.relax,
             &mut self.scratch,
+            parallel,
         );
         self.work_units += ((lv.nx - 1) * (lv.ny - 1)) as f64 / self.fine_cells;
     }

@@ -31,15 +31,63 @@ pub struct PointScratch {
     change: Vec<f64>,
 }
 
-/// One sweep of x-line relaxation over all interior rows.
+/// One sweep of x-line relaxation over all interior rows: Gauss-Seidel from row to row, or, with
+/// `parallel`, zebra order (all odd rows from the same state, then all even rows; the rows of one
+/// colour solved in parallel on the current rayon pool, the film updated by the FFT product between
+/// the colours). Zebra results do not depend on the number of threads.
 pub fn point_line_sweep(
     lv: &mut PointLevel,
     phys: &PointPhysics,
     h0: f64,
     rp: &RelaxParams,
     s: &mut PointScratch,
+    parallel: bool,
 ) {
     let (nx, ny) = (lv.nx, lv.ny);
+    if parallel {
+        use rayon::prelude::*;
+        for first in [1usize, 2] {
+            let rows: Vec<usize> = (first..ny - 1).step_by(2).collect();
+            let changes: Vec<Vec<f64>> = {
+                let lv = &*lv;
+                rows.par_iter()
+                    .map_init(PointScratch::default, |s, &j| {
+                        row_changes(lv, phys, rp, j, s);
+                        s.change.clone()
+                    })
+                    .collect()
+            };
+            for (&j, ch) in rows.iter().zip(&changes) {
+                for i in 1..nx - 1 {
+                    let c = lv.at(i, j);
+                    lv.p[c] += ch[i];
+                }
+            }
+            lv.update_film(phys, h0);
+        }
+        return;
+    }
+    let reach = 2 * (rp.band + 1);
+    for j in 1..ny - 1 {
+        row_changes(lv, phys, rp, j, s);
+        for i in 1..nx - 1 {
+            let c = lv.at(i, j);
+            lv.p[c] += s.change[i];
+        }
+        local_film_update(lv, phys, j, reach, &s.change);
+    }
+    lv.update_film(phys, h0);
+}
+
+/// The relaxation changes of row j (into `s.change`, indexed by i) from the current state.
+fn row_changes(
+    lv: &PointLevel,
+    phys: &PointPhysics,
+    rp: &RelaxParams,
+    j: usize,
+    s: &mut PointScratch,
+) {
+    let nx = lv.nx;
     let m = nx - 2;
     let bw = rp.band + 1;
     let w = 2 * bw + 1;
@@ -51,114 +99,110 @@ pub fn point_line_sweep(
     } else {
         1.0
     };
-    for j in 1..ny - 1 {
-        let PointScratch {
-            rows,
-            kind,
-            jset,
-            a,
-            rhs,
-            ent,
-            change,
-        } = &mut *s;
-        rows.clear();
-        rows.extend((1..nx - 1).map(|i| PointJacRow::new(lv, phys, i, j)));
-        kind.clear();
-        kind.resize(nx, 2);
-        rhs.clear();
-        rhs.resize(m, 0.0);
-        for i in 1..nx - 1 {
-            let c = lv.at(i, j);
-            let r = lv.f[c] - lv.reynolds(phys, i, j);
-            rhs[i - 1] = r;
-            let d = rows[i - 1].entry(&lv.kernel, nx, i, j);
-            kind[i] = if lv.frozen[c] {
-                2
-            } else if (d < 0.0 && lv.p[c] + r / d <= 0.0) || (d >= 0.0 && lv.p[c] <= 0.0) {
-                1
-            } else {
-                0
-            };
-        }
-        jset.clear();
-        jset.extend((0..nx).map(|i| {
-            i >= 1
-                && i + 1 < nx
-                && kind[i - 1] == 0
-                && kind[i] == 0
-                && kind[i + 1] == 0
-                && (phys.dry || {
-                    let c = lv.at(i, j);
-                    let e = &lv.eps;
-                    0.5 * (e[c - 1] + e[c]).min(e[c] + e[c + 1]) / hx2 < rp.xi_threshold
-                })
-        }));
-        a.clear();
-        a.resize(m * w, 0.0);
-        ent.clear();
-        ent.resize(nx, 0.0);
-        for i in 1..nx - 1 {
-            let row = i - 1;
-            match kind[i] {
-                1 => {
-                    a[row * w + bw] = 1.0;
-                    rhs[row] = -lv.p[lv.at(i, j)];
+    let PointScratch {
+        rows,
+        kind,
+        jset,
+        a,
+        rhs,
+        ent,
+        change,
+    } = s;
+    rows.clear();
+    rows.extend((1..nx - 1).map(|i| PointJacRow::new(lv, phys, i, j)));
+    kind.clear();
+    kind.resize(nx, 2);
+    rhs.clear();
+    rhs.resize(m, 0.0);
+    for i in 1..nx - 1 {
+        let c = lv.at(i, j);
+        let r = lv.f[c] - lv.reynolds(phys, i, j);
+        rhs[i - 1] = r;
+        let d = rows[i - 1].entry(&lv.kernel, nx, i, j);
+        kind[i] = if lv.frozen[c] {
+            2
+        } else if (d < 0.0 && lv.p[c] + r / d <= 0.0) || (d >= 0.0 && lv.p[c] <= 0.0) {
+            1
+        } else {
+            0
+        };
+    }
+    jset.clear();
+    jset.extend((0..nx).map(|i| {
+        i >= 1
+            && i + 1 < nx
+            && kind[i - 1] == 0
+            && kind[i] == 0
+            && kind[i + 1] == 0
+            && (phys.dry || {
+                let c = lv.at(i, j);
+                let e = &lv.eps;
+                0.5 * (e[c - 1] + e[c]).min(e[c] + e[c + 1]) / hx2 < rp.xi_threshold
+            })
+    }));
+    a.clear();
+    a.resize(m * w, 0.0);
+    ent.clear();
+    ent.resize(nx, 0.0);
+    for i in 1..nx - 1 {
+        let row = i - 1;
+        match kind[i] {
+            1 => {
+                a[row * w + bw] = 1.0;
+                rhs[row] = -lv.p[lv.at(i, j)];
+            }
+            2 => {
+                a[row * w + bw] = 1.0;
+                rhs[row] = 0.0;
+            }
+            _ => {
+                let lo = i.saturating_sub(bw + 1).max(1);
+                let hi = (i + bw + 1).min(nx - 2);
+                for k in lo..=hi {
+                    ent[k] = rows[row].entry(&lv.kernel, nx, k, j);
                 }
-                2 => {
-                    a[row * w + bw] = 1.0;
-                    rhs[row] = 0.0;
-                }
-                _ => {
-                    let lo = i.saturating_sub(bw + 1).max(1);
-                    let hi = (i + bw + 1).min(nx - 2);
-                    for k in lo..=hi {
-                        ent[k] = rows[row].entry(&lv.kernel, nx, k, j);
+                let get = |k: usize| if k >= lo && k <= hi { ent[k] } else { 0.0 };
+                for k in i.saturating_sub(bw).max(1)..=(i + bw).min(nx - 2) {
+                    let mut v = ent[k];
+                    if jset[k] {
+                        v -= 0.5 * (get(k - 1) + get(k + 1));
                     }
-                    let get = |k: usize| if k >= lo && k <= hi { ent[k] } else { 0.0 };
-                    for k in i.saturating_sub(bw).max(1)..=(i + bw).min(nx - 2) {
-                        let mut v = ent[k];
-                        if jset[k] {
-                            v -= 0.5 * (get(k - 1) + get(k + 1));
-                        }
-                        a[row * w + (k + bw - i)] = v;
-                    }
+                    a[row * w + (k + bw - i)] = v;
                 }
             }
         }
-        let solved = solve_banded(a, m, bw, rhs) && rhs.iter().all(|v| v.is_finite());
-        change.clear();
-        change.resize(nx, 0.0);
-        for i in 1..nx - 1 {
-            let c = lv.at(i, j);
-            let old = lv.p[c];
-            let dp = if solved {
-                let mut dp = rhs[i - 1];
-                if jset[i - 1] {
-                    dp -= 0.5 * rhs[i - 2];
-                }
-                if jset[i + 1] {
-                    dp -= 0.5 * rhs[i];
-                }
-                dp
-            } else {
-                // A zero pivot: a damped point update from the diagonal alone.
-                let d = rows[i - 1].entry(&lv.kernel, nx, i, j);
-                if d < 0.0 {
-                    (lv.f[c] - lv.reynolds(phys, i, j)) / d
-                } else {
-                    0.0
-                }
-            };
-            lv.p[c] = match kind[i] {
-                1 => 0.0,
-                2 => old,
-                _ => (old + (rp.omega_line * dp).clamp(-max_dp, max_dp)).max(0.0),
-            };
-            change[i] = lv.p[c] - old;
-        }
-        local_film_update(lv, phys, j, 2 * bw, change);
     }
-    lv.update_film(phys, h0);
+    let solved = solve_banded(a, m, bw, rhs) && rhs.iter().all(|v| v.is_finite());
+    change.clear();
+    change.resize(nx, 0.0);
+    for i in 1..nx - 1 {
+        let c = lv.at(i, j);
+        let old = lv.p[c];
+        let dp = if solved {
+            let mut dp = rhs[i - 1];
+            if jset[i - 1] {
+                dp -= 0.5 * rhs[i - 2];
+            }
+            if jset[i + 1] {
+                dp -= 0.5 * rhs[i];
+            }
+            dp
+        } else {
+            // A zero pivot: a damped point update from the diagonal alone.
+            let d = rows[i - 1].entry(&lv.kernel, nx, i, j);
+            if d < 0.0 {
+                (lv.f[c] - lv.reynolds(phys, i, j)) / d
+            } else {
+                0.0
+            }
+        };
+        let new = match kind[i] {
+            1 => 0.0,
+            2 => old,
+            _ => (old + (rp.omega_line * dp).clamp(-max_dp, max_dp)).max(0.0),
+        };
+        change[i] = new - old;
+    }
 }
 
 /// Correct the film (and rho, eps) of rows j..=j+2 for the pressure changes `change` on row j,
