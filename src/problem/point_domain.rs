@@ -7,7 +7,7 @@
 //!
 //! * inlet   X_in   = -max(1 + clamp(inlet_elastic H_e^(2/3), 0.5, 3.5), g inlet_lh l_h)
 //! * outlet  X_out  =  max(1.5, g outlet_lh l_h)
-//! * sides   Y_half =  max(k + side / sqrt(D k), g side_lh l_h)
+//! * sides   Y_half =  max(k + side / sqrt(D k), g side_lh l_h / sqrt(D))
 //!
 //! with g = 1 + w, w = min(1, H_RI/H_e)^2 the weight of the rigid-isoviscous regime (w = 1 for
 //! rigid surfaces): the rigid pressure spreads over several l_h, and at M = 1, D = 1 the inlet
@@ -62,6 +62,8 @@ pub struct PointDomain {
     pub n0: usize,
     /// Central film estimate (Hertzian units).
     pub h_estimate: f64,
+    /// Weight w of the rigid-isoviscous regime (1 for rigid surfaces).
+    pub rigid_weight: f64,
 }
 
 impl PointDomain {
@@ -102,7 +104,7 @@ impl PointDomain {
                 -(1.0 + (p.inlet_elastic * h_e.powf(2.0 / 3.0)).clamp(0.5, 3.5))
                     .max(g * p.inlet_lh * lh),
                 (1.5f64).max(g * p.outlet_lh * lh),
-                (k + p.side / (d * k).sqrt()).max(g * p.side_lh * lh),
+                (k + p.side / (d * k).sqrt()).max(g * p.side_lh * lh / d.sqrt()),
             )
         };
         let n0 = p.n0.max(4).next_power_of_two();
@@ -115,6 +117,7 @@ impl PointDomain {
             y_half,
             n0,
             h_estimate: h_e,
+            rigid_weight: w,
         }
     }
 

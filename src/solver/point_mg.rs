@@ -250,11 +250,13 @@ impl Fas for PointMultigrid {
 
     /// The Hertz ellipsoid sqrt(1 - X^2 - (Y/k)^2) (load 2 pi k/3) for elastic surfaces (in the dry
     /// limit one 1.5 times wider with the same load, so the solver has to find Hertz); for rigid
-    /// ones a paraboloid of radius 1.5 l_h centred 0.5 l_h upstream, with the same load; H0 so that
+    /// ones, and where the rigid-isoviscous weight exceeds 1/2, a paraboloid of radius 1.5 l_h centred 0.5 l_h upstream, with the same load; H0 so that
     /// the central film equals the estimate.
     fn initialise(&mut self) {
         let h_e = self.domain.h_estimate;
-        let rigid = !self.phys.elastic;
+        // Where the rigid-isoviscous regime dominates, the Hertz pressure is far from the answer
+        // (and Newton from it can land on a spurious solution with a negative film).
+        let rigid = !self.phys.elastic || self.domain.rigid_weight > 0.5;
         let dry = self.phys.dry;
         let (k, load) = (self.phys.k, self.phys.load);
         let lh = (2.0 * h_e).sqrt();
