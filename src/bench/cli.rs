@@ -33,6 +33,10 @@ pub struct StabilityArgs {
     /// A 5 x 3 map instead of 8 x 5.
     #[arg(long)]
     pub quick: bool,
+    /// Map point contacts of this ellipticity D = Rx/Ry in (0, 1] instead of line contacts
+    /// (`--grid` then counts points per direction; give e.g. 129).
+    #[arg(long = "point-D")]
+    pub point_d: Option<f64>,
 }
 
 fn e<T: std::fmt::Debug>(x: T) -> InputError {
@@ -308,7 +312,21 @@ pub fn run_stability(a: &StabilityArgs) -> Result<i32, InputError> {
         )
     };
     let mut log = |s: &str| eprintln!("{s}");
-    let cells = stability::run(&ms, &ls, a.grid, &mut log);
+    let cells = match a.point_d {
+        Some(d) if !(d > 0.0 && d <= 1.0) => {
+            return Err(InputError(format!(
+                "--point-D {d} is invalid: the ellipticity must be in (0, 1]"
+            )))
+        }
+        Some(d) if !(17..=1025).contains(&a.grid) => {
+            return Err(InputError(format!(
+                "--grid {} with --point-D {d}: give 17 to 1025 points per direction",
+                a.grid
+            )))
+        }
+        Some(d) => stability::run_point(&ms, &ls, d, a.grid, &mut log),
+        None => stability::run(&ms, &ls, a.grid, &mut log),
+    };
     write_table(
         &a.out.join("stability.parquet"),
         vec![
