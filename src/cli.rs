@@ -3,8 +3,8 @@
 //! its status (exit code 0: a failure is a result), so scripts read `status`.
 //!
 //! `--contact point --D d` solves a point contact: `--grid` counts points per direction, the
-//! fields go to `--fields FILE.parquet`; the line-only options (`--method` baselines,
-//! `--profile`) are input errors there.
+//! fields go to `--fields FILE.parquet`; `--method newton` is limited to
+//! 33 x 33 points there, and `--profile` (line only) is an input error.
 
 use crate::lubricant::{Density, Viscosity};
 use crate::params::{Elasticity, LineCase, Models, ParamError, PointCase};
@@ -277,14 +277,10 @@ fn build_case(a: &SolveArgs) -> Result<LineCase, InputError> {
 
 fn build_point_case(a: &SolveArgs) -> Result<PointCase, InputError> {
     let bad = |e: ParamError| InputError(e.to_string());
-    if a.method != MethodArg::Multigrid {
-        let name = if a.method == MethodArg::Newton {
-            "newton"
-        } else {
-            "relax"
-        };
+    if a.method == MethodArg::Newton && a.grid.unwrap_or(POINT_GRID.0) > 33 {
         return Err(InputError(format!(
-            "--method {name} is not available for point contacts (multigrid only)"
+            "--method newton with a point contact on --grid {}: the dense 2D Jacobian costs O(N^3); use --grid 33 or less",
+            a.grid.unwrap_or(POINT_GRID.0)
         )));
     }
     if a.profile.is_some() {
@@ -321,11 +317,7 @@ pub fn run_solve(a: &SolveArgs) -> Result<i32, InputError> {
     p.mg.max_cycles = a.max_cycles.unwrap_or(LINE_MAX_CYCLES);
     p.mg.cycle = cycle_type(a.cycle);
     p.fallback = !a.no_fallback;
-    p.method = match a.method {
-        MethodArg::Multigrid => Method::Multigrid,
-        MethodArg::Newton => Method::Newton,
-        MethodArg::Relax => Method::Relax,
-    };
+    p.method = method_of(a.method);
     if p.method == Method::Newton && grid > 4097 {
         return Err(InputError(format!(
             "--method newton with --grid {grid}: the dense Jacobian needs O(N^2) memory and O(N^3) time; use at most 4097"
@@ -357,6 +349,14 @@ pub fn run_solve(a: &SolveArgs) -> Result<i32, InputError> {
     Ok(0)
 }
 
+fn method_of(m: MethodArg) -> Method {
+    match m {
+        MethodArg::Multigrid => Method::Multigrid,
+        MethodArg::Newton => Method::Newton,
+        MethodArg::Relax => Method::Relax,
+    }
+}
+
 /// A valid --accuracy target.
 fn accuracy_arg(t: f64) -> Result<f64, InputError> {
     if t.is_finite() && t > 0.0 && t < 1.0 {
@@ -378,6 +378,7 @@ fn run_solve_point(a: &SolveArgs) -> Result<i32, InputError> {
         p.mg.max_cycles = n;
     }
     p.mg.cycle = cycle_type(a.cycle);
+    p.method = method_of(a.method);
     p.fallback = !a.no_fallback;
     p.keep_fields = a.fields.is_some();
     let accuracy = a.accuracy.map(accuracy_arg).transpose()?;

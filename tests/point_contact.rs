@@ -5,6 +5,7 @@
 use ehlmap::params::PointCase;
 use ehlmap::problem::point::PointPhysics;
 use ehlmap::solver::fmg::fmg_solve;
+use ehlmap::solver::line::Method;
 use ehlmap::solver::point::{solve_point, PointMgParams, PointSolveParams};
 use ehlmap::solver::point_mg::PointMultigrid;
 use ehlmap::solver::Status;
@@ -181,4 +182,50 @@ fn parallel_rows_give_the_same_answer_whatever_the_thread_count() {
         serial.h_c
     );
     assert!((one.h_min / serial.h_min - 1.0).abs() < 1e-5);
+}
+
+#[test]
+fn newton_relaxation_and_multigrid_solve_the_same_discrete_problem() {
+    // Same discretisation, same answer: dense Newton and multigrid agree to 1e-6 on 33^2; the
+    // smoother alone needs far more work than multigrid for the same answer.
+    let case = PointCase::new(20.0, 10.0, 1.0).unwrap();
+    let with = |method: Method| {
+        let p = PointSolveParams {
+            method,
+            relax_max_sweeps: 3000,
+            mg: PointMgParams {
+                grid: 33,
+                ..Default::default()
+            },
+            ..Default::default()
+        };
+        solve_point(&case, &p).outputs
+    };
+    let (mg, newton, relax) = (
+        with(Method::Multigrid),
+        with(Method::Newton),
+        with(Method::Relax),
+    );
+    assert_eq!(newton.status, Status::Converged, "{}", newton.reason);
+    assert_eq!(mg.status, Status::Converged, "{}", mg.reason);
+    assert!(
+        (newton.h_c / mg.h_c - 1.0).abs() < 1e-6,
+        "{} vs {}",
+        newton.h_c,
+        mg.h_c
+    );
+    assert!((newton.h_min / mg.h_min - 1.0).abs() < 1e-6);
+    assert_eq!((newton.levels, relax.levels), (1, 1));
+    assert!(
+        relax.work_units > 5.0 * mg.work_units,
+        "{} vs {}",
+        relax.work_units,
+        mg.work_units
+    );
+    assert!(
+        (relax.h_c / mg.h_c - 1.0).abs() < 1e-3,
+        "{} vs {}",
+        relax.h_c,
+        mg.h_c
+    );
 }

@@ -133,11 +133,7 @@ fn bad_point_input_exits_2_naming_the_value() {
         (vec!["--D", "-0.2"], "D = -0.2"),
         (
             vec!["--D", "0.5", "--method", "newton"],
-            "not available for point contacts",
-        ),
-        (
-            vec!["--D", "0.5", "--method", "relax"],
-            "not available for point contacts",
+            "use --grid 33 or less",
         ),
         (vec!["--D", "0.5", "--grid", "9"], "--grid 9"),
         (vec!["--D", "0.5", "--grid", "4097"], "--grid 4097"),

@@ -51,6 +51,8 @@ pub trait Fas {
     fn fmg_interpolate(&mut self, l: usize);
     /// One FAS cycle with level l as the finest, at fixed H0.
     fn cycle(&mut self, l: usize);
+    /// One relaxation sweep of level l (counted in work units).
+    fn relax(&mut self, l: usize);
     fn record(&mut self, l: usize) -> CycleRecord;
     fn h0(&self) -> f64;
     /// Set H0 and refresh level l's film.

@@ -439,6 +439,9 @@ impl Fas for LineMultigrid {
     fn fmg_interpolate(&mut self, l: usize) {
         LineMultigrid::fmg_interpolate(self, l)
     }
+    fn relax(&mut self, l: usize) {
+        self.relax_level(l)
+    }
     fn cycle(&mut self, l: usize) {
         LineMultigrid::cycle(self, l)
     }

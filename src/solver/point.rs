@@ -16,9 +16,11 @@ use crate::problem::point_domain::PointDomainParams;
 use crate::solution::{line_outputs, Outputs};
 use crate::solver::fmg::fmg_solve;
 use crate::solver::ladder::{refine_to_accuracy, run_ladder, Attempt};
+use crate::solver::line::Method;
 use crate::solver::multigrid::CycleType;
 use crate::solver::point_mg::PointMultigrid;
 use crate::solver::relax::RelaxParams;
+use crate::solver::single_grid::solve_relax;
 use crate::solver::SolveInfo;
 
 /// Multigrid settings of a point solve; `Default` gives the settings the stability map supports.
@@ -75,6 +77,12 @@ impl Default for PointMgParams {
 /// Parameters of a point solve.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PointSolveParams {
+    /// Multigrid (default); `Relax`: the smoother alone on the finest grid; `Newton`: dense
+    /// semi-smooth Newton on the finest grid (baselines; Newton's O(N^3) cost limits it to
+    /// 33 x 33 points or so).
+    pub method: Method,
+    /// Sweeps allowed to the single-grid relaxation baseline.
+    pub relax_max_sweeps: usize,
     pub mg: PointMgParams,
     /// Retry with conservative settings when the first attempt fails.
     pub fallback: bool,
@@ -85,6 +93,8 @@ pub struct PointSolveParams {
 impl Default for PointSolveParams {
     fn default() -> Self {
         PointSolveParams {
+            method: Method::Multigrid,
+            relax_max_sweeps: 20_000,
             mg: PointMgParams::default(),
             fallback: true,
             keep_fields: false,
@@ -198,7 +208,11 @@ pub fn point_outputs(mg: &PointMultigrid, info: &SolveInfo) -> Outputs {
 fn run(case: &PointCase, p: &PointMgParams, keep_fields: bool) -> PointSolution {
     let mut mg = PointMultigrid::new(case, p);
     let info = fmg_solve(&mut mg);
-    let outputs = point_outputs(&mg, &info);
+    package(&mg, info, keep_fields)
+}
+
+fn package(mg: &PointMultigrid, info: SolveInfo, keep_fields: bool) -> PointSolution {
+    let outputs = point_outputs(mg, &info);
     let fields = keep_fields.then(|| {
         let lv = mg.levels.last().expect("levels");
         PointFields {
@@ -239,8 +253,28 @@ impl Attempt for PointSolution {
     }
 }
 
+/// The baselines run on one level: the finest grid itself.
+fn single_level(p: &PointMgParams) -> PointMgParams {
+    let mut s = *p;
+    s.domain.n0 = (p.grid.max(5) - 1).next_power_of_two();
+    s
+}
+
 /// Solve a point contact. Never panics on a valid case; numerical failure is a status.
 pub fn solve_point(case: &PointCase, params: &PointSolveParams) -> PointSolution {
+    match params.method {
+        Method::Multigrid => {}
+        Method::Newton => {
+            let mut p = single_level(&params.mg);
+            p.newton_max_iter = p.newton_max_iter.max(200);
+            return run(case, &p, params.keep_fields);
+        }
+        Method::Relax => {
+            let mut mg = PointMultigrid::new(case, &single_level(&params.mg));
+            let info = solve_relax(&mut mg, params.relax_max_sweeps, 10);
+            return package(&mg, info, params.keep_fields);
+        }
+    }
     let list = if params.fallback {
         attempts(&params.mg)
     } else {

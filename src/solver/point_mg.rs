@@ -381,6 +381,9 @@ impl Fas for PointMultigrid {
         fine.update_film(&self.phys, self.h0);
     }
 
+    fn relax(&mut self, l: usize) {
+        self.relax_level(l)
+    }
     fn cycle(&mut self, l: usize) {
         self.fas_cycle(l)
     }

@@ -6,31 +6,30 @@
 //! change of H_c over a check fall below the multigrid tolerances. Expected to be slow: smooth
 //! error components decay like 1 - O(h^2) per sweep, which is what the comparison shows.
 
+use crate::solver::fmg::Fas;
 use crate::solver::load_balance::LoadBalance;
-use crate::solver::multigrid::LineMultigrid;
 use crate::solver::{CycleRecord, SolveInfo, Status};
 use std::time::Instant;
 
-/// Run single-grid relaxation on a one-level [`LineMultigrid`] (built with
-/// `coarse_intervals` equal to the finest interval count). `max_sweeps` bounds the work.
-pub fn solve_relax(
-    mg: &mut LineMultigrid,
-    max_sweeps: usize,
-    sweeps_per_check: usize,
-) -> SolveInfo {
+/// Run single-grid relaxation on a one-level solver (a [`crate::solver::multigrid::LineMultigrid`]
+/// built with `coarse_intervals` equal to the finest interval count, or a
+/// [`crate::solver::point_mg::PointMultigrid`] whose coarsest grid is the finest).
+/// `max_sweeps` bounds the work.
+pub fn solve_relax<S: Fas>(mg: &mut S, max_sweeps: usize, sweeps_per_check: usize) -> SolveInfo {
     let start = Instant::now();
     mg.initialise();
-    let l = mg.levels.len() - 1;
-    let mut lb = LoadBalance::new(-std::f64::consts::FRAC_PI_2 / mg.domain.h_estimate);
+    let l = mg.top();
+    let mut lb = LoadBalance::new(-mg.load_target(l) / mg.h_estimate());
     let mut history: Vec<CycleRecord> = vec![];
     let mut prev: Option<CycleRecord> = None;
-    let (tol_load, tol_h) = (mg.params.tol_load, mg.params.tol_h);
+    let c = mg.control();
+    let (tol_load, tol_h) = (c.tol_load, c.tol_h);
     let mut sweeps = 0;
     let mut status = Status::MaxIterations;
     let mut reason = format!("no convergence in {max_sweeps} sweeps");
     while sweeps < max_sweeps {
         for _ in 0..sweeps_per_check {
-            mg.relax_level(l);
+            mg.relax(l);
         }
         sweeps += sweeps_per_check;
         let rec = mg.record(l);
@@ -44,7 +43,7 @@ pub fn solve_relax(
             (rec.load_error - p.load_error).abs() <= 0.1 * rec.load_error.abs() + 0.25 * tol_load
         });
         let dh = prev.map_or(f64::INFINITY, |p| {
-            (rec.h_c - p.h_c).abs() / rec.h_c.abs().max(1e-300)
+            (rec.h_c - p.h_c).abs() / rec.h_c.abs().max(1e-6)
         });
         if rec.load_error.abs() < tol_load && dh < tol_h {
             status = Status::Converged;
@@ -55,25 +54,14 @@ pub fn solve_relax(
             break;
         }
         if settled {
-            let lv = &mut mg.levels[l];
-            let ic = mg.domain.centre_index(lv.len() - 1);
             let max_step =
-                0.3 * lv.film[ic].abs().max(1e-3 * mg.domain.h_estimate) + 0.1 * mg.h0.abs();
-            mg.h0 = lb.next(mg.h0, rec.load_error * lv.g, max_step);
-            lv.update_film(&mg.phys, mg.h0);
+                0.3 * mg.centre_film(l).abs().max(1e-3 * mg.h_estimate()) + 0.1 * mg.h0().abs();
+            let h0 = lb.next(mg.h0(), rec.load_error * mg.load_target(l), max_step);
+            mg.set_h0(l, h0);
             prev = None;
         } else {
             prev = Some(rec);
         }
     }
-    let fine = mg.levels.last().expect("levels");
-    SolveInfo {
-        status,
-        reason,
-        history,
-        work_units: mg.work_units,
-        wall_s: start.elapsed().as_secs_f64(),
-        grid: fine.len(),
-        levels: 1,
-    }
+    mg.finish(start, status, reason, history)
 }
