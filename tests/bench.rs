@@ -3,11 +3,14 @@
 //! order, and the Pareto summary picks a converged, accurate-enough run.
 
 use ehlmap::bench::{speed, stability};
-use ehlmap::params::LineCase;
+use ehlmap::params::{LineCase, PointCase};
 
 #[test]
 fn methods_share_the_discretisation_error_and_pareto_is_consistent() {
-    let cases = [("line M=20 L=5", LineCase::new(20.0, 5.0).unwrap())];
+    let cases = [(
+        "line M=20 L=5",
+        speed::BenchCase::Line(LineCase::new(20.0, 5.0).unwrap()),
+    )];
     let mut log = |_: &str| {};
     let (refs, rows) = speed::run(&cases, &[257, 513], 1, 2049, &mut log);
     assert_eq!(refs.len(), 1);
@@ -32,6 +35,27 @@ fn methods_share_the_discretisation_error_and_pareto_is_consistent() {
             None => assert!(t < 1e-3, "a 5 % target must be met on this ladder"),
         }
     }
+}
+
+#[test]
+fn point_bench_runs_every_method_and_newton_matches_multigrid() {
+    let cases = [(
+        "circular M=20 L=10",
+        speed::BenchCase::Point(PointCase::new(20.0, 10.0, 1.0).unwrap()),
+    )];
+    let mut log = |_: &str| {};
+    let (refs, rows) = speed::run(&cases, &[33], 1, 129, &mut log);
+    assert_eq!(refs.len(), 1);
+    let methods: Vec<&str> = rows.iter().map(|r| r.method.as_str()).collect();
+    assert_eq!(methods, ["multigrid-V", "multigrid-W", "newton", "relax"]);
+    let get = |m: &str| rows.iter().find(|r| r.method == m).unwrap();
+    for m in ["multigrid-V", "multigrid-W", "newton"] {
+        assert_eq!(get(m).status, "converged", "{m}");
+    }
+    // Same discrete problem: the same error against the Richardson reference.
+    assert!((get("newton").err_h_c - get("multigrid-V").err_h_c).abs() < 1e-5);
+    // 33^2 against the 65/129 Richardson value: a few per cent.
+    assert!(get("multigrid-V").err_h_c > 1e-3 && get("multigrid-V").err_h_c < 0.2);
 }
 
 #[test]

@@ -1,11 +1,11 @@
 //! `ehlmap bench` and `ehlmap stability`: tables (Parquet), summaries (Markdown) and charts.
 
-use crate::bench::speed::{self, BenchRow, Reference};
+use crate::bench::speed::{self, BenchCase, BenchRow, Reference};
 use crate::bench::stability::{self, Cell};
 use crate::bench::COLORS;
 use crate::cli::InputError;
 use crate::io::table::{write_table, Column};
-use crate::params::LineCase;
+use crate::params::{LineCase, PointCase};
 use plotters::prelude::*;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -179,20 +179,32 @@ fn time_vs_n(path: &Path, case: &str, rows: &[BenchRow]) -> Result<Vec<(String, 
 pub fn run_bench(a: &BenchArgs) -> Result<i32, InputError> {
     std::fs::create_dir_all(&a.out)
         .map_err(|x| InputError(format!("--out {}: {x}", a.out.display())))?;
-    let cases = [
-        ("line M=20 L=10", LineCase::new(20.0, 10.0).expect("valid")),
-        (
-            "line M=200 L=10",
-            LineCase::new(200.0, 10.0).expect("valid"),
-        ),
+    let line = |m: f64| BenchCase::Line(LineCase::new(m, 10.0).expect("valid"));
+    let point = |m: f64, d: f64| BenchCase::Point(PointCase::new(m, 10.0, d).expect("valid"));
+    let line_cases = [
+        ("line M=20 L=10", line(20.0)),
+        ("line M=200 L=10", line(200.0)),
     ];
-    let (grids, ref_grid): (Vec<usize>, usize) = if a.quick {
-        (vec![257, 513, 1025, 2049], 4097)
+    let point_cases = [
+        ("circular M=20 L=10", point(20.0, 1.0)),
+        ("circular M=200 L=10", point(200.0, 1.0)),
+        ("elliptic D=0.25 M=100 L=10", point(100.0, 0.25)),
+    ];
+    let (grids, ref_grid, pgrids, pref): (Vec<usize>, usize, Vec<usize>, usize) = if a.quick {
+        (vec![257, 513, 1025, 2049], 4097, vec![33, 65, 129], 257)
     } else {
-        (vec![257, 513, 1025, 2049, 4097, 8193], 16385)
+        (
+            vec![257, 513, 1025, 2049, 4097, 8193],
+            16385,
+            vec![33, 65, 129, 257],
+            513,
+        )
     };
     let mut log = |s: &str| eprintln!("{s}");
-    let (refs, rows) = speed::run(&cases, &grids, a.repeats, ref_grid, &mut log);
+    let (mut refs, mut rows) = speed::run(&line_cases, &grids, a.repeats, ref_grid, &mut log);
+    let (prefs, prows) = speed::run(&point_cases, &pgrids, a.repeats, pref, &mut log);
+    refs.extend(prefs);
+    rows.extend(prows);
     write_table(
         &a.out.join("bench.parquet"),
         vec![
@@ -214,10 +226,13 @@ pub fn run_bench(a: &BenchArgs) -> Result<i32, InputError> {
     )
     .map_err(InputError)?;
     err_vs_time(&a.out.join("error_vs_time.png"), &refs, &rows)?;
-    let mut md = String::from("# ehlmap bench (line contacts, one thread)\n\n");
+    let mut md = String::from("# ehlmap bench (line and point contacts, one thread)\n\n");
     for r in &refs {
         let slopes = time_vs_n(
-            &a.out.join(format!("time_vs_n_M{}.png", r.m)),
+            &a.out.join(format!(
+                "time_vs_n_{}.png",
+                r.case.replace(['=', '.'], "").replace(' ', "_")
+            )),
             &r.case,
             &rows,
         )?;

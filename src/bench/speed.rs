@@ -1,9 +1,13 @@
-//! Speed-accuracy benchmark: methods x reference cases x grid ladder.
+//! Speed-accuracy benchmark: methods x reference cases (line and point) x grid ladder. Point
+//! grids count points per direction; dense Newton runs on point grids up to 33^2 only, the
+//! smoother alone up to 65^2.
 
 use crate::accuracy::richardson2;
-use crate::params::LineCase;
+use crate::params::{LineCase, PointCase};
+use crate::solution::Outputs;
 use crate::solver::line::{solve_line, LineSolveParams, Method};
 use crate::solver::multigrid::CycleType;
+use crate::solver::point::{solve_point, PointSolveParams};
 use serde::Serialize;
 use std::time::Instant;
 
@@ -85,20 +89,85 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
+/// A benchmark case: a line or a point contact.
+#[derive(Clone, Copy, Debug)]
+pub enum BenchCase {
+    Line(LineCase),
+    Point(PointCase),
+}
+
+impl BenchCase {
+    fn ml(&self) -> (f64, f64) {
+        match self {
+            BenchCase::Line(c) => (c.m, c.l),
+            BenchCase::Point(c) => (c.m, c.l),
+        }
+    }
+
+    /// Solve with the method `label` on `grid` points (per direction for point contacts);
+    /// `tight` asks for the reference tolerances.
+    fn solve(&self, label: &str, grid: usize, tight: bool) -> Outputs {
+        match self {
+            BenchCase::Line(c) => {
+                let mut p = methods()
+                    .into_iter()
+                    .find(|m| m.label == label)
+                    .expect("known method")
+                    .params;
+                p.mg.grid = grid;
+                if tight {
+                    p.mg.tol_load = 1e-9;
+                    p.mg.tol_h = 1e-9;
+                }
+                solve_line(c, &p).outputs
+            }
+            BenchCase::Point(c) => {
+                let mut p = PointSolveParams {
+                    relax_max_sweeps: 20_000,
+                    ..Default::default()
+                };
+                match label {
+                    "multigrid-W" => p.mg.cycle = CycleType::W,
+                    "newton" => p.method = Method::Newton,
+                    "relax" => p.method = Method::Relax,
+                    _ => {}
+                }
+                p.mg.grid = grid;
+                if tight {
+                    p.mg.tol_load = 1e-9;
+                    p.mg.tol_h = 1e-9;
+                }
+                solve_point(c, &p).outputs
+            }
+        }
+    }
+
+    /// (method label, largest grid) pairs run on this case.
+    fn ladder(&self) -> Vec<(&'static str, usize)> {
+        match self {
+            BenchCase::Line(_) => methods().iter().map(|m| (m.label, m.max_grid)).collect(),
+            // Dense 2D Newton: (N - 2)^2 unknowns, O(N^6) work; relaxation alone: O(N^2) sweeps.
+            BenchCase::Point(_) => vec![
+                ("multigrid-V", 1 << 12),
+                ("multigrid-W", 1 << 12),
+                ("newton", 33),
+                ("relax", 65),
+            ],
+        }
+    }
+}
+
 /// Reference values from multigrid on `fine` and `fine/2 + 1` points (second order assumed).
-pub fn reference(name: &str, case: &LineCase, fine: usize) -> Reference {
-    let run = |g: usize| {
-        let mut p = LineSolveParams::default();
-        p.mg.grid = g;
-        p.mg.tol_load = 1e-9;
-        p.mg.tol_h = 1e-9;
-        solve_line(case, &p).outputs
-    };
-    let (a, b) = (run(fine / 2 + 1), run(fine));
+pub fn reference(name: &str, case: &BenchCase, fine: usize) -> Reference {
+    let (a, b) = (
+        case.solve("multigrid-V", fine / 2 + 1, true),
+        case.solve("multigrid-V", fine, true),
+    );
+    let (m, l) = case.ml();
     Reference {
         case: name.to_string(),
-        m: case.m,
-        l: case.l,
+        m,
+        l,
         h_c: richardson2(a.h_c, b.h_c).extrapolated,
         h_min: richardson2(a.h_min, b.h_min).extrapolated,
         grids: (a.grid, b.grid),
@@ -107,7 +176,7 @@ pub fn reference(name: &str, case: &LineCase, fine: usize) -> Reference {
 
 /// Run every method on every case over `grids`, `repeats` times each (median wall time).
 pub fn run(
-    cases: &[(&str, LineCase)],
+    cases: &[(&str, BenchCase)],
     grids: &[usize],
     repeats: usize,
     ref_grid: usize,
@@ -121,22 +190,20 @@ pub fn run(
             "{name}: reference H_c {:.6}, H_min {:.6} (Richardson over {:?} points)",
             r.h_c, r.h_min, r.grids
         ));
-        for m in methods() {
-            for &g in grids.iter().filter(|&&g| g <= m.max_grid) {
-                let mut p = m.params;
-                p.mg.grid = g;
+        for (label, max_grid) in case.ladder() {
+            for &g in grids.iter().filter(|&&g| g <= max_grid) {
                 let mut times = vec![];
                 let mut last = None;
                 for _ in 0..repeats.max(1) {
                     let t = Instant::now();
-                    let s = solve_line(case, &p);
+                    let o = case.solve(label, g, false);
                     times.push(t.elapsed().as_secs_f64());
-                    last = Some(s.outputs);
+                    last = Some(o);
                 }
                 let o = last.expect("one repeat");
                 let row = BenchRow {
                     case: name.to_string(),
-                    method: m.label.to_string(),
+                    method: label.to_string(),
                     grid: o.grid,
                     wall_s: median(times),
                     work_units: o.work_units,
