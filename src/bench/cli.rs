@@ -79,6 +79,8 @@ fn err_vs_time(path: &Path, refs: &[Reference], rows: &[BenchRow]) -> Result<(),
         ch.configure_mesh()
             .x_desc("wall time (s)")
             .y_desc("|H_c/H_ref - 1|")
+            .x_label_formatter(&|v| format!("{v:.2e}"))
+            .y_label_formatter(&|v| format!("{v:.1e}"))
             .draw()
             .map_err(e)?;
         for (k, m) in speed::methods().iter().enumerate() {
