@@ -21,7 +21,7 @@ fn methods_share_the_discretisation_error_and_pareto_is_consistent() {
             .filter(|r| r.grid == g)
             .map(|r| r.err_h_c)
             .collect();
-        assert_eq!(errs.len(), 4, "four methods at {g} points");
+        assert_eq!(errs.len(), 6, "six methods at {g} points");
         let spread = errs.iter().fold(0.0f64, |a, &e| a.max((e - errs[0]).abs()));
         assert!(spread < 1e-5, "methods differ on the same grid: {errs:?}");
     }
@@ -47,11 +47,23 @@ fn point_bench_runs_every_method_and_newton_matches_multigrid() {
     let (refs, rows) = speed::run(&cases, &[33], 1, 129, &mut log);
     assert_eq!(refs.len(), 1);
     let methods: Vec<&str> = rows.iter().map(|r| r.method.as_str()).collect();
-    assert_eq!(methods, ["multigrid-V", "multigrid-W", "newton", "relax"]);
+    assert_eq!(
+        methods,
+        [
+            "multigrid-V",
+            "multigrid-V-1cycle",
+            "multigrid-V-direct",
+            "multigrid-W",
+            "newton",
+            "relax"
+        ]
+    );
     let get = |m: &str| rows.iter().find(|r| r.method == m).unwrap();
-    for m in ["multigrid-V", "multigrid-W", "newton"] {
+    for m in ["multigrid-V", "multigrid-V-direct", "multigrid-W", "newton"] {
         assert_eq!(get(m).status, "converged", "{m}");
     }
+    // FFT and direct deformation products give the same discrete solution.
+    assert!((get("multigrid-V-direct").h_c / get("multigrid-V").h_c - 1.0).abs() < 1e-9);
     // Same discrete problem: the same error against the Richardson reference.
     assert!((get("newton").err_h_c - get("multigrid-V").err_h_c).abs() < 1e-5);
     // 33^2 against the 65/129 Richardson value: a few per cent.

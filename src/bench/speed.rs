@@ -19,8 +19,10 @@ pub struct MethodSpec {
     pub max_grid: usize,
 }
 
-/// The methods compared: multigrid V and W cycles, dense Newton-Raphson (O(N^3), up to 1025
-/// points), and the multigrid smoother alone (up to 1025 points).
+/// The methods compared: multigrid V cycles (default: 2 cycles per FMG level; 1 cycle per level;
+/// the deformation by the O(N^2) direct sum instead of the FFT, up to 4097 points) and W cycles,
+/// dense Newton-Raphson (O(N^3), up to 1025 points), and the multigrid smoother alone (up to 1025
+/// points).
 pub fn methods() -> Vec<MethodSpec> {
     let v = LineSolveParams::default();
     let mut w = v;
@@ -34,11 +36,25 @@ pub fn methods() -> Vec<MethodSpec> {
         relax_max_sweeps: 50_000,
         ..v
     };
+    let mut one = v;
+    one.mg.fmg_cycles = 1;
+    let mut direct = v;
+    direct.mg.direct_deformation = true;
     vec![
         MethodSpec {
             label: "multigrid-V",
             params: v,
             max_grid: 1 << 20,
+        },
+        MethodSpec {
+            label: "multigrid-V-1cycle",
+            params: one,
+            max_grid: 1 << 20,
+        },
+        MethodSpec {
+            label: "multigrid-V-direct",
+            params: direct,
+            max_grid: 4097,
         },
         MethodSpec {
             label: "multigrid-W",
@@ -128,6 +144,8 @@ impl BenchCase {
                 };
                 match label {
                     "multigrid-W" => p.mg.cycle = CycleType::W,
+                    "multigrid-V-1cycle" => p.mg.fmg_cycles = 1,
+                    "multigrid-V-direct" => p.mg.direct_deformation = true,
                     "newton" => p.method = Method::Newton,
                     "relax" => p.method = Method::Relax,
                     _ => {}
@@ -149,6 +167,9 @@ impl BenchCase {
             // Dense 2D Newton: (N - 2)^2 unknowns, O(N^6) work; relaxation alone: O(N^2) sweeps.
             BenchCase::Point(_) => vec![
                 ("multigrid-V", 1 << 12),
+                ("multigrid-V-1cycle", 1 << 12),
+                // The direct 2D sum costs O(n^4) per film update.
+                ("multigrid-V-direct", 65),
                 ("multigrid-W", 1 << 12),
                 ("newton", 33),
                 ("relax", 65),

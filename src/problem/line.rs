@@ -13,7 +13,7 @@
 
 use crate::lubricant::{Density, Viscosity};
 use crate::params::{Elasticity, LineCase};
-use crate::problem::kernel1d::{log_kernel, DeformPlan1d};
+use crate::problem::kernel1d::{direct_product, log_kernel, DeformPlan1d};
 use std::f64::consts::PI;
 
 /// The physics of a line case in Hertzian scaling, shared by all levels.
@@ -73,6 +73,8 @@ pub struct LineLevel {
     pub work: Vec<f64>,
     /// Work buffer (Jacobi changes, residuals).
     pub delta: Vec<f64>,
+    /// Compute the deformation by the O(N^2) direct sum instead of the FFT (baseline).
+    pub direct_deformation: bool,
 }
 
 impl LineLevel {
@@ -95,6 +97,7 @@ impl LineLevel {
             kernel,
             work: vec![0.0; n],
             delta: vec![0.0; n],
+            direct_deformation: false,
         }
     }
 
@@ -109,7 +112,9 @@ impl LineLevel {
     /// Recompute H (by the fast product), rho and eps from P and H0.
     pub fn update_film(&mut self, phys: &LinePhysics, h0: f64) {
         let n = self.len();
-        if phys.elastic {
+        if phys.elastic && self.direct_deformation {
+            direct_product(&self.kernel, &self.p, &mut self.work);
+        } else if phys.elastic {
             self.deform.apply(&self.p, &mut self.work);
         } else {
             self.work.fill(0.0);

@@ -16,7 +16,7 @@
 
 use crate::lubricant::{Density, Viscosity};
 use crate::params::{Elasticity, PointCase};
-use crate::problem::kernel2d::{kernel2d, DeformPlan2d};
+use crate::problem::kernel2d::{direct_product2d, kernel2d, DeformPlan2d};
 use crate::problem::line::{UPWIND1, UPWIND2};
 
 /// The physics of a point case in Hertzian scaling, shared by all levels.
@@ -99,6 +99,8 @@ pub struct PointLevel {
     pub work: Vec<f64>,
     /// Work buffer (residuals).
     pub delta: Vec<f64>,
+    /// Compute the deformation by the O(N^2) direct sum instead of the FFT (baseline).
+    pub direct_deformation: bool,
 }
 
 impl PointLevel {
@@ -143,6 +145,7 @@ impl PointLevel {
             gap,
             work: vec![0.0; n],
             delta: vec![0.0; n],
+            direct_deformation: false,
         }
     }
 
@@ -169,7 +172,11 @@ impl PointLevel {
     /// The deformation sum c K*P (no H0, no gap) into `work`.
     pub fn deformation(&mut self, phys: &PointPhysics) {
         if phys.elastic {
-            self.deform.apply(&self.p, &mut self.work);
+            if self.direct_deformation {
+                direct_product2d(&self.kernel, self.nx, self.ny, &self.p, &mut self.work);
+            } else {
+                self.deform.apply(&self.p, &mut self.work);
+            }
             for w in self.work.iter_mut() {
                 *w *= phys.coef;
             }

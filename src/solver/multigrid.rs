@@ -73,6 +73,8 @@ pub struct LineMgParams {
     pub second_order: bool,
     /// Newton iterations allowed for the first coarsest-grid solve (and for the Newton method).
     pub newton_max_iter: usize,
+    /// Deformation by the O(N^2) direct sum on every level instead of the FFT (baseline).
+    pub direct_deformation: bool,
 }
 
 impl Default for LineMgParams {
@@ -94,6 +96,7 @@ impl Default for LineMgParams {
             coarse_intervals: None,
             second_order: true,
             newton_max_iter: 40,
+            direct_deformation: false,
         }
     }
 }
@@ -142,7 +145,9 @@ impl LineMultigrid {
         let mut levels = vec![];
         let mut n = domain.n0;
         while n <= fine {
-            levels.push(LineLevel::new(domain.x_in, domain.x_out, n));
+            let mut lv = LineLevel::new(domain.x_in, domain.x_out, n);
+            lv.direct_deformation = params.direct_deformation;
+            levels.push(lv);
             n *= 2;
         }
         let p_hat = levels.iter().map(|l| vec![0.0; l.len()]).collect();

@@ -49,6 +49,8 @@ pub struct PointMgParams {
     /// levels of 65 rows or more. Off by default: a sweep already runs one solve per thread, and
     /// the default Gauss-Seidel row order converges faster per sweep.
     pub parallel: bool,
+    /// Deformation by the O(N^2) direct sum on every level instead of the FFT (baseline).
+    pub direct_deformation: bool,
 }
 
 impl Default for PointMgParams {
@@ -70,6 +72,7 @@ impl Default for PointMgParams {
             second_order: true,
             domain: PointDomainParams::default(),
             parallel: false,
+            direct_deformation: false,
         }
     }
 }

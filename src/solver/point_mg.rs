@@ -60,14 +60,9 @@ impl PointMultigrid {
         let mut levels = vec![];
         let mut n = domain.n0;
         loop {
-            levels.push(PointLevel::new(
-                &phys,
-                domain.x_in,
-                domain.x_out,
-                domain.y_half,
-                n,
-                n,
-            ));
+            let mut lv = PointLevel::new(&phys, domain.x_in, domain.x_out, domain.y_half, n, n);
+            lv.direct_deformation = params.direct_deformation;
+            levels.push(lv);
             if n + 1 >= params.grid {
                 break;
             }
