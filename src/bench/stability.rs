@@ -8,6 +8,7 @@ use crate::params::{LineCase, PointCase};
 use crate::solution::Outputs;
 use crate::solver::line::{solve_line, LineSolveParams, Method};
 use crate::solver::point::{solve_point, PointSolveParams};
+use crate::solver::relax::Smoother;
 use serde::Serialize;
 
 /// One cell of the map.
@@ -23,13 +24,16 @@ pub struct Cell {
     pub wall_s: f64,
 }
 
-/// The methods of the map and their grids: multigrid (default, with fallback) and without
-/// fallback on `grid`; dense Newton and single-grid relaxation on 257 points (their cost).
+/// The methods of the map and their grids: multigrid (default, with fallback), without
+/// fallback, and with the classic point smoother (no fallback) on `grid`; dense Newton and single-grid relaxation on 257 points (their cost).
 pub fn map_methods(grid: usize) -> Vec<(&'static str, LineSolveParams)> {
     let mut mg = LineSolveParams::default();
     mg.mg.grid = grid;
     let mut bare = mg;
     bare.fallback = false;
+    // Venner and Lubrecht's point Gauss-Seidel / distributive Jacobi smoother in the same cycle.
+    let mut classic = bare;
+    classic.mg.relax.smoother = Smoother::Point;
     let mut newton = LineSolveParams {
         method: Method::Newton,
         ..LineSolveParams::default()
@@ -44,6 +48,7 @@ pub fn map_methods(grid: usize) -> Vec<(&'static str, LineSolveParams)> {
     vec![
         ("multigrid", mg),
         ("multigrid-no-fallback", bare),
+        ("multigrid-classic-smoother", classic),
         ("newton-257", newton),
         ("relax-257", relax),
     ]
