@@ -72,7 +72,7 @@ pub struct Profile {
 }
 
 /// Vertex of the parabola through (-1, a), (0, b), (1, c): offset in [-1, 1] and value.
-fn parabola_vertex(a: f64, b: f64, c: f64) -> (f64, f64) {
+pub(crate) fn parabola_vertex(a: f64, b: f64, c: f64) -> (f64, f64) {
     let den = a - 2.0 * b + c;
     if den.abs() < 1e-300 {
         return (0.0, b);

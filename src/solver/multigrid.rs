@@ -19,7 +19,7 @@ use crate::params::LineCase;
 use crate::problem::domain::{DomainParams, LineDomain};
 use crate::problem::line::{LineLevel, LinePhysics};
 use crate::solver::fmg::{fmg_solve, Fas, FmgControl};
-use crate::solver::newton::{newton_solve, NewtonOutcome, NewtonParams};
+use crate::solver::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
 use crate::solver::relax::{relax, LineScratch, RelaxParams};
 use crate::solver::{CycleRecord, SolveInfo, Status};
 use serde::{Deserialize, Serialize};
@@ -259,24 +259,10 @@ impl LineMultigrid {
         if !with_slope {
             return out;
         }
-        let saved = (lv.p.clone(), self.h0);
-        let e0 = lv.load() - lv.g;
         let ic = self.domain.centre_index(lv.len() - 1);
         let dh = 1e-3 * lv.film[ic].abs().max(1e-3 * self.domain.h_estimate);
-        let mut h1 = self.h0 + dh;
-        let np = NewtonParams {
-            fix_h0: true,
-            ..NewtonParams::default()
-        };
-        let out = newton_solve(lv, &self.phys, &mut h1, &np);
-        let s = (lv.load() - lv.g - e0) / dh;
-        self.load_slope = if out.converged && s.is_finite() && s < 0.0 {
-            s
-        } else {
-            -lv.g / self.domain.h_estimate
-        };
-        lv.p.copy_from_slice(&saved.0);
-        lv.update_film(&self.phys, self.h0);
+        let fallback = -lv.g / self.domain.h_estimate;
+        self.load_slope = load_slope(lv, &self.phys, self.h0, dh, fallback).0;
         first
     }
 

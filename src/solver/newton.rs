@@ -120,6 +120,36 @@ impl NewtonLevel for LineLevel {
     }
 }
 
+/// Estimate dG/dH0 (G = load sum - g) on a level solved at `h0`: solve again at fixed H0 + dh
+/// and difference the load; P and the film are restored afterwards. Falls back to `fallback`
+/// when that solve fails or the slope is not negative. Returns the slope and the Newton
+/// iterations spent.
+pub fn load_slope<T: NewtonLevel>(
+    lv: &mut T,
+    phys: &T::Phys,
+    h0: f64,
+    dh: f64,
+    fallback: f64,
+) -> (f64, usize) {
+    let saved = lv.pressure().to_vec();
+    let e0 = lv.load_sum() - lv.load_rhs();
+    let mut h1 = h0 + dh;
+    let np = NewtonParams {
+        fix_h0: true,
+        ..NewtonParams::default()
+    };
+    let out = newton_solve(lv, phys, &mut h1, &np);
+    let s = (lv.load_sum() - lv.load_rhs() - e0) / dh;
+    lv.pressure().copy_from_slice(&saved);
+    lv.refresh(phys, h0);
+    let slope = if out.converged && s.is_finite() && s < 0.0 {
+        s
+    } else {
+        fallback
+    };
+    (slope, out.iterations)
+}
+
 /// Build the semi-smooth Newton system at the current state (film must be up to date).
 fn linearise<T: NewtonLevel>(
     lv: &mut T,

@@ -13,7 +13,7 @@
 
 use crate::params::PointCase;
 use crate::problem::point_domain::PointDomainParams;
-use crate::solution::{line_outputs, Outputs};
+use crate::solution::{line_outputs, parabola_vertex, Outputs};
 use crate::solver::fmg::fmg_solve;
 use crate::solver::ladder::{refine_to_accuracy, run_ladder, Attempt};
 use crate::solver::line::Method;
@@ -135,16 +135,6 @@ fn attempts(p: &PointMgParams) -> Vec<PointMgParams> {
     vec![*p, damped, a2, a3]
 }
 
-/// Vertex of the parabola through (-1, a), (0, b), (1, c): offset in [-1, 1] and value.
-fn vertex(a: f64, b: f64, c: f64) -> (f64, f64) {
-    let den = a - 2.0 * b + c;
-    if den.abs() < 1e-300 {
-        return (0.0, b);
-    }
-    let t = (0.5 * (a - c) / den).clamp(-1.0, 1.0);
-    (t, b - 0.25 * (a - c) * t)
-}
-
 /// The outputs of a finished solve (see the module docs).
 pub fn point_outputs(mg: &PointMultigrid, info: &SolveInfo) -> Outputs {
     let top = mg.levels.len() - 1;
@@ -174,8 +164,8 @@ pub fn point_outputs(mg: &PointMultigrid, info: &SolveInfo) -> Outputs {
     }
     let (i, j) = (cmin % nx, cmin / nx);
     let f = &lv.film;
-    let (tx, vx) = vertex(f[cmin - 1], f[cmin], f[cmin + 1]);
-    let (ty, vy) = vertex(f[cmin - nx], f[cmin], f[cmin + nx]);
+    let (tx, vx) = parabola_vertex(f[cmin - 1], f[cmin], f[cmin + 1]);
+    let (ty, vy) = parabola_vertex(f[cmin - nx], f[cmin], f[cmin + nx]);
     out.h_min = (vx + vy - f[cmin]) * hs;
     out.x_min = lv.x[i] + tx * lv.hx;
     out.y_min = Some(lv.y[j] + ty * lv.hy);
@@ -188,8 +178,8 @@ pub fn point_outputs(mg: &PointMultigrid, info: &SolveInfo) -> Outputs {
     }
     if cmax % nx > 0 && cmax % nx + 1 < nx && cmax / nx > 0 && cmax / nx + 1 < ny {
         let p = &lv.p;
-        let (_, px) = vertex(p[cmax - 1], p[cmax], p[cmax + 1]);
-        let (_, py) = vertex(p[cmax - nx], p[cmax], p[cmax + nx]);
+        let (_, px) = parabola_vertex(p[cmax - 1], p[cmax], p[cmax + 1]);
+        let (_, py) = parabola_vertex(p[cmax - nx], p[cmax], p[cmax + nx]);
         pmax = px + py - p[cmax];
     }
     out.p_max = pmax;

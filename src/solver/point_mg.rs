@@ -15,7 +15,7 @@ use crate::params::{Elasticity, PointCase};
 use crate::problem::point::{PointLevel, PointPhysics};
 use crate::problem::point_domain::PointDomain;
 use crate::solver::fmg::{Fas, FmgControl};
-use crate::solver::newton::{newton_solve, NewtonOutcome, NewtonParams};
+use crate::solver::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
 use crate::solver::point::PointMgParams;
 use crate::solver::point_relax::{point_line_sweep, PointScratch};
 use crate::solver::{CycleRecord, SolveInfo, Status};
@@ -245,8 +245,9 @@ impl Fas for PointMultigrid {
 
     /// The Hertz ellipsoid sqrt(1 - X^2 - (Y/k)^2) (load 2 pi k/3) for elastic surfaces (in the dry
     /// limit one 1.5 times wider with the same load, so the solver has to find Hertz); for rigid
-    /// ones, and where the rigid-isoviscous weight exceeds 1/2, a paraboloid of radius 1.5 l_h centred 0.5 l_h upstream, with the same load; H0 so that
-    /// the central film equals the estimate.
+    /// ones, and where the rigid-isoviscous weight exceeds 1/2, a paraboloid of radius 1.5 l_h
+    /// centred 0.5 l_h upstream, with the same load; H0 so that the central film equals the
+    /// estimate.
     fn initialise(&mut self) {
         let h_e = self.domain.h_estimate;
         // Where the rigid-isoviscous regime dominates, the Hertz pressure is far from the answer
@@ -311,24 +312,11 @@ impl Fas for PointMultigrid {
         }
         let ic = self.centre_index(0);
         let lv = &mut self.levels[0];
-        let saved = (lv.p.clone(), self.h0);
-        let e0 = lv.load() - lv.g;
         let dh = 1e-3 * lv.film[ic].abs().max(1e-3 * self.domain.h_estimate);
-        let mut h1 = self.h0 + dh;
-        let np = NewtonParams {
-            fix_h0: true,
-            ..NewtonParams::default()
-        };
-        let o2 = newton_solve(lv, &self.phys, &mut h1, &np);
-        let s = (lv.load() - lv.g - e0) / dh;
-        self.load_slope = if o2.converged && s.is_finite() && s < 0.0 {
-            s
-        } else {
-            -lv.g / self.domain.h_estimate
-        };
-        lv.p.copy_from_slice(&saved.0);
-        lv.update_film(&self.phys, self.h0);
-        self.newton_cost(o2.iterations);
+        let fallback = -lv.g / self.domain.h_estimate;
+        let (slope, iterations) = load_slope(lv, &self.phys, self.h0, dh, fallback);
+        self.load_slope = slope;
+        self.newton_cost(iterations);
         out
     }
 

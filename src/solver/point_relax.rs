@@ -29,6 +29,8 @@ pub struct PointScratch {
     /// Entries of one Jacobian row over the window, and the applied changes of the row.
     ent: Vec<f64>,
     change: Vec<f64>,
+    /// The changes of one colour in zebra order.
+    zebra: Vec<f64>,
 }
 
 /// One sweep of x-line relaxation over all interior rows: Gauss-Seidel from row to row, or, with
@@ -46,18 +48,25 @@ pub fn point_line_sweep(
     let (nx, ny) = (lv.nx, lv.ny);
     if parallel {
         use rayon::prelude::*;
+        // The changes of one colour, row after row (taken out of the scratch so the rows can
+        // fill it in parallel; each rayon job has its own row scratch).
+        let mut zebra = std::mem::take(&mut s.zebra);
         for first in [1usize, 2] {
-            let rows: Vec<usize> = (first..ny - 1).step_by(2).collect();
-            let changes: Vec<Vec<f64>> = {
+            let count = (ny - 1 - first).div_ceil(2);
+            zebra.clear();
+            zebra.resize(count * nx, 0.0);
+            {
                 let lv = &*lv;
-                rows.par_iter()
-                    .map_init(PointScratch::default, |s, &j| {
-                        row_changes(lv, phys, rp, j, s);
-                        s.change.clone()
-                    })
-                    .collect()
-            };
-            for (&j, ch) in rows.iter().zip(&changes) {
+                zebra.par_chunks_mut(nx).enumerate().for_each_init(
+                    PointScratch::default,
+                    |rs, (k, out)| {
+                        row_changes(lv, phys, rp, first + 2 * k, rs);
+                        out.copy_from_slice(&rs.change);
+                    },
+                );
+            }
+            for (k, ch) in zebra.chunks(nx).enumerate() {
+                let j = first + 2 * k;
                 for i in 1..nx - 1 {
                     let c = lv.at(i, j);
                     lv.p[c] += ch[i];
@@ -65,6 +74,7 @@ pub fn point_line_sweep(
             }
             lv.update_film(phys, h0);
         }
+        s.zebra = zebra;
         return;
     }
     let reach = 2 * (rp.band + 1);
@@ -107,6 +117,7 @@ fn row_changes(
         rhs,
         ent,
         change,
+        ..
     } = s;
     rows.clear();
     rows.extend((1..nx - 1).map(|i| PointJacRow::new(lv, phys, i, j)));
