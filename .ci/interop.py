@@ -20,6 +20,8 @@ assert all(p.name.startswith("part-") for p in dataset.iterdir()), "dataset hold
 expect = {
     "case_id": pl.String, "M": pl.Float64, "L": pl.Float64, "H_c": pl.Float64, "H_min": pl.Float64,
     "status": pl.String, "reason": pl.String, "valid": pl.Boolean, "grid": pl.Int64, "wall_s": pl.Float64,
+    "contact": pl.String, "D": pl.Float64, "model_used": pl.String, "level": pl.Int64,
+    "error_estimate": pl.Float64, "warm_start": pl.String, "half_grid_estimate": pl.Boolean,
 }
 df = pl.scan_parquet(dataset).collect()  # the directory layout, as a notebook opens it
 for col, ty in expect.items():

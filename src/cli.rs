@@ -8,6 +8,7 @@
 
 use crate::lubricant::{Density, Viscosity};
 use crate::params::{Elasticity, LineCase, Models, ParamError, PointCase};
+use crate::select::{solve_line_selected, solve_point_selected};
 use crate::solver::line::{solve_line, solve_line_to_accuracy, LineSolveParams, Method};
 use crate::solver::multigrid::CycleType;
 use crate::solver::point::{solve_point, solve_point_to_accuracy, PointSolveParams};
@@ -110,10 +111,15 @@ pub struct SolveArgs {
     pub grid: Option<usize>,
     #[arg(long, value_enum, default_value = "v")]
     pub cycle: CycleArg,
-    /// Target relative accuracy of H_c and H_min: refine the grid from 257 points until the
-    /// Richardson estimate meets it (up to --max-grid); reports error_estimate and accuracy_met.
+    /// Target relative accuracy of H_c and H_min: pick the cheapest adequate model (rigid,
+    /// isoviscous, closed form; see --full-model) and refine the grid from 257 points until the
+    /// Richardson estimate meets it (up to --max-grid); reports model_used, level,
+    /// error_estimate and accuracy_met.
     #[arg(long)]
     pub accuracy: Option<f64>,
+    /// With --accuracy: always solve the full model (no model selection).
+    #[arg(long)]
+    pub full_model: bool,
     /// Largest grid the accuracy target may use.
     #[arg(long, default_value_t = 16385)]
     pub max_grid: usize,
@@ -325,7 +331,8 @@ pub fn run_solve(a: &SolveArgs) -> Result<i32, InputError> {
     }
     p.keep_profile = a.profile.is_some();
     let s = match a.accuracy {
-        Some(t) => solve_line_to_accuracy(&case, &p, accuracy_arg(t)?, a.max_grid),
+        Some(t) if a.full_model => solve_line_to_accuracy(&case, &p, accuracy_arg(t)?, a.max_grid),
+        Some(t) => solve_line_selected(&case, &p, accuracy_arg(t)?, a.max_grid).0,
         None => solve_line(&case, &p),
     };
     if let (Some(path), Some(prof)) = (&a.profile, &s.profile) {
@@ -384,7 +391,8 @@ fn run_solve_point(a: &SolveArgs) -> Result<i32, InputError> {
     let accuracy = a.accuracy.map(accuracy_arg).transpose()?;
     let run = |p: &PointSolveParams| match accuracy {
         // Point grids are per direction: at most 513 x 513 unless --max-grid is lower.
-        Some(t) => solve_point_to_accuracy(&case, p, t, a.max_grid.min(513)),
+        Some(t) if a.full_model => solve_point_to_accuracy(&case, p, t, a.max_grid.min(513)),
+        Some(t) => solve_point_selected(&case, p, t, a.max_grid.min(513)).0,
         None => solve_point(&case, p),
     };
     let s = match a.threads {
@@ -474,7 +482,20 @@ fn point_summary(case: &PointCase, o: &crate::solution::Outputs) -> String {
         o.levels,
         o.work_units,
         o.wall_s
-    )
+    ) + &model_line(o)
+}
+
+/// The model and error-estimate line of a summary (accuracy targets only).
+fn model_line(o: &crate::solution::Outputs) -> String {
+    match o.error_estimate {
+        Some(e) => format!(
+            "model          {}, level {}, error estimate {e:.1e}\n",
+            o.model_used,
+            o.level.map_or("-".to_string(), |l| l.to_string())
+        ),
+        None if o.model_used != "full" => format!("model          {}\n", o.model_used),
+        None => String::new(),
+    }
 }
 
 fn summary(case: &LineCase, o: &crate::solution::Outputs) -> String {
@@ -514,5 +535,5 @@ fn summary(case: &LineCase, o: &crate::solution::Outputs) -> String {
         o.levels,
         o.work_units,
         o.wall_s
-    )
+    ) + &model_line(o)
 }

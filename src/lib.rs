@@ -2,7 +2,7 @@
 //!
 //! The module tree follows the data flow: parameters and lubricant models ([`params`],
 //! [`lubricant`]) -> the discretised problem ([`problem`]) -> solvers ([`solver`]) -> what a solve
-//! reports ([`solution`]) -> storage ([`io`]); [`formulas`] holds the published film formulas the
+//! reports ([`solution`]); [`select`] picks the cheapest adequate model -> storage ([`io`]); [`formulas`] holds the published film formulas the
 //! results are compared with.
 
 // Stencil and kernel loops index several arrays by node number; iterator chains would hide that.
@@ -19,6 +19,7 @@ pub mod io;
 pub mod lubricant;
 pub mod params;
 pub mod problem;
+pub mod select;
 pub mod solution;
 pub mod solver;
 pub mod sweep;

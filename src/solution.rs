@@ -52,6 +52,14 @@ pub struct Outputs {
     pub reason: String,
     pub grid: usize,
     pub levels: usize,
+    /// Refinement level of the finest grid: log2 of its intervals over those of the smallest
+    /// grid a solve accepts (32 line intervals, 16 point intervals per direction), so 257 / 1025
+    /// / 4097 line points are levels 3 / 5 / 7 and 33^2 / 65^2 / 129^2 point nodes 1 / 2 / 3;
+    /// none for a closed-form answer.
+    pub level: Option<usize>,
+    /// The model that answered (`crate::select`): "full" unless a simpler one was selected.
+    #[serde(default = "full_model")]
+    pub model_used: String,
     pub work_units: f64,
     pub wall_s: f64,
     /// With an accuracy target only: the estimated relative discretisation error of H_c and
@@ -61,6 +69,15 @@ pub struct Outputs {
     /// With an accuracy target only: whether the estimate met the target.
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub accuracy_met: Option<bool>,
+}
+
+/// log2((grid - 1) / base), rounded: the refinement level of a grid over `base` intervals.
+pub fn grid_level(grid: usize, base: usize) -> usize {
+    ((grid.saturating_sub(1) as f64 / base as f64).log2().round()).max(0.0) as usize
+}
+
+fn full_model() -> String {
+    "full".to_string()
 }
 
 /// Pressure and film along X on the finest grid (X, P in Hertzian units, H in Moes units).
@@ -158,6 +175,8 @@ pub fn line_outputs(
         reason: info.reason.clone(),
         grid: info.grid,
         levels: info.levels,
+        level: Some(grid_level(info.grid, 32)),
+        model_used: full_model(),
         work_units: info.work_units,
         wall_s: info.wall_s,
         error_estimate: None,

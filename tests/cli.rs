@@ -46,11 +46,15 @@ fn json_has_exactly_the_documented_fields() {
         "reason",
         "grid",
         "levels",
+        "level",
+        "model_used",
         "work_units",
         "wall_s",
     ];
     want.sort();
     assert_eq!(keys, want);
+    assert_eq!(v["model_used"], "full");
+    assert_eq!(v["level"], 5, "1025 points are 2^5 x 32 intervals");
     assert_eq!(v["status"], "converged");
     assert_eq!(v["grid"], 1025);
     let hc = v["H_c"].as_f64().unwrap();

@@ -51,9 +51,9 @@ const STATUSES: [&str; 6] = [
 fn point_specs_parse_and_bad_ones_name_the_key() {
     let head = "contact = \"point\"\n[axes]\nM = [10, 100]\nL = [0, 10]\n";
     let s = spec::parse("p.toml", &format!("{head}D = [0.5, 1]\n"), "p").unwrap();
-    assert_eq!(s.contact, Contact::Point);
+    assert_eq!(s.contacts[0].contact, Contact::Point);
     assert_eq!(s.d.as_deref(), Some(&[0.5, 1.0][..]));
-    assert_eq!(s.numerics.grid, 129);
+    assert_eq!(s.contacts[0].numerics.grid, 129);
     let s = spec::parse(
         "p.toml",
         &format!("{head}D = {{ from = 0.05, to = 1, count = 4, scale = \"log\" }}\n"),
@@ -112,12 +112,12 @@ fn point_specs_parse_and_bad_ones_name_the_key() {
 fn committed_point_specs_are_valid() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let smoke = spec::load(&root.join("sweeps/smoke-point.toml")).unwrap();
-    assert_eq!(smoke.contact, Contact::Point);
-    assert_eq!(smoke.numerics.grid, 65);
+    assert_eq!(smoke.contacts[0].contact, Contact::Point);
+    assert_eq!(smoke.contacts[0].numerics.grid, 65);
     assert_eq!(ehlmap::sweep::plan::plan(&smoke).unwrap().len(), 8);
     let nightly = spec::load(&root.join("sweeps/nightly-point.toml")).unwrap();
-    assert_eq!(nightly.numerics.grid, 129);
-    assert!(nightly.numerics.error_estimate);
+    assert_eq!(nightly.contacts[0].numerics.grid, 129);
+    assert!(nightly.contacts[0].numerics.error_estimate);
     assert_eq!(nightly.m.len(), 8);
     assert_eq!((nightly.m[0], nightly.m[7]), (1.0, 1000.0));
     assert_eq!(ehlmap::sweep::plan::plan(&nightly).unwrap().len(), 128);
@@ -197,11 +197,17 @@ fn point_json_has_the_line_fields_plus_d_k_y_min() {
         "reason",
         "grid",
         "levels",
+        "level",
+        "model_used",
         "work_units",
         "wall_s",
     ];
     want.sort();
     assert_eq!(keys, want);
+    assert_eq!(
+        v["level"], 1,
+        "33^2 nodes are 2 x 16 intervals per direction"
+    );
     assert_eq!(v["D"], 1.0);
     assert_eq!(v["k"], 1.0);
     assert!(STATUSES.contains(&v["status"].as_str().unwrap()));
@@ -338,7 +344,7 @@ fn point_sweep_writes_one_row_per_case() {
         assert_eq!(r.contact, "point");
         assert_eq!(r.sweep, "tiny-point");
         assert_eq!(r.grid_requested, 33);
-        assert!(r.error_estimate);
+        assert!(r.half_grid_estimate);
         let d = r.d.expect("D filled");
         let k = r.k.expect("k filled");
         if d == 1.0 {

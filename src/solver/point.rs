@@ -13,6 +13,7 @@
 
 use crate::params::PointCase;
 use crate::problem::point_domain::PointDomainParams;
+use crate::solution::grid_level;
 use crate::solution::{line_outputs, parabola_vertex, Outputs};
 use crate::solver::fmg::fmg_solve;
 use crate::solver::ladder::{refine_to_accuracy, run_ladder, Attempt};
@@ -194,6 +195,7 @@ pub fn point_outputs(mg: &PointMultigrid, info: &SolveInfo) -> Outputs {
     out.f = traction / load;
     out.load_error = (load - mg.phys.load) / mg.phys.load;
     out.d = Some(mg.phys.d);
+    out.level = Some(grid_level(info.grid, 16));
     out.k = Some(mg.phys.k);
     out
 }

@@ -107,11 +107,10 @@ pub fn resolve_threads(arg: Option<u32>) -> Result<usize, InputError> {
 pub fn run_sweep(args: &SweepArgs) -> Result<i32, InputError> {
     let spec = spec::load(&args.spec).map_err(|e| InputError(e.to_string()))?;
     let cases = plan::plan(&spec).map_err(|e| InputError(e.to_string()))?;
-    if args.fit && spec.contact != spec::Contact::Line {
+    if args.fit && !spec.has(spec::Contact::Line) {
         return Err(InputError(format!(
-            "--fit: the fit report covers line contacts only ({} is a {} sweep)",
-            args.spec.display(),
-            spec.contact.as_str()
+            "--fit: the fit report covers line contacts only ({} has no line cases)",
+            args.spec.display()
         )));
     }
     let shard = resolve_shard(args.shard.as_deref())?;
@@ -135,13 +134,13 @@ pub fn run_sweep(args: &SweepArgs) -> Result<i32, InputError> {
             mine.len(),
             dataset.display()
         );
-        let point = spec.contact == spec::Contact::Point;
-        println!("# case_id M L{} cost stored", if point { " D" } else { "" });
+        println!("# case_id contact M L D cost stored");
         for c in mine {
-            let d = c.d.map_or(String::new(), |d| format!(" {d}"));
+            let d = c.d.map_or("-".to_string(), |d| d.to_string());
             println!(
-                "{} {} {}{d} {:.0} {}",
+                "{} {} {} {} {d} {:.0} {}",
                 c.id_hex(),
+                c.contact.as_str(),
                 c.m,
                 c.l,
                 c.cost,
@@ -180,6 +179,15 @@ pub fn run_sweep(args: &SweepArgs) -> Result<i32, InputError> {
                 "sweep {}: {} already stored, {} solved ({} failed) in {:.1} s; {}",
                 spec.name, r.already_stored, r.solved, r.failed, r.wall_s, file
             );
+            if r.models.keys().any(|m| m != "full") {
+                let counts: Vec<String> =
+                    r.models.iter().map(|(m, n)| format!("{m} {n}")).collect();
+                eprintln!(
+                    "sweep {}: models used: {} (ehlmap bench --selection SPEC measures the saving)",
+                    spec.name,
+                    counts.join(", ")
+                );
+            }
             if args.fit {
                 let fa = crate::fit::cli::FitArgs {
                     datasets: vec![dataset.clone()],

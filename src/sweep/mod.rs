@@ -26,5 +26,6 @@
 
 pub mod cli;
 pub mod plan;
+pub mod row;
 pub mod run;
 pub mod spec;

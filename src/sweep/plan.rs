@@ -10,7 +10,7 @@
 use crate::lubricant::{Density, Viscosity};
 use crate::params::{LineCase, Models, ParamError, PointCase};
 use crate::solver::multigrid::CycleType;
-use crate::sweep::spec::{Contact, Numerics, SpecError, SweepSpec, ViscositySpec};
+use crate::sweep::spec::{Contact, ContactSpec, Numerics, SpecError, SweepSpec, ViscositySpec};
 use std::collections::HashSet;
 use std::fmt;
 
@@ -122,7 +122,8 @@ impl fmt::Display for Case {
     }
 }
 
-/// Cost model, only its order matters: linear in the grid, slowly growing with M, and steeply
+/// Cost model, only its order matters (in units of about 10 us of one core, so that the line and
+/// point costs of a mixed spec compare): linear in the grid, slowly growing with M, and steeply
 /// growing at M ~ 1 with large L (measured at 2049 points: M = 1 costs 1.2 s at L <= 4, 2.5 s at
 /// L = 12 and 19 s at L = 20, against 0.3-1.5 s elsewhere), so those start first.
 fn cost(m: f64, l: f64, n: &Numerics) -> f64 {
@@ -137,7 +138,7 @@ fn cost(m: f64, l: f64, n: &Numerics) -> f64 {
 
 /// Point contacts: each solve costs about grid^2 log2(grid) (the FFT deformation product on
 /// grid x grid nodes), growing slowly with M; the half-grid twin of `error_estimate` adds about a
-/// quarter. Only the order within one sweep matters (a spec holds one contact type).
+/// quarter (129^2 nodes: about 1.2e5 units, 0.9 s; 2049 line points: 2.3e3 units, 21 ms).
 fn point_cost(m: f64, n: &Numerics) -> f64 {
     let g = n.grid as f64;
     let base = g * g * g.log2() * (1.0 + 0.1 * (1.0 + m).ln());
@@ -151,21 +152,23 @@ fn point_cost(m: f64, n: &Numerics) -> f64 {
 /// Every case of the spec, largest cost first (ties by id), duplicates removed. Fails (naming the
 /// spec key) when a combination of values is not a valid case.
 pub fn plan(spec: &SweepSpec) -> Result<Vec<Case>, SpecError> {
-    let ds: Vec<Option<f64>> = match (spec.contact, &spec.d) {
-        (Contact::Line, _) => vec![None],
-        (Contact::Point, Some(d)) => d.iter().map(|&d| Some(d)).collect(),
-        (Contact::Point, None) => {
-            return Err(spec.error("axes.D", "missing: point contacts need the axis D"))
-        }
-    };
     let mut cases = vec![];
     let mut seen = HashSet::new();
-    for &m in &spec.m {
-        for &l in &spec.l {
-            for &d in &ds {
-                let c = plan_case(spec, m, l, d)?;
-                if seen.insert(c.id) {
-                    cases.push(c);
+    for cs in &spec.contacts {
+        let ds: Vec<Option<f64>> = match (cs.contact, &spec.d) {
+            (Contact::Line, _) => vec![None],
+            (Contact::Point, Some(d)) => d.iter().map(|&d| Some(d)).collect(),
+            (Contact::Point, None) => {
+                return Err(spec.error("axes.D", "missing: point contacts need the axis D"))
+            }
+        };
+        for &m in &cs.m {
+            for &l in &cs.l {
+                for &d in &ds {
+                    let c = plan_case(spec, cs, m, l, d)?;
+                    if seen.insert(c.id) {
+                        cases.push(c);
+                    }
                 }
             }
         }
@@ -175,7 +178,13 @@ pub fn plan(spec: &SweepSpec) -> Result<Vec<Case>, SpecError> {
 }
 
 /// The case of one (M, L, D) combination (D for point contacts only), with its id and cost.
-fn plan_case(spec: &SweepSpec, m: f64, l: f64, d: Option<f64>) -> Result<Case, SpecError> {
+fn plan_case(
+    spec: &SweepSpec,
+    cs: &ContactSpec,
+    m: f64,
+    l: f64,
+    d: Option<f64>,
+) -> Result<Case, SpecError> {
     let at = match d {
         Some(d) => format!("at M = {m}, L = {l}, D = {d}"),
         None => format!("at M = {m}, L = {l}"),
@@ -201,16 +210,16 @@ fn plan_case(spec: &SweepSpec, m: f64, l: f64, d: Option<f64>) -> Result<Case, S
     };
     let mut c = Case {
         id: 0,
-        contact: spec.contact,
+        contact: cs.contact,
         m,
         l,
         d,
         models,
         eta0,
-        numerics: spec.numerics,
+        numerics: cs.numerics,
         cost: match d {
-            None => cost(m, l, &spec.numerics),
-            Some(_) => point_cost(m, &spec.numerics),
+            None => cost(m, l, &cs.numerics),
+            Some(_) => point_cost(m, &cs.numerics),
         },
     };
     match d {

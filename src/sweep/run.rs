@@ -7,16 +7,12 @@
 //! rows of this run through a temporary file and an atomic rename. A solve that panics becomes a
 //! row with status `panic` instead of ending the sweep.
 
-use crate::io::results::{self, finite, CaseRow};
-use crate::lubricant::{Density, Viscosity};
-use crate::params::ParamError;
-use crate::solution::Outputs;
-use crate::solver::line::{solve_line, solve_line_to_accuracy, LineSolveParams, ESTIMATE_ORDER};
-use crate::solver::multigrid::CycleType;
-use crate::solver::point::{solve_point, PointSolveParams};
+use crate::io::results::{self, CaseRow};
 use crate::solver::Status;
 use crate::sweep::plan::{Case, Shard};
-use crate::sweep::spec::{Contact, SweepSpec};
+use crate::sweep::row::solve_guarded;
+pub use crate::sweep::row::{input_row, solve_case};
+use crate::sweep::spec::SweepSpec;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -55,247 +51,11 @@ pub struct RunReport {
     /// converged, or not valid).
     pub solved: usize,
     pub failed: usize,
+    /// Cases solved by this run per `model_used` (see `crate::select`).
+    pub models: std::collections::BTreeMap<String, usize>,
     /// The part file this run wrote (none when there was nothing to do).
     pub file: Option<PathBuf>,
     pub wall_s: f64,
-}
-
-/// The input columns of a case; outputs empty, status "not-run".
-pub fn input_row(case: &Case, sweep: &str) -> CaseRow {
-    let n = &case.numerics;
-    let (z, ph_v) = match case.models.viscosity {
-        Viscosity::Barus => (None, None),
-        Viscosity::Roelands { z, ph_pa } => (Some(z), Some(ph_pa)),
-    };
-    let ph_d = match case.models.density {
-        Density::Incompressible => None,
-        Density::DowsonHigginson { ph_pa } => Some(ph_pa),
-    };
-    CaseRow {
-        case_id: case.id_hex(),
-        sweep: sweep.to_string(),
-        contact: case.contact.as_str().to_string(),
-        m: case.m,
-        l: case.l,
-        d: case.d,
-        // Exact Hertz ellipse ratio of D (point contacts), known before any solve.
-        k: case.point_case().ok().map(|p| p.ellipse().k),
-        elasticity: case.models.elasticity.to_string(),
-        viscosity: case.models.viscosity.name().to_string(),
-        density: case.models.density.name().to_string(),
-        z,
-        eta0: case.eta0,
-        ph: ph_v.or(ph_d),
-        grid_requested: n.grid as i64,
-        cycle: match n.cycle {
-            CycleType::V => "v",
-            CycleType::W => "w",
-        }
-        .to_string(),
-        max_cycles: n.max_cycles as i64,
-        fallback: n.fallback,
-        tol_load: n.tol_load,
-        tol_h: n.tol_h,
-        error_estimate: n.error_estimate,
-        grid: None,
-        levels: None,
-        h_c: None,
-        h_c_pmax: None,
-        h_min: None,
-        x_min: None,
-        y_min: None,
-        p_max: None,
-        spike_x: None,
-        spike_p: None,
-        h0: None,
-        f: None,
-        load_error: None,
-        h_c_err: None,
-        h_min_err: None,
-        status: "not-run".to_string(),
-        reason: String::new(),
-        attempt: None,
-        work_units: None,
-        wall_s: None,
-        valid: true,
-    }
-}
-
-fn solve_params(case: &Case, grid: usize) -> LineSolveParams {
-    let n = &case.numerics;
-    let mut p = LineSolveParams::default();
-    p.mg.grid = grid;
-    p.mg.cycle = n.cycle;
-    p.mg.max_cycles = n.max_cycles;
-    p.mg.tol_load = n.tol_load;
-    p.mg.tol_h = n.tol_h;
-    p.fallback = n.fallback;
-    p.keep_profile = false;
-    p
-}
-
-/// Solve one case and turn it into a row (line cases with [`solve_line`], point cases with
-/// [`solve_point`]). With `error_estimate` the case is also solved on the half grid and
-/// `H_c_err`, `H_min_err` hold relative error estimates (both solves converged): Richardson with
-/// the conservative order [`ESTIMATE_ORDER`] of the accuracy targets, the same estimate
-/// `ehlmap solve --accuracy` reports; `work_units`, `wall_s` are the cost of both solves.
-/// Every float goes through [`finite`]: a non-finite output is null and the row not `valid`.
-pub fn solve_case(case: &Case, sweep: &str) -> CaseRow {
-    match case.contact {
-        Contact::Line => solve_line_row(case, sweep),
-        Contact::Point => solve_point_row(case, sweep),
-    }
-}
-
-/// A row for a case that is not a valid case.
-fn invalid_row(case: &Case, sweep: &str, e: ParamError) -> CaseRow {
-    let mut row = input_row(case, sweep);
-    row.status = "invalid".into();
-    row.reason = e.to_string();
-    row.valid = false;
-    row
-}
-
-/// Does the case ask for a half-grid error estimate, and does `grid` have a half grid that the
-/// contact accepts?
-fn wants_half_grid(case: &Case, grid: usize) -> bool {
-    let min = case.contact.grid_range().0;
-    case.numerics.error_estimate && grid >= 2 * min - 1
-}
-
-/// The half grid of `grid` (half the intervals).
-fn half_grid(grid: usize) -> usize {
-    (grid - 1) / 2 + 1
-}
-
-/// Relative error estimates of H_c and H_min from a solve and its half-grid twin: Richardson with
-/// order [`ESTIMATE_ORDER`]; none unless both converged, none for a non-finite estimate.
-fn half_grid_errors(fine: &Outputs, coarse: &Outputs) -> (Option<f64>, Option<f64>) {
-    if fine.status != Status::Converged || coarse.status != Status::Converged {
-        return (None, None);
-    }
-    let factor = 1.0 / (2f64.powf(ESTIMATE_ORDER) - 1.0);
-    let est = |a: f64, b: f64| {
-        let e = factor * ((b - a) / b).abs();
-        e.is_finite().then_some(e)
-    };
-    (est(coarse.h_c, fine.h_c), est(coarse.h_min, fine.h_min))
-}
-
-/// Copy a solve's outputs into `row` (non-finite values become null and clear `valid`).
-fn fill_outputs(row: &mut CaseRow, o: &Outputs, attempt: usize, valid: &mut bool) {
-    row.grid = Some(o.grid as i64);
-    row.levels = Some(o.levels as i64);
-    row.h_c = finite(o.h_c, valid);
-    row.h_c_pmax = finite(o.h_c_pmax, valid);
-    row.h_min = finite(o.h_min, valid);
-    row.x_min = finite(o.x_min, valid);
-    row.y_min = o.y_min.and_then(|y| finite(y, valid));
-    row.p_max = finite(o.p_max, valid);
-    if let Some(sp) = o.spike {
-        row.spike_x = finite(sp.x, valid);
-        row.spike_p = finite(sp.p, valid);
-    }
-    row.h0 = finite(o.h0, valid);
-    row.f = finite(o.f, valid);
-    row.load_error = finite(o.load_error, valid);
-    row.status = o.status.as_str().to_string();
-    row.reason = o.reason.clone();
-    row.attempt = Some(attempt as i64);
-}
-
-fn solve_line_row(case: &Case, sweep: &str) -> CaseRow {
-    let mut row = input_row(case, sweep);
-    let lc = match case.line_case() {
-        Ok(lc) => lc,
-        Err(e) => return invalid_row(case, sweep, e),
-    };
-    let s = match case.numerics.accuracy {
-        Some(target) => solve_line_to_accuracy(
-            &lc,
-            &solve_params(case, case.numerics.grid),
-            target,
-            case.numerics.grid,
-        ),
-        None => solve_line(&lc, &solve_params(case, case.numerics.grid)),
-    };
-    let o = &s.outputs;
-    let mut valid = true;
-    fill_outputs(&mut row, o, s.attempt, &mut valid);
-    let (mut wu, mut wall) = (o.work_units, o.wall_s);
-    if let Some(est) = o.error_estimate {
-        // Accuracy target: the estimate of the chosen grid (max over H_c and H_min).
-        row.h_c_err = finite(est, &mut valid);
-        row.h_min_err = row.h_c_err;
-    } else if wants_half_grid(case, o.grid) {
-        let coarse = solve_line(&lc, &solve_params(case, half_grid(o.grid)));
-        wu += coarse.outputs.work_units;
-        wall += coarse.outputs.wall_s;
-        (row.h_c_err, row.h_min_err) = half_grid_errors(o, &coarse.outputs);
-    }
-    row.work_units = finite(wu, &mut valid);
-    row.wall_s = finite(wall, &mut valid);
-    row.valid = valid;
-    row
-}
-
-fn point_params(case: &Case, grid: usize) -> PointSolveParams {
-    let n = &case.numerics;
-    // Field by field over the defaults: settings the point solver gains later keep theirs.
-    let mut p = PointSolveParams::default();
-    p.mg.grid = grid;
-    p.mg.cycle = n.cycle;
-    p.mg.max_cycles = n.max_cycles;
-    p.mg.tol_load = n.tol_load;
-    p.mg.tol_h = n.tol_h;
-    p.fallback = n.fallback;
-    p.keep_fields = false;
-    p
-}
-
-fn solve_point_row(case: &Case, sweep: &str) -> CaseRow {
-    let mut row = input_row(case, sweep);
-    let pc = match case.point_case() {
-        Ok(pc) => pc,
-        Err(e) => return invalid_row(case, sweep, e),
-    };
-    // The spec rejects accuracy targets for point contacts (no solve_point_to_accuracy yet).
-    let s = solve_point(&pc, &point_params(case, case.numerics.grid));
-    let o = &s.outputs;
-    let mut valid = true;
-    fill_outputs(&mut row, o, s.attempt, &mut valid);
-    // D and k are inputs (k from the exact Hertz ellipse, set by input_row); a solver that
-    // reports them must agree.
-    debug_assert!(o.d.is_none_or(|d| d == pc.d));
-    let (mut wu, mut wall) = (o.work_units, o.wall_s);
-    if wants_half_grid(case, o.grid) {
-        let coarse = solve_point(&pc, &point_params(case, half_grid(o.grid)));
-        wu += coarse.outputs.work_units;
-        wall += coarse.outputs.wall_s;
-        (row.h_c_err, row.h_min_err) = half_grid_errors(o, &coarse.outputs);
-    }
-    row.work_units = finite(wu, &mut valid);
-    row.wall_s = finite(wall, &mut valid);
-    row.valid = valid;
-    row
-}
-
-fn solve_guarded(case: &Case, sweep: &str) -> CaseRow {
-    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| solve_case(case, sweep))) {
-        Ok(r) => r,
-        Err(p) => {
-            let msg = p
-                .downcast_ref::<&str>()
-                .map(|s| s.to_string())
-                .or_else(|| p.downcast_ref::<String>().cloned())
-                .unwrap_or_else(|| "unknown panic".to_string());
-            let mut row = input_row(case, sweep);
-            row.status = "panic".into();
-            row.reason = format!("the solver panicked: {msg}");
-            row.valid = false;
-            row
-        }
-    }
 }
 
 fn is_failure(r: &CaseRow) -> bool {
@@ -587,6 +347,7 @@ pub fn execute(spec: &SweepSpec, cases: &[Case], opts: &RunOptions) -> Result<Ru
                 Ok(row) => {
                     report.solved += 1;
                     report.failed += is_failure(&row) as usize;
+                    *report.models.entry(row.model_used.clone()).or_default() += 1;
                     rows.push(row);
                     pending += 1;
                     reporter.update(report.solved, report.failed);
@@ -641,86 +402,5 @@ mod tests {
             (Path::new("out"), ".smoke.")
         );
         assert_eq!(run_number("part-2of2-0003.parquet", "1of2"), None);
-    }
-
-    fn outputs(status: Status, h_c: f64, h_min: f64) -> Outputs {
-        Outputs {
-            h_c,
-            h_c_pmax: h_c,
-            h_min,
-            x_min: 0.9,
-            y_min: None,
-            d: None,
-            k: None,
-            p_max: 1.0,
-            spike: None,
-            h0: 0.0,
-            f: 0.0,
-            load_error: 0.0,
-            status,
-            reason: String::new(),
-            grid: 129,
-            levels: 4,
-            work_units: 1.0,
-            wall_s: 0.0,
-            error_estimate: None,
-            accuracy_met: None,
-        }
-    }
-
-    #[test]
-    fn half_grid_errors_need_two_converged_solves() {
-        let fine = outputs(Status::Converged, 5.0, 4.0);
-        let coarse = outputs(Status::Converged, 5.1, 3.9);
-        let (c, m) = half_grid_errors(&fine, &coarse);
-        let factor = 1.0 / (2f64.powf(ESTIMATE_ORDER) - 1.0);
-        assert!((c.unwrap() - factor * 0.1 / 5.0).abs() < 1e-14);
-        assert!((m.unwrap() - factor * 0.1 / 4.0).abs() < 1e-14);
-        let failed = outputs(Status::Diverged, 5.1, 3.9);
-        assert_eq!(half_grid_errors(&fine, &failed), (None, None));
-        let nan = outputs(Status::Converged, f64::NAN, 3.9);
-        assert_eq!(half_grid_errors(&fine, &nan).0, None);
-        assert_eq!(half_grid(129), 65);
-    }
-
-    #[test]
-    fn point_cases_become_point_rows() {
-        let text = "contact = \"point\"\n[axes]\nM = [10]\nL = [0]\nD = [0.5, 1]\n\
-                    [numerics]\ngrid = 33\nerror_estimate = true\n";
-        let spec = crate::sweep::spec::parse("p.toml", text, "p").unwrap();
-        let cases = crate::sweep::plan::plan(&spec).unwrap();
-        for c in &cases {
-            let row = solve_case(c, "p");
-            assert_eq!(row.contact, "point");
-            assert_eq!(row.d, c.d);
-            let k = row.k.unwrap();
-            if c.d == Some(1.0) {
-                assert_eq!(k, 1.0);
-            } else {
-                assert!(k > 1.0, "k = {k}");
-            }
-            assert_eq!(row.grid_requested, 33);
-            assert!(row.grid.is_some() && row.attempt.is_some());
-            // Whatever the solver returns, no non-finite value survives, and a dropped one
-            // clears `valid`.
-            let all = [row.h_c, row.h_min, row.x_min, row.y_min, row.p_max, row.h0];
-            assert!(all.iter().flatten().all(|v| v.is_finite()));
-            if all.iter().any(|v| v.is_none()) {
-                assert!(!row.valid);
-            }
-            assert_eq!(row.status, "converged", "{}", row.reason);
-            assert!(row.valid && row.y_min.is_some());
-            assert!(row.h_c_err.is_some() && row.h_min_err.is_some());
-        }
-        // Line rows keep D, k and Y_min null.
-        let line = crate::sweep::spec::parse(
-            "l.toml",
-            "contact = \"line\"\n[axes]\nM = [20]\nL = [0]\n[numerics]\ngrid = 129\n",
-            "l",
-        )
-        .unwrap();
-        let row = solve_case(&crate::sweep::plan::plan(&line).unwrap()[0], "l");
-        assert_eq!((row.d, row.k, row.y_min), (None, None, None));
-        assert_eq!(row.status, "converged");
     }
 }

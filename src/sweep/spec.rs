@@ -3,7 +3,7 @@
 //!
 //! ```toml
 //! name = "smoke"                 # dataset directory <out>/<name>/ (default: the file stem)
-//! contact = "line"               # or "point" (needs the axis D)
+//! contact = "line"               # or "point" (needs the axis D), or ["line", "point"]
 //! description = "free text"      # optional
 //!
 //! [axes]                         # each axis: a list, or a range table
@@ -28,7 +28,10 @@
 //! tol_load = 1e-7
 //! tol_h = 1e-6
 //! error_estimate = false         # true: also solve on the half grid, Richardson error columns
-//! accuracy = 0.005               # optional, line only: refine from 257 points up to `grid` until met
+//! accuracy = 0.005               # optional: refine from 257 line points (33^2 point nodes) up
+//!                                # to `grid` until the error estimate meets it
+//! # [numerics.point]             # a mixed spec: overrides for one contact, same keys
+//! # grid = 65
 //!
 //! [output]                       # all optional; defaults shown
 //! dir = "outputs"                # relative to the working directory; --out overrides
@@ -46,6 +49,7 @@ use std::path::{Path, PathBuf};
 use toml::de::DeTable;
 
 mod ctx;
+mod numerics;
 #[cfg(test)]
 mod tests;
 
@@ -165,6 +169,16 @@ pub struct OutputSpec {
     pub flush_seconds: f64,
 }
 
+/// One contact type of a spec: its M and L axes (the spec's, or its own `[axes.line]` /
+/// `[axes.point]`) and the numerical settings of its cases.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactSpec {
+    pub contact: Contact,
+    pub m: Vec<f64>,
+    pub l: Vec<f64>,
+    pub numerics: Numerics,
+}
+
 /// A validated sweep spec.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SweepSpec {
@@ -173,22 +187,36 @@ pub struct SweepSpec {
     /// The full TOML text (stored in every Parquet footer).
     pub text: String,
     pub name: String,
-    pub contact: Contact,
+    /// The contact types of the sweep with their numerical settings, in the order given (one,
+    /// or line and point for a mixed spec).
+    pub contacts: Vec<ContactSpec>,
     pub description: Option<String>,
-    /// Axis values after expansion, in the order given.
+    /// Axis values after expansion, in the order given (each contact's own M and L are in
+    /// `contacts`).
     pub m: Vec<f64>,
     pub l: Vec<f64>,
     pub d: Option<Vec<f64>>,
     pub elasticity: Elasticity,
     pub viscosity: ViscositySpec,
     pub density: Density,
-    pub numerics: Numerics,
     pub output: OutputSpec,
     /// Line of each key that was given (dotted path, e.g. "axes.M"), for later messages.
     pub lines: BTreeMap<String, usize>,
 }
 
 impl SweepSpec {
+    /// The numerics of `contact`, when the spec has that contact.
+    pub fn numerics(&self, contact: Contact) -> Option<&Numerics> {
+        self.contacts
+            .iter()
+            .find(|c| c.contact == contact)
+            .map(|c| &c.numerics)
+    }
+
+    pub fn has(&self, contact: Contact) -> bool {
+        self.numerics(contact).is_some()
+    }
+
     /// An error about `key` at the line where the spec gives it (line 1 if absent).
     pub fn error(&self, key: &str, message: impl Into<String>) -> SpecError {
         SpecError {
@@ -198,6 +226,40 @@ impl SweepSpec {
             message: message.into(),
         }
     }
+}
+
+/// `contact = "line"`, `"point"` or a list of both (a mixed spec).
+fn parse_contacts(cx: &Ctx, v: &ctx::Value) -> Result<Vec<Contact>, SpecError> {
+    let one = |v: &ctx::Value| -> Result<Contact, SpecError> {
+        Ok(match cx.choice(v, "contact", &["line", "point"])? {
+            "line" => Contact::Line,
+            _ => Contact::Point,
+        })
+    };
+    let items = match v.get_ref().as_array() {
+        None => return Ok(vec![one(v)?]),
+        Some(a) => a,
+    };
+    let mut out = vec![];
+    for item in items.iter() {
+        let c = one(item)?;
+        if out.contains(&c) {
+            return Err(cx.err(
+                &item.span(),
+                "contact",
+                format!("\"{}\" is listed twice", c.as_str()),
+            ));
+        }
+        out.push(c);
+    }
+    if out.is_empty() {
+        return Err(cx.err(
+            &v.span(),
+            "contact",
+            "the list is empty: give \"line\", \"point\" or [\"line\", \"point\"]",
+        ));
+    }
+    Ok(out)
 }
 
 /// Read and validate a spec file.
@@ -245,12 +307,6 @@ pub fn expand_range(from: f64, to: f64, count: usize, log: bool) -> Vec<f64> {
             canonical(x)
         })
         .collect()
-}
-
-/// The span of `table.key` in the document root, when given.
-fn cx_span(root: &DeTable, table: &str, key: &str) -> Option<Range<usize>> {
-    let t = root.get(table)?.get_ref().as_table()?;
-    Some(t.get(key)?.span())
 }
 
 /// Parse and validate a spec given as text. `file` names it in messages; `default_name` is the
@@ -311,10 +367,7 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
             "missing: give contact = \"line\" or \"point\"",
         )
     })?;
-    let contact = match cx.choice(contact_v, "contact", &["line", "point"])? {
-        "line" => Contact::Line,
-        _ => Contact::Point,
-    };
+    let contacts = parse_contacts(&cx, contact_v)?;
     let description = match root.get("description") {
         Some(v) => Some(cx.string(v, "description")?.to_string()),
         None => None,
@@ -325,7 +378,7 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
         .get("axes")
         .ok_or_else(|| cx.err(&doc_span, "axes", "missing: an [axes] table with M and L"))?;
     let axes = cx.table(axes_v, "axes")?;
-    cx.keys(axes, "axes", &["M", "L", "D"])?;
+    cx.keys(axes, "axes", &["M", "L", "D", "line", "point"])?;
     let need = |k: &str| {
         axes.get(k).ok_or_else(|| {
             cx.err(
@@ -336,12 +389,36 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
         })
     };
     let (mv, lv) = (need("M")?, need("L")?);
-    let m = cx.axis(mv, "axes.M", &|x| {
-        (x <= 0.0).then_some("the load parameter must be > 0")
-    })?;
-    let l = cx.axis(lv, "axes.L", &|x| {
-        (x < 0.0).then_some("the lubricant parameter must be >= 0")
-    })?;
+    let m_ok = |x: f64| (x <= 0.0).then_some("the load parameter must be > 0");
+    let l_ok = |x: f64| (x < 0.0).then_some("the lubricant parameter must be >= 0");
+    let m = cx.axis(mv, "axes.M", &m_ok)?;
+    let l = cx.axis(lv, "axes.L", &l_ok)?;
+    // [axes.line] / [axes.point]: M and L of one contact of a mixed spec.
+    let mut own_axes = BTreeMap::new();
+    for c in [Contact::Line, Contact::Point] {
+        let Some(v) = axes.get(c.as_str()) else {
+            continue;
+        };
+        let key = format!("axes.{}", c.as_str());
+        if !contacts.contains(&c) {
+            return Err(cx.err(
+                &v.span(),
+                &key,
+                format!("the spec has no {} contacts", c.as_str()),
+            ));
+        }
+        let t = cx.table(v, &key)?;
+        cx.keys(t, &key, &["M", "L"])?;
+        let cm = match t.get("M") {
+            Some(v) => cx.axis(v, &format!("{key}.M"), &m_ok)?,
+            None => m.clone(),
+        };
+        let cl = match t.get("L") {
+            Some(v) => cx.axis(v, &format!("{key}.L"), &l_ok)?,
+            None => l.clone(),
+        };
+        own_axes.insert(c.as_str(), (cm, cl));
+    }
     let d = match axes.get("D") {
         Some(dv) => Some(cx.axis(dv, "axes.D", &|x| {
             (!(x > 0.0 && x <= 1.0)).then_some("the ellipticity must be in (0, 1]")
@@ -454,83 +531,8 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
         }
     }
 
-    // numerics
-    let mut numerics = Numerics::for_contact(contact);
-    let (grid_min, grid_max) = contact.grid_range();
-    if let Some(nv) = root.get("numerics") {
-        let t = cx.table(nv, "numerics")?;
-        cx.keys(
-            t,
-            "numerics",
-            &[
-                "grid",
-                "cycle",
-                "max_cycles",
-                "fallback",
-                "tol_load",
-                "tol_h",
-                "error_estimate",
-                "accuracy",
-            ],
-        )?;
-        if let Some(v) = t.get("grid") {
-            numerics.grid =
-                cx.integer(v, "numerics.grid", grid_min as i64, grid_max as i64)? as usize;
-        }
-        if let Some(v) = t.get("cycle") {
-            numerics.cycle = match cx.choice(v, "numerics.cycle", &["v", "w"])? {
-                "v" => CycleType::V,
-                _ => CycleType::W,
-            };
-        }
-        if let Some(v) = t.get("max_cycles") {
-            numerics.max_cycles = cx.integer(v, "numerics.max_cycles", 1, 100_000)? as usize;
-        }
-        if let Some(v) = t.get("fallback") {
-            numerics.fallback = cx.boolean(v, "numerics.fallback")?;
-        }
-        for (k, slot) in [
-            ("tol_load", &mut numerics.tol_load),
-            ("tol_h", &mut numerics.tol_h),
-        ] {
-            if let Some(v) = t.get(k) {
-                let key = format!("numerics.{k}");
-                let x = cx.number(v, &key)?;
-                if !(x > 0.0 && x < 1.0) {
-                    return Err(cx.err(
-                        &v.span(),
-                        &key,
-                        format!("{k} = {x} is invalid: must be in (0, 1)"),
-                    ));
-                }
-                *slot = x;
-            }
-        }
-        if let Some(v) = t.get("accuracy") {
-            let x = cx.number(v, "numerics.accuracy")?;
-            if !(x > 0.0 && x < 1.0) {
-                return Err(cx.err(
-                    &v.span(),
-                    "numerics.accuracy",
-                    format!("accuracy = {x} is invalid: a relative accuracy in (0, 1), e.g. 0.005"),
-                ));
-            }
-            numerics.accuracy = Some(x);
-        }
-        if let Some(v) = t.get("error_estimate") {
-            numerics.error_estimate = cx.boolean(v, "numerics.error_estimate")?;
-            if numerics.error_estimate && numerics.grid < 2 * grid_min - 1 {
-                return Err(cx.err(
-                    &v.span(),
-                    "numerics.error_estimate",
-                    format!(
-                        "needs grid >= {} (the half grid must have at least {grid_min} points)",
-                        2 * grid_min - 1
-                    ),
-                ));
-            }
-        }
-    }
+    // numerics, per contact
+    let contacts_numerics = numerics::parse(&mut cx, root, &contacts)?;
 
     // output
     let mut output = OutputSpec {
@@ -564,7 +566,21 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
         }
     }
 
-    let n_cases = m.len() * l.len() * d.as_ref().map_or(1, |d| d.len());
+    let n_d = d.as_ref().map_or(1, |d| d.len());
+    let mut contacts_numerics = contacts_numerics;
+    for cs in &mut contacts_numerics {
+        if let Some((cm, cl)) = own_axes.get(cs.contact.as_str()) {
+            cs.m = cm.clone();
+            cs.l = cl.clone();
+        } else {
+            cs.m = m.clone();
+            cs.l = l.clone();
+        }
+    }
+    let n_cases: usize = contacts_numerics
+        .iter()
+        .map(|c| c.m.len() * c.l.len() * if c.contact == Contact::Point { n_d } else { 1 })
+        .sum();
     if n_cases > MAX_CASES {
         return Err(cx.err(
             &axes_v.span(),
@@ -574,40 +590,26 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
     }
 
     // Contact-specific rules, after every value has been checked.
-    match contact {
-        Contact::Point => {
-            if d.is_none() {
-                return Err(cx.err(
-                    &axes_v.span(),
-                    "axes.D",
-                    "missing: contact = \"point\" needs the ellipticity axis D = Rx/Ry, values in (0, 1]",
-                ));
-            }
-            if numerics.accuracy.is_some() {
-                let span = cx_span(root, "numerics", "accuracy").unwrap_or(doc_span);
-                return Err(cx.err(
-                    &span,
-                    "numerics.accuracy",
-                    "accuracy targets are not available for point contacts yet (use error_estimate)",
-                ));
-            }
-        }
-        Contact::Line => {
-            if let Some(dv) = axes.get("D") {
-                return Err(cx.err(
-                    &dv.span(),
-                    "axes.D",
-                    "the ellipticity axis D applies to contact = \"point\" only",
-                ));
-            }
-        }
+    if contacts.contains(&Contact::Point) && d.is_none() {
+        return Err(cx.err(
+            &axes_v.span(),
+            "axes.D",
+            "missing: contact = \"point\" needs the ellipticity axis D = Rx/Ry, values in (0, 1]",
+        ));
+    }
+    if let (false, Some(dv)) = (contacts.contains(&Contact::Point), axes.get("D")) {
+        return Err(cx.err(
+            &dv.span(),
+            "axes.D",
+            "the ellipticity axis D applies to contact = \"point\" only",
+        ));
     }
 
     Ok(SweepSpec {
         file: file.to_string(),
         text: text.to_string(),
         name,
-        contact,
+        contacts: contacts_numerics,
         description,
         m,
         l,
@@ -615,7 +617,6 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
         elasticity,
         viscosity,
         density,
-        numerics,
         output,
         lines: cx.lines,
     })

@@ -42,10 +42,13 @@ const POINT: &str = "contact = \"point\"\n[axes]\nM = [10, 100]\nL = [0, 10]\n";
 #[test]
 fn point_specs_parse_with_their_defaults() {
     let s = parse("p.toml", &format!("{POINT}D = [0.5, 1]\n"), "p").unwrap();
-    assert_eq!(s.contact, Contact::Point);
+    assert_eq!(s.contacts[0].contact, Contact::Point);
     assert_eq!(s.d, Some(vec![0.5, 1.0]));
-    assert_eq!(s.numerics.grid, 129);
-    assert_eq!(s.numerics, Numerics::for_contact(Contact::Point));
+    assert_eq!(s.contacts[0].numerics.grid, 129);
+    assert_eq!(
+        s.contacts[0].numerics,
+        Numerics::for_contact(Contact::Point)
+    );
     let text = format!(
         "{POINT}D = {{ from = 0.05, to = 1, count = 4, scale = \"log\" }}\n\
          [numerics]\ngrid = 65\nerror_estimate = true\n"
@@ -54,12 +57,12 @@ fn point_specs_parse_with_their_defaults() {
     let d = s.d.unwrap();
     assert_eq!((d.len(), d[0], d[3]), (4, 0.05, 1.0));
     assert!(d.windows(2).all(|w| w[0] < w[1]));
-    assert_eq!(s.numerics.grid, 65);
-    assert!(s.numerics.error_estimate);
+    assert_eq!(s.contacts[0].numerics.grid, 65);
+    assert!(s.contacts[0].numerics.error_estimate);
     // The line defaults are unchanged.
     let l = parse("t.toml", OK, "t").unwrap();
-    assert_eq!(l.numerics, Numerics::default());
-    assert_eq!(l.numerics.grid, 2049);
+    assert_eq!(l.contacts[0].numerics, Numerics::default());
+    assert_eq!(l.contacts[0].numerics.grid, 2049);
 }
 
 #[test]
@@ -108,10 +111,71 @@ fn bad_point_specs_name_line_and_key() {
         "{e}"
     );
     assert!(e.message.contains("grid >= 33"), "{e}");
-    let e = err(&format!("{POINT}D = [1]\n[numerics]\naccuracy = 0.01\n"));
-    assert_eq!((e.line, e.key.as_str()), (7, "numerics.accuracy"), "{e}");
-    assert!(
-        e.message.contains("not available for point contacts"),
-        "{e}"
+    // Point accuracy targets are accepted now (refined from 33^2 nodes up to the grid).
+    let s = parse(
+        "p.toml",
+        &format!("{POINT}D = [1]\n[numerics]\naccuracy = 0.01\n"),
+        "p",
+    )
+    .unwrap();
+    assert_eq!(s.contacts[0].numerics.accuracy, Some(0.01));
+}
+
+const MIXED: &str =
+    "contact = [\"line\", \"point\"]\n[axes]\nM = [5, 20, 100]\nL = [0, 10]\nD = [0.5, 1]\n";
+
+#[test]
+fn mixed_specs_hold_both_contacts_with_their_own_axes_and_numerics() {
+    let text = format!(
+        "{MIXED}[axes.point]\nM = [10]\n[numerics]\nerror_estimate = true\n\
+         [numerics.line]\ngrid = 1025\n[numerics.point]\ngrid = 65\naccuracy = 0.02\n"
     );
+    let s = parse("m.toml", &text, "m").unwrap();
+    assert_eq!(s.contacts.len(), 2);
+    let (line, point) = (&s.contacts[0], &s.contacts[1]);
+    assert_eq!(
+        (line.contact, point.contact),
+        (Contact::Line, Contact::Point)
+    );
+    assert_eq!(line.m, vec![5.0, 20.0, 100.0]);
+    assert_eq!(
+        (point.m.clone(), point.l.clone()),
+        (vec![10.0], vec![0.0, 10.0])
+    );
+    assert_eq!((line.numerics.grid, point.numerics.grid), (1025, 65));
+    assert!(line.numerics.error_estimate && point.numerics.error_estimate);
+    assert_eq!(
+        (line.numerics.accuracy, point.numerics.accuracy),
+        (None, Some(0.02))
+    );
+    // 3 x 2 line cases and 1 x 2 x 2 point cases, with distinct ids.
+    let cases = crate::sweep::plan::plan(&s).unwrap();
+    assert_eq!(cases.len(), 6 + 4);
+    assert_eq!(cases.iter().filter(|c| c.d.is_none()).count(), 6);
+    // Defaults per contact when nothing is given.
+    let s = parse("m.toml", MIXED, "m").unwrap();
+    assert_eq!(s.numerics(Contact::Line).unwrap().grid, 2049);
+    assert_eq!(s.numerics(Contact::Point).unwrap().grid, 129);
+}
+
+#[test]
+fn mixed_spec_errors_name_the_key() {
+    let e = err("contact = [\"line\", \"line\"]\n[axes]\nM = [5]\nL = [0]\n");
+    assert_eq!((e.line, e.key.as_str()), (1, "contact"));
+    assert!(e.message.contains("twice"), "{e}");
+    let e = err("contact = []\n[axes]\nM = [5]\nL = [0]\n");
+    assert!(e.message.contains("empty"), "{e}");
+    // A point part without D, a line-only spec with a point table, a bad per-contact value.
+    let e = err("contact = [\"line\", \"point\"]\n[axes]\nM = [5]\nL = [0]\n");
+    assert_eq!(e.key, "axes.D");
+    let e = err("contact = \"line\"\n[axes]\nM = [5]\nL = [0]\n[numerics.point]\ngrid = 65\n");
+    assert_eq!((e.line, e.key.as_str()), (5, "numerics.point"));
+    let e = err(&format!("{MIXED}[numerics.point]\ngrid = 4097\n"));
+    assert_eq!((e.line, e.key.as_str()), (7, "numerics.point.grid"));
+    let e = err(&format!("{MIXED}[axes.point]\nM = [-1]\n"));
+    assert_eq!((e.line, e.key.as_str()), (7, "axes.point.M"));
+    let e = err(&format!(
+        "{MIXED}[numerics.point]\ngrid = 17\nerror_estimate = true\n"
+    ));
+    assert_eq!(e.key, "numerics.point.error_estimate");
 }

@@ -15,19 +15,16 @@
 //! `outputs/README.md`.
 
 use crate::io::table::write_batch_file;
-use arrow_array::{
-    Array, ArrayRef, BooleanArray, Float64Array, Int64Array, RecordBatch, StringArray,
-};
+use arrow_array::{ArrayRef, BooleanArray, Float64Array, Int64Array, RecordBatch, StringArray};
 use arrow_schema::{DataType, Field, Schema};
-use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
-use std::collections::{BTreeMap, HashSet};
-use std::fs::File;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 /// Version of the row layout, stored in the footer as `ehlmap_schema`.
-pub const SCHEMA_VERSION: &str = "1";
+/// Schema 2 added `accuracy`, `model_used`, `level`, `error_estimate` (a float) and
+/// `warm_start`, and renamed schema 1's boolean `error_estimate` to `half_grid_estimate`.
+pub const SCHEMA_VERSION: &str = "2";
 
 /// One case of a sweep: its inputs and every output of its solve.
 ///
@@ -59,7 +56,22 @@ pub struct CaseRow {
     pub fallback: bool,
     pub tol_load: f64,
     pub tol_h: f64,
-    pub error_estimate: bool,
+    /// The spec asked for a half-grid twin solve and its Richardson error columns.
+    pub half_grid_estimate: bool,
+    /// The spec's target relative accuracy of H_c and H_min, when it gave one.
+    pub accuracy: Option<f64>,
+    /// The model that answered the case (see `crate::select`): "full", "rigid", "isoviscous",
+    /// "rigid-isoviscous" or "closed-form".
+    pub model_used: String,
+    /// Refinement level of the finest grid: log2 of its intervals over the first grid of the
+    /// accuracy ladder (256 line intervals, 32 point intervals per direction); null without a
+    /// grid (a closed-form answer).
+    pub level: Option<i64>,
+    /// Estimated relative error of H_c and H_min (the larger): the discretisation estimate
+    /// plus, for a simplified model, the estimated effect of what it neglects.
+    pub error_estimate: Option<f64>,
+    /// Case id of the neighbour this case was warm-started from, when it was.
+    pub warm_start: Option<String>,
     pub grid: Option<i64>,
     pub levels: Option<i64>,
     pub h_c: Option<f64>,
@@ -106,7 +118,12 @@ pub fn columns() -> Vec<(&'static str, DataType, bool)> {
         ("fallback", B, false),
         ("tol_load", F, false),
         ("tol_h", F, false),
-        ("error_estimate", B, false),
+        ("half_grid_estimate", B, false),
+        ("accuracy", F, true),
+        ("model_used", S, false),
+        ("level", I, true),
+        ("error_estimate", F, true),
+        ("warm_start", S, true),
         ("grid", I, true),
         ("levels", I, true),
         ("H_c", F, true),
@@ -175,6 +192,8 @@ fn sanitise(r: &CaseRow) -> CaseRow {
         &mut r.load_error,
         &mut r.h_c_err,
         &mut r.h_min_err,
+        &mut r.accuracy,
+        &mut r.error_estimate,
         &mut r.work_units,
         &mut r.wall_s,
     ] {
@@ -242,7 +261,16 @@ pub fn to_batch(rows: &[CaseRow]) -> Result<RecordBatch, String> {
         b(|r| r.fallback),
         f(|r| r.tol_load),
         f(|r| r.tol_h),
-        b(|r| r.error_estimate),
+        b(|r| r.half_grid_estimate),
+        o(|r| r.accuracy),
+        s(|r| &r.model_used),
+        oi(|r| r.level),
+        o(|r| r.error_estimate),
+        Arc::new(StringArray::from(
+            rows.iter()
+                .map(|r| r.warm_start.as_deref())
+                .collect::<Vec<_>>(),
+        )),
         oi(|r| r.grid),
         oi(|r| r.levels),
         o(|r| r.h_c),
@@ -333,165 +361,8 @@ pub fn part_files(dir: &Path) -> Result<Vec<PathBuf>, String> {
     Ok(v)
 }
 
-/// One part file read back: its rows and its footer key-value metadata.
-#[derive(Clone, Debug)]
-pub struct Part {
-    pub path: PathBuf,
-    pub rows: Vec<CaseRow>,
-    pub meta: BTreeMap<String, String>,
-}
-
-fn col<'a, T: 'static>(b: &'a RecordBatch, name: &str, path: &Path) -> Result<&'a T, String> {
-    b.column_by_name(name)
-        .ok_or_else(|| format!("{}: no column `{name}`", path.display()))?
-        .as_any()
-        .downcast_ref::<T>()
-        .ok_or_else(|| format!("{}: column `{name}` has an unexpected type", path.display()))
-}
-
-/// Read one part file.
-pub fn read_part(path: &Path) -> Result<Part, String> {
-    let err = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
-    let file = File::open(path).map_err(|e| err(&e))?;
-    let builder = ParquetRecordBatchReaderBuilder::try_new(file).map_err(|e| err(&e))?;
-    let meta: BTreeMap<String, String> = builder
-        .metadata()
-        .file_metadata()
-        .key_value_metadata()
-        .map(|kv| {
-            kv.iter()
-                .map(|k| (k.key.clone(), k.value.clone().unwrap_or_default()))
-                .collect()
-        })
-        .unwrap_or_default();
-    let mut rows = vec![];
-    for batch in builder.build().map_err(|e| err(&e))? {
-        let b = batch.map_err(|e| err(&e))?;
-        let s = |n: &str| col::<StringArray>(&b, n, path);
-        let f = |n: &str| col::<Float64Array>(&b, n, path);
-        let i = |n: &str| col::<Int64Array>(&b, n, path);
-        let bo = |n: &str| col::<BooleanArray>(&b, n, path);
-        let of = |a: &Float64Array, j: usize| (!a.is_null(j)).then(|| a.value(j));
-        let oi = |a: &Int64Array, j: usize| (!a.is_null(j)).then(|| a.value(j));
-        let (case_id, sweep, contact) = (s("case_id")?, s("sweep")?, s("contact")?);
-        let (m, l, d, k) = (f("M")?, f("L")?, f("D")?, f("k")?);
-        let (elasticity, viscosity, density) = (s("elasticity")?, s("viscosity")?, s("density")?);
-        let (z, eta0, ph) = (f("z")?, f("eta0")?, f("ph")?);
-        let (grid_requested, cycle, max_cycles) =
-            (i("grid_requested")?, s("cycle")?, i("max_cycles")?);
-        let (fallback, tol_load, tol_h, error_estimate) = (
-            bo("fallback")?,
-            f("tol_load")?,
-            f("tol_h")?,
-            bo("error_estimate")?,
-        );
-        let (grid, levels) = (i("grid")?, i("levels")?);
-        let (h_c, h_c_pmax, h_min, x_min, y_min, p_max) = (
-            f("H_c")?,
-            f("H_c_pmax")?,
-            f("H_min")?,
-            f("X_min")?,
-            f("Y_min")?,
-            f("P_max")?,
-        );
-        let (spike_x, spike_p, h0, ff, load_error) = (
-            f("spike_X")?,
-            f("spike_P")?,
-            f("H0")?,
-            f("f")?,
-            f("load_error")?,
-        );
-        let (h_c_err, h_min_err) = (f("H_c_err")?, f("H_min_err")?);
-        let (status, reason, attempt) = (s("status")?, s("reason")?, i("attempt")?);
-        let (work_units, wall_s, valid) = (f("work_units")?, f("wall_s")?, bo("valid")?);
-        for j in 0..b.num_rows() {
-            rows.push(CaseRow {
-                case_id: case_id.value(j).to_string(),
-                sweep: sweep.value(j).to_string(),
-                contact: contact.value(j).to_string(),
-                m: m.value(j),
-                l: l.value(j),
-                d: of(d, j),
-                k: of(k, j),
-                elasticity: elasticity.value(j).to_string(),
-                viscosity: viscosity.value(j).to_string(),
-                density: density.value(j).to_string(),
-                z: of(z, j),
-                eta0: of(eta0, j),
-                ph: of(ph, j),
-                grid_requested: grid_requested.value(j),
-                cycle: cycle.value(j).to_string(),
-                max_cycles: max_cycles.value(j),
-                fallback: fallback.value(j),
-                tol_load: tol_load.value(j),
-                tol_h: tol_h.value(j),
-                error_estimate: error_estimate.value(j),
-                grid: oi(grid, j),
-                levels: oi(levels, j),
-                h_c: of(h_c, j),
-                h_c_pmax: of(h_c_pmax, j),
-                h_min: of(h_min, j),
-                x_min: of(x_min, j),
-                y_min: of(y_min, j),
-                p_max: of(p_max, j),
-                spike_x: of(spike_x, j),
-                spike_p: of(spike_p, j),
-                h0: of(h0, j),
-                f: of(ff, j),
-                load_error: of(load_error, j),
-                h_c_err: of(h_c_err, j),
-                h_min_err: of(h_min_err, j),
-                status: status.value(j).to_string(),
-                reason: reason.value(j).to_string(),
-                attempt: oi(attempt, j),
-                work_units: of(work_units, j),
-                wall_s: of(wall_s, j),
-                valid: valid.value(j),
-            });
-        }
-    }
-    Ok(Part {
-        path: path.to_path_buf(),
-        rows,
-        meta,
-    })
-}
-
-/// Is `a` a better record of the same case than `b` (converged and valid beats the rest)?
-fn better(a: &CaseRow, b: &CaseRow) -> bool {
-    let score = |r: &CaseRow| (r.status == "converged") as u8 * 2 + r.valid as u8;
-    score(a) > score(b)
-}
-
-/// All rows of a dataset directory, one per case id (sorted by case id). When a case is stored
-/// more than once (an overlap of reruns), a converged valid row is preferred, then the first
-/// one in file-name order. Temporary files are ignored; a part file that cannot be read is an
-/// error naming it. A directory that does not exist is an empty dataset.
-pub fn read_dataset(dir: &Path) -> Result<Vec<CaseRow>, String> {
-    let mut by_id: BTreeMap<String, CaseRow> = BTreeMap::new();
-    for path in part_files(dir)? {
-        for r in read_part(&path)?.rows {
-            match by_id.get(&r.case_id) {
-                Some(old) if !better(&r, old) => {}
-                _ => {
-                    by_id.insert(r.case_id.clone(), r);
-                }
-            }
-        }
-    }
-    Ok(by_id.into_values().collect())
-}
-
-/// The case ids stored in a dataset directory.
-pub fn stored_ids(dir: &Path) -> Result<HashSet<String>, String> {
-    let mut ids = HashSet::new();
-    for path in part_files(dir)? {
-        for r in read_part(&path)?.rows {
-            ids.insert(r.case_id);
-        }
-    }
-    Ok(ids)
-}
+mod read;
+pub use read::{read_dataset, read_part, stored_ids, Part};
 
 #[cfg(test)]
 mod tests {
@@ -518,7 +389,12 @@ mod tests {
             fallback: true,
             tol_load: 1e-7,
             tol_h: 1e-6,
-            error_estimate: false,
+            half_grid_estimate: false,
+            accuracy: Some(0.005),
+            model_used: "full".into(),
+            level: Some(0),
+            error_estimate: Some(2e-3),
+            warm_start: Some("00000000000000cc".into()),
             grid: Some(257),
             levels: Some(4),
             h_c: Some(5.2),

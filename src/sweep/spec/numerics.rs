@@ -1,0 +1,150 @@
+//! The `[numerics]` table of a spec. Its keys apply to every contact of the spec (each starting
+//! from [`Numerics::for_contact`]); a mixed spec (`contact = ["line", "point"]`) overrides them
+//! for one contact in `[numerics.line]` or `[numerics.point]`, e.g. 2049 line points but 65^2
+//! point nodes. Every value is checked against the contact it applies to (the grid range, the
+//! half grid of `error_estimate`), and errors name the key that set it. The M and L axes of
+//! each contact are filled in by the caller.
+
+use super::ctx::{join, Ctx, Table};
+use super::{Contact, ContactSpec, Numerics, SpecError};
+use crate::solver::multigrid::CycleType;
+use std::ops::Range;
+
+/// The settings a `[numerics]` table (or one of its per-contact tables) may hold.
+const KEYS: [&str; 8] = [
+    "grid",
+    "cycle",
+    "max_cycles",
+    "fallback",
+    "tol_load",
+    "tol_h",
+    "error_estimate",
+    "accuracy",
+];
+
+/// The numerics of each contact of the spec, in the order given.
+pub(super) fn parse(
+    cx: &mut Ctx,
+    root: &Table,
+    contacts: &[Contact],
+) -> Result<Vec<ContactSpec>, SpecError> {
+    let table = match root.get("numerics") {
+        Some(v) => Some((cx.table(v, "numerics")?, v.span())),
+        None => None,
+    };
+    if let Some((t, _)) = table {
+        let mut allowed = KEYS.to_vec();
+        allowed.extend(["line", "point"]);
+        cx.keys(t, "numerics", &allowed)?;
+        for c in [Contact::Line, Contact::Point] {
+            if let (Some(v), false) = (t.get(c.as_str()), contacts.contains(&c)) {
+                return Err(cx.err(
+                    &v.span(),
+                    &join("numerics", c.as_str()),
+                    format!(
+                        "the spec has no {} contacts (contact = {:?})",
+                        c.as_str(),
+                        contacts.iter().map(|c| c.as_str()).collect::<Vec<_>>()
+                    ),
+                ));
+            }
+        }
+    }
+    let mut out = Vec::with_capacity(contacts.len());
+    for &contact in contacts {
+        let mut n = Numerics::for_contact(contact);
+        // The key that switched the error estimate on, for the half-grid check below.
+        let mut estimate_key: Option<(Range<usize>, String)> = None;
+        if let Some((t, _)) = table {
+            apply(cx, t, "numerics", contact, &mut n, &mut estimate_key)?;
+            if let Some(v) = t.get(contact.as_str()) {
+                let key = join("numerics", contact.as_str());
+                let sub = cx.table(v, &key)?;
+                cx.keys(sub, &key, &KEYS)?;
+                apply(cx, sub, &key, contact, &mut n, &mut estimate_key)?;
+            }
+        }
+        let grid_min = contact.grid_range().0;
+        if let (true, Some((span, key))) = (n.error_estimate, &estimate_key) {
+            if n.grid < 2 * grid_min - 1 {
+                return Err(cx.err(
+                    span,
+                    key,
+                    format!(
+                        "needs grid >= {} for {} contacts (the half grid must have at least \
+                         {grid_min} points)",
+                        2 * grid_min - 1,
+                        contact.as_str()
+                    ),
+                ));
+            }
+        }
+        out.push(ContactSpec {
+            contact,
+            m: vec![],
+            l: vec![],
+            numerics: n,
+        });
+    }
+    Ok(out)
+}
+
+/// Apply the settings of table `t` (at `prefix`) to `n`.
+fn apply(
+    cx: &mut Ctx,
+    t: &Table,
+    prefix: &str,
+    contact: Contact,
+    n: &mut Numerics,
+    estimate_key: &mut Option<(Range<usize>, String)>,
+) -> Result<(), SpecError> {
+    let (grid_min, grid_max) = contact.grid_range();
+    if let Some(v) = t.get("grid") {
+        let key = join(prefix, "grid");
+        n.grid = cx.integer(v, &key, grid_min as i64, grid_max as i64)? as usize;
+    }
+    if let Some(v) = t.get("cycle") {
+        n.cycle = match cx.choice(v, &join(prefix, "cycle"), &["v", "w"])? {
+            "v" => CycleType::V,
+            _ => CycleType::W,
+        };
+    }
+    if let Some(v) = t.get("max_cycles") {
+        n.max_cycles = cx.integer(v, &join(prefix, "max_cycles"), 1, 100_000)? as usize;
+    }
+    if let Some(v) = t.get("fallback") {
+        n.fallback = cx.boolean(v, &join(prefix, "fallback"))?;
+    }
+    for (k, slot) in [("tol_load", &mut n.tol_load), ("tol_h", &mut n.tol_h)] {
+        if let Some(v) = t.get(k) {
+            let key = join(prefix, k);
+            let x = cx.number(v, &key)?;
+            if !(x > 0.0 && x < 1.0) {
+                return Err(cx.err(
+                    &v.span(),
+                    &key,
+                    format!("{k} = {x} is invalid: must be in (0, 1)"),
+                ));
+            }
+            *slot = x;
+        }
+    }
+    if let Some(v) = t.get("accuracy") {
+        let key = join(prefix, "accuracy");
+        let x = cx.number(v, &key)?;
+        if !(x > 0.0 && x < 1.0) {
+            return Err(cx.err(
+                &v.span(),
+                &key,
+                format!("accuracy = {x} is invalid: a relative accuracy in (0, 1), e.g. 0.005"),
+            ));
+        }
+        n.accuracy = Some(x);
+    }
+    if let Some(v) = t.get("error_estimate") {
+        let key = join(prefix, "error_estimate");
+        n.error_estimate = cx.boolean(v, &key)?;
+        *estimate_key = Some((v.span(), key));
+    }
+    Ok(())
+}

@@ -1,0 +1,115 @@
+//! Model selection (`ehlmap::select`): each simplification is checked against the full model,
+//! solved independently on two fine grids and Richardson-extrapolated (order 2), and the
+//! reported error estimate must bound the true error.
+
+use ehlmap::params::{LineCase, PointCase};
+use ehlmap::select::{solve_line_selected, solve_point_selected, ModelChoice};
+use ehlmap::solver::line::{solve_line, LineSolveParams};
+use ehlmap::solver::point::{solve_point, PointSolveParams};
+use ehlmap::solver::Status;
+
+const TARGET: f64 = 0.01;
+
+/// Full-model H_c and H_min on `grid` and its half grid, Richardson order 2.
+fn line_reference(c: &LineCase, grid: usize) -> (f64, f64) {
+    let solve = |g: usize| {
+        let mut p = LineSolveParams::default();
+        p.mg.grid = g;
+        let o = solve_line(c, &p).outputs;
+        assert_eq!(
+            o.status,
+            Status::Converged,
+            "reference M={} L={}: {}",
+            c.m,
+            c.l,
+            o.reason
+        );
+        (o.h_c, o.h_min)
+    };
+    let (a, b) = (solve((grid - 1) / 2 + 1), solve(grid));
+    (b.0 + (b.0 - a.0) / 3.0, b.1 + (b.1 - a.1) / 3.0)
+}
+
+fn point_reference(c: &PointCase, grid: usize) -> (f64, f64) {
+    let solve = |g: usize| {
+        let mut p = PointSolveParams::default();
+        p.mg.grid = g;
+        let o = solve_point(c, &p).outputs;
+        assert_eq!(o.status, Status::Converged, "reference: {}", o.reason);
+        (o.h_c, o.h_min)
+    };
+    let (a, b) = (solve((grid - 1) / 2 + 1), solve(grid));
+    (b.0 + (b.0 - a.0) / 3.0, b.1 + (b.1 - a.1) / 3.0)
+}
+
+/// The selected answer is within the target of the reference, and its estimate bounds the error.
+fn check(label: &str, got: (f64, f64), est: f64, reference: (f64, f64)) {
+    let err = ((got.0 / reference.0 - 1.0).abs()).max((got.1 / reference.1 - 1.0).abs());
+    println!("{label}: error {err:.2e}, estimate {est:.2e}");
+    assert!(err < TARGET, "{label}: error {err} above the target");
+    assert!(err <= est, "{label}: error {err} above the estimate {est}");
+}
+
+#[test]
+fn line_simplifications_match_the_full_model() {
+    // (M, L, the model the selection must pick)
+    let cases = [
+        (0.05, 1.0, ModelChoice::ClosedForm),
+        (0.1, 0.0, ModelChoice::ClosedForm),
+        (100.0, 0.001, ModelChoice::Isoviscous),
+    ];
+    for (m, l, want) in cases {
+        let c = LineCase::new(m, l).unwrap();
+        let (s, sel) = solve_line_selected(&c, &LineSolveParams::default(), TARGET, 4097);
+        let o = &s.outputs;
+        assert_eq!(sel.model, want, "M={m} L={l}: {}", o.reason);
+        assert_eq!(o.model_used, want.as_str());
+        assert_eq!(o.status, Status::Converged, "{}", o.reason);
+        let est = o.error_estimate.expect("an estimate");
+        check(
+            &format!("line M={m} L={l} {want}"),
+            (o.h_c, o.h_min),
+            est,
+            line_reference(&c, 2049),
+        );
+    }
+}
+
+#[test]
+fn the_check_grid_rejects_what_the_screen_gets_wrong() {
+    // Moes' blend puts the piezoviscous effect at M = 0.05, L = 5 near 1.5e-4 (closed form would
+    // pass the screen); the solver measures about 4e-3 on the check grid, above half the target,
+    // so the full model is solved.
+    let c = LineCase::new(0.05, 5.0).unwrap();
+    let (s, sel) = solve_line_selected(&c, &LineSolveParams::default(), TARGET, 4097);
+    assert!(sel.piezo_effect < 1e-3, "{sel:?}");
+    assert_eq!(sel.model, ModelChoice::Full, "{}", s.outputs.reason);
+    assert!(sel.measured.unwrap() > 0.5 * TARGET, "{sel:?}");
+    // A typical EHL case needs everything and pays for no check.
+    let c = LineCase::new(20.0, 10.0).unwrap();
+    let (s, sel) = solve_line_selected(&c, &LineSolveParams::default(), TARGET, 4097);
+    assert_eq!(sel.model, ModelChoice::Full);
+    assert!(sel.measured.is_none() && s.outputs.model_used == "full");
+    // The closed form where even the full check fails (M = 0.01): Martin's film exactly.
+    let c = LineCase::new(0.01, 0.0).unwrap();
+    let (s, sel) = solve_line_selected(&c, &LineSolveParams::default(), TARGET, 4097);
+    assert_eq!(sel.model, ModelChoice::ClosedForm, "{}", s.outputs.reason);
+    assert!((s.outputs.h_c * 0.01 / 2.4475 - 1.0).abs() < 1e-12);
+    assert!(s.outputs.level.is_none() && s.outputs.error_estimate.unwrap() < TARGET);
+}
+
+#[test]
+fn point_isoviscous_selection_matches_the_full_model() {
+    let c = PointCase::new(100.0, 0.001, 1.0).unwrap();
+    let (s, sel) = solve_point_selected(&c, &PointSolveParams::default(), TARGET, 257);
+    let o = &s.outputs;
+    assert_eq!(sel.model, ModelChoice::Isoviscous, "{}", o.reason);
+    assert_eq!(o.status, Status::Converged, "{}", o.reason);
+    assert!(o.level.is_some());
+    check(
+        "point M=100 L=0.001 D=1",
+        (o.h_c, o.h_min),
+        o.error_estimate.unwrap(),
+        point_reference(&c, 257),
+    );
+}
