@@ -79,3 +79,35 @@ fn stability_map_records_every_cell() {
     assert!(s.iter().any(|(n, ok, all)| n == "multigrid" && ok == all));
     assert!(cells.iter().all(|c| !c.reason.is_empty()));
 }
+
+#[test]
+fn selection_bench_measures_the_saving_at_the_target() {
+    use ehlmap::bench::selection;
+    let text =
+        "contact = \"line\"\n[axes]\nM = [0.05, 20, 100]\nL = [0, 5]\n[numerics]\ngrid = 4097\n";
+    let spec = ehlmap::sweep::spec::parse("sel.toml", text, "sel").unwrap();
+    let cases = ehlmap::sweep::plan::plan(&spec).unwrap();
+    let target = 0.01;
+    let pairs = selection::run(&cases, "sel", target);
+    assert_eq!(pairs.len(), 6);
+    let (mut t_sel, mut t_full) = (0.0, 0.0);
+    for p in &pairs {
+        assert_eq!(p.full.status, "converged", "{}", p.full.reason);
+        assert_eq!(p.selected.status, "converged", "{}", p.selected.reason);
+        // Against the full model on 4097 points (itself within ~3e-4 of the limit), the
+        // targeted answer is within the target.
+        let dev = p.deviation().unwrap();
+        assert!(dev <= target, "M={} L={}: {dev}", p.full.m, p.full.l);
+        assert!(p.selected.grid.unwrap_or(0) < 4097);
+        t_sel += p.selected.wall_s.unwrap();
+        t_full += p.full.wall_s.unwrap();
+    }
+    let closed = pairs
+        .iter()
+        .filter(|p| p.selected.model_used == "closed-form")
+        .count();
+    assert_eq!(closed, 1, "M = 0.05, L = 0 is Martin's film");
+    assert!(t_sel < t_full, "{t_sel} s with selection vs {t_full} s");
+    let md = selection::summary(&pairs, target, "sel.toml");
+    assert!(md.contains("within the target in 6 of 6"), "{md}");
+}

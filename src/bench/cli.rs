@@ -1,5 +1,6 @@
 //! `ehlmap bench` and `ehlmap stability`: tables (Parquet), summaries (Markdown) and charts.
 
+use crate::bench::selection;
 use crate::bench::speed::{self, BenchCase, BenchRow, Reference};
 use crate::bench::stability::{self, Cell};
 use crate::bench::COLORS;
@@ -21,6 +22,14 @@ pub struct BenchArgs {
     /// Smaller ladder (257..2049 points, reference from 4097): about a minute.
     #[arg(long)]
     pub quick: bool,
+    /// Instead of the speed ladder: solve every case of this sweep spec with the accuracy target
+    /// (model selection, coarsest adequate grid) and with the full model on the spec's grid, and
+    /// report the time saved (selection.md, selection.parquet).
+    #[arg(long, value_name = "SPEC")]
+    pub selection: Option<PathBuf>,
+    /// Target relative accuracy for --selection.
+    #[arg(long, default_value_t = 0.005)]
+    pub accuracy: f64,
 }
 
 #[derive(clap::Args, Debug)]
@@ -181,6 +190,9 @@ fn time_vs_n(path: &Path, case: &str, rows: &[BenchRow]) -> Result<Vec<(String, 
 pub fn run_bench(a: &BenchArgs) -> Result<i32, InputError> {
     std::fs::create_dir_all(&a.out)
         .map_err(|x| InputError(format!("--out {}: {x}", a.out.display())))?;
+    if let Some(spec) = &a.selection {
+        return run_selection(a, spec);
+    }
     let line = |m: f64| BenchCase::Line(LineCase::new(m, 10.0).expect("valid"));
     let point = |m: f64, d: f64| BenchCase::Point(PointCase::new(m, 10.0, d).expect("valid"));
     let line_cases = [
@@ -288,7 +300,7 @@ fn stability_chart(path: &Path, cells: &[Cell], ms: &[f64], ls: &[f64]) -> Resul
     for (panel, name) in panels.iter().zip(&names) {
         let mut ch = ChartBuilder::on(panel)
             .caption(
-                format!("{name}: green converged, red diverged, orange stalled, grey max-iter"),
+                format!("{name}: green converged, blue too slow, red diverged, orange stalled, grey max-iter"),
                 ("sans-serif", 13),
             )
             .margin(8)
@@ -307,6 +319,7 @@ fn stability_chart(path: &Path, cells: &[Cell], ms: &[f64], ls: &[f64]) -> Resul
                 "converged" => RGBColor(140, 210, 120),
                 "diverged" => RGBColor(214, 39, 40),
                 "stalled" => RGBColor(255, 127, 14),
+                "too-slow" => RGBColor(31, 119, 180),
                 _ => RGBColor(150, 150, 150),
             };
             Circle::new((c.m, c.l), 8, col.filled())
@@ -314,6 +327,80 @@ fn stability_chart(path: &Path, cells: &[Cell], ms: &[f64], ls: &[f64]) -> Resul
         .map_err(e)?;
     }
     root.present().map_err(e)
+}
+
+/// `ehlmap bench --selection SPEC`: the saving of model selection on a sweep spec.
+fn run_selection(a: &BenchArgs, spec_path: &Path) -> Result<i32, InputError> {
+    if !(a.accuracy > 0.0 && a.accuracy < 1.0) {
+        return Err(InputError(format!(
+            "--accuracy {} is invalid: a relative accuracy in (0, 1), e.g. 0.005",
+            a.accuracy
+        )));
+    }
+    let spec = crate::sweep::spec::load(spec_path).map_err(|x| InputError(x.to_string()))?;
+    let cases = crate::sweep::plan::plan(&spec).map_err(|x| InputError(x.to_string()))?;
+    eprintln!(
+        "bench --selection: {} cases of {}, each solved with target {} and with the full model",
+        cases.len(),
+        spec_path.display(),
+        a.accuracy
+    );
+    let pairs = selection::run(&cases, &spec.name, a.accuracy);
+    let col_f = |f: &dyn Fn(&selection::Pair) -> Option<f64>| -> Vec<f64> {
+        pairs.iter().map(|p| f(p).unwrap_or(f64::NAN)).collect()
+    };
+    write_table(
+        &a.out.join("selection.parquet"),
+        vec![
+            Column::Str(
+                "case_id",
+                pairs.iter().map(|p| p.full.case_id.clone()).collect(),
+            ),
+            Column::Str(
+                "contact",
+                pairs.iter().map(|p| p.full.contact.clone()).collect(),
+            ),
+            Column::F64("M", col_f(&|p| Some(p.full.m))),
+            Column::F64("L", col_f(&|p| Some(p.full.l))),
+            Column::F64("D", col_f(&|p| p.full.d)),
+            Column::Str(
+                "model_used",
+                pairs
+                    .iter()
+                    .map(|p| p.selected.model_used.clone())
+                    .collect(),
+            ),
+            Column::F64(
+                "grid_selected",
+                col_f(&|p| p.selected.grid.map(|g| g as f64)),
+            ),
+            Column::F64("grid_full", col_f(&|p| p.full.grid.map(|g| g as f64))),
+            Column::F64("wall_s_selected", col_f(&|p| p.selected.wall_s)),
+            Column::F64("wall_s_full", col_f(&|p| p.full.wall_s)),
+            Column::F64("H_c_selected", col_f(&|p| p.selected.h_c)),
+            Column::F64("H_c_full", col_f(&|p| p.full.h_c)),
+            Column::F64("error_estimate", col_f(&|p| p.selected.error_estimate)),
+            Column::F64("deviation", col_f(&selection::Pair::deviation)),
+            Column::Str(
+                "status_selected",
+                pairs.iter().map(|p| p.selected.status.clone()).collect(),
+            ),
+            Column::Str(
+                "status_full",
+                pairs.iter().map(|p| p.full.status.clone()).collect(),
+            ),
+        ],
+        &[
+            ("spec", spec.text.clone()),
+            ("accuracy", a.accuracy.to_string()),
+        ],
+    )
+    .map_err(InputError)?;
+    let md = selection::summary(&pairs, a.accuracy, &spec_path.display().to_string());
+    std::fs::write(a.out.join("selection.md"), &md)
+        .map_err(|x| InputError(format!("--out {}: {x}", a.out.display())))?;
+    print!("{md}");
+    Ok(0)
 }
 
 /// Run `ehlmap stability`.

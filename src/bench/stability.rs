@@ -2,7 +2,9 @@
 //! diverged, stalled, max-iterations) with its reason. The multigrid is run with and without
 //! its fallback ladder, so the map shows where the default smoother alone fails and the
 //! fallback is needed. Point contacts (one ellipticity D per map) are mapped with the multigrid
-//! only, with and without its fallback.
+//! only, with and without its fallback. A converged cell that took more than [`SLOW_FACTOR`]
+//! times the default multigrid's wall time on the same (M, L) (and more than [`SLOW_FLOOR_S`])
+//! is classed `too-slow`: it converged, but no one would run it that way.
 
 use crate::params::{LineCase, PointCase};
 use crate::solution::Outputs;
@@ -10,6 +12,11 @@ use crate::solver::line::{solve_line, LineSolveParams, Method};
 use crate::solver::point::{solve_point, PointSolveParams};
 use crate::solver::relax::Smoother;
 use serde::Serialize;
+
+/// A converged cell slower than this many times the default multigrid on its (M, L) is too slow.
+pub const SLOW_FACTOR: f64 = 20.0;
+/// ... and slower than this (s), so that timer noise on millisecond solves classes nothing.
+pub const SLOW_FLOOR_S: f64 = 0.05;
 
 /// One cell of the map.
 #[derive(Clone, Debug, Serialize)]
@@ -64,7 +71,33 @@ pub fn run(ms: &[f64], ls: &[f64], grid: usize, log: &mut dyn FnMut(&str)) -> Ve
             (s.outputs, s.attempt)
         });
     }
+    classify_slow(&mut cells);
     cells
+}
+
+/// Re-class converged cells that took more than [`SLOW_FACTOR`] times the `multigrid` cell of
+/// the same (M, L) (and more than [`SLOW_FLOOR_S`]) as `too-slow`.
+pub fn classify_slow(cells: &mut [Cell]) {
+    let reference: Vec<(f64, f64, f64)> = cells
+        .iter()
+        .filter(|c| c.method == "multigrid" && c.status == "converged")
+        .map(|c| (c.m, c.l, c.wall_s))
+        .collect();
+    for c in cells.iter_mut().filter(|c| c.status == "converged") {
+        let Some(&(_, _, t_mg)) = reference.iter().find(|r| r.0 == c.m && r.1 == c.l) else {
+            continue;
+        };
+        if c.wall_s > SLOW_FACTOR * t_mg && c.wall_s > SLOW_FLOOR_S {
+            c.reason = format!(
+                "converged in {:.2} s, {:.0} x the multigrid's {:.3} s: {}",
+                c.wall_s,
+                c.wall_s / t_mg,
+                t_mg,
+                c.reason
+            );
+            c.status = "too-slow".to_string();
+        }
+    }
 }
 
 /// Run the point-contact map (ellipticity `d`) over `ms` x `ls`: the multigrid with and without
@@ -90,6 +123,7 @@ pub fn run_point(
             (s.outputs, s.attempt)
         });
     }
+    classify_slow(&mut cells);
     cells
 }
 
@@ -138,6 +172,31 @@ pub fn summary(cells: &[Cell]) -> Vec<(String, usize, usize)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn slow_converged_cells_are_too_slow() {
+        let cell = |method: &str, status: &str, wall_s: f64| Cell {
+            method: method.into(),
+            m: 20.0,
+            l: 10.0,
+            grid: 257,
+            status: status.into(),
+            attempt: 1,
+            reason: "r".into(),
+            wall_s,
+        };
+        let mut cells = vec![
+            cell("multigrid", "converged", 0.01),
+            cell("relax-257", "converged", 0.5),
+            cell("newton-257", "converged", 0.04),
+            cell("other", "diverged", 9.0),
+        ];
+        classify_slow(&mut cells);
+        let st: Vec<&str> = cells.iter().map(|c| c.status.as_str()).collect();
+        // 50 x slower: too slow; 4 x (and under the floor): fine; failures keep their class.
+        assert_eq!(st, ["converged", "too-slow", "converged", "diverged"]);
+        assert!(cells[1].reason.starts_with("converged in 0.50 s, 50 x"));
+    }
 
     #[test]
     fn point_map_classifies_each_cell() {
