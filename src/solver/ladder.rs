@@ -70,35 +70,39 @@ pub fn run_ladder<S: Attempt>(names: &[&str], mut run: impl FnMut(usize) -> S) -
 
 /// Solve on `start`, 2 start - 1, ... points (up to `max_grid`) until the error estimate between
 /// the last two grids is below `target`. The estimate is Richardson's with order p,
-/// |Q_h - Q_2h| / ((2^p - 1) |Q_h|), max over H_c and H_min. Returns the finest solution with
+/// |Q_h - Q_2h| / ((2^p - 1) |Q_h|), max over H_c and H_min, from two consecutive converged
+/// grids. `solve(grid, last)` is told whether `grid` is the finest allowed: callers run their
+/// fallback ladder there only, so a coarse grid that does not resolve the case costs one attempt
+/// and the ladder moves on to a finer grid instead of stopping. Returns the finest solution with
 /// `error_estimate` and `accuracy_met` set; the cost of all grids is counted.
 pub fn refine_to_accuracy<S: Attempt>(
     start: usize,
     max_grid: usize,
     target: f64,
     order: f64,
-    mut solve: impl FnMut(usize) -> S,
+    mut solve: impl FnMut(usize, bool) -> S,
 ) -> S {
     let mut grid = start;
     let mut prev: Option<S> = None;
     let (mut wu, mut wall) = (0.0, 0.0);
+    let mut failed_grids = vec![];
     loop {
-        let mut s = solve(grid);
+        let last = 2 * (grid - 1) + 1 > max_grid;
+        let mut s = solve(grid, last);
         let (si, so) = s.parts();
         wu += si.work_units;
         wall += si.wall_s;
-        let est = prev.as_mut().and_then(|c| {
-            let (ci, co) = c.parts();
-            let ok = ci.status == Status::Converged && si.status == Status::Converged;
+        let converged = si.status == Status::Converged;
+        let est = prev.as_mut().filter(|_| converged).map(|c| {
+            let (_, co) = c.parts();
             let factor = 1.0 / (2f64.powf(order) - 1.0);
             let rel = |coarse: f64, fine: f64| factor * ((fine - coarse) / fine).abs();
-            ok.then(|| rel(co.h_c, so.h_c).max(rel(co.h_min, so.h_min)))
+            rel(co.h_c, so.h_c).max(rel(co.h_min, so.h_min))
         });
-        let last = 2 * (so.grid - 1) + 1 > max_grid || si.status != Status::Converged;
         if est.is_some_and(|e| e <= target) || last {
             so.error_estimate = est;
             so.accuracy_met = Some(est.is_some_and(|e| e <= target));
-            let note = match est {
+            let mut note = match est {
                 Some(e) if e <= target => {
                     format!("; accuracy {e:.1e} <= target {target:.1e} on {} points", so.grid)
                 }
@@ -107,9 +111,14 @@ pub fn refine_to_accuracy<S: Attempt>(
                     so.grid
                 ),
                 None => format!(
-                    "; accuracy target {target:.1e} NOT met: no error estimate (a solve did not converge)"
+                    "; accuracy target {target:.1e} NOT met: no error estimate (no two consecutive grids converged)"
                 ),
             };
+            if !failed_grids.is_empty() {
+                note.push_str(&format!(
+                    " (not converged on the coarser grids {failed_grids:?}, fallback not tried there)"
+                ));
+            }
             so.reason.push_str(&note);
             si.reason.push_str(&note);
             so.work_units = wu;
@@ -118,7 +127,13 @@ pub fn refine_to_accuracy<S: Attempt>(
             si.wall_s = wall;
             return s;
         }
-        grid = 2 * (so.grid - 1) + 1;
-        prev = Some(s);
+        let g = so.grid;
+        if converged {
+            prev = Some(s);
+        } else {
+            failed_grids.push(g);
+            prev = None;
+        }
+        grid = 2 * (g - 1) + 1;
     }
 }

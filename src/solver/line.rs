@@ -189,9 +189,10 @@ pub fn solve_line_to_accuracy(
     target: f64,
     max_grid: usize,
 ) -> LineSolution {
-    refine_to_accuracy(257, max_grid, target, ESTIMATE_ORDER, |grid| {
+    refine_to_accuracy(257, max_grid, target, ESTIMATE_ORDER, |grid, last| {
         let mut p = *params;
         p.mg.grid = grid;
+        p.fallback = params.fallback && last;
         solve_line(case, &p)
     })
 }

@@ -292,9 +292,10 @@ pub fn solve_point_to_accuracy(
     target: f64,
     max_grid: usize,
 ) -> PointSolution {
-    refine_to_accuracy(33, max_grid, target, POINT_ESTIMATE_ORDER, |grid| {
+    refine_to_accuracy(33, max_grid, target, POINT_ESTIMATE_ORDER, |grid, last| {
         let mut p = *params;
         p.mg.grid = grid;
+        p.fallback = params.fallback && last;
         solve_point(case, &p)
     })
 }
