@@ -171,11 +171,16 @@ fn draw<DB: DrawingBackend>(
     }
     if let Some((m, l, label)) = mark {
         let p = (m.log10(), l.min(L_MAX));
+        let label = if l > L_MAX {
+            format!("{label}: L = {l:.0}, above the chart")
+        } else {
+            label.to_string()
+        };
         ch.draw_series([
             Cross::new(p, 8, RED.stroke_width(3)).into_dyn(),
             Text::new(
-                label.to_string(),
-                (p.0 + 0.08, p.1 + 0.4),
+                label,
+                (p.0 + 0.08, (p.1 + 0.4).min(L_MAX - 1.0)),
                 ("sans-serif", 16).into_font().color(&RED),
             )
             .into_dyn(),

@@ -128,7 +128,7 @@ impl CaseSpec {
                 b.nu > -1.0 && b.nu < 0.5,
                 "Poisson's ratio must be in (-1, 0.5)",
             )?;
-            if !(b.radius_x != 0.0 && !b.radius_x.is_nan()) {
+            if b.radius_x == 0.0 || b.radius_x.is_nan() {
                 return Err(format!(
                     "{n}.radius_x = {} is invalid: a radius cannot be zero (m)",
                     b.radius_x
