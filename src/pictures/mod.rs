@@ -65,7 +65,8 @@ fn range(v: &[f64]) -> (f64, f64) {
 
 fn profile<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, l: &Line) -> Res {
     let (top, bottom) = root.split_vertically(330);
-    let (x0, x1) = (l.x[0], *l.x.last().unwrap_or(&1.0));
+    // the far inlet carries no pressure: show at most 4 half-widths upstream
+    let (x0, x1) = (l.x[0].max(-4.0), *l.x.last().unwrap_or(&1.0));
     let p_hi = l.o.p_max.max(1.0) * 1.1;
     let mut ch = ChartBuilder::on(&top)
         .caption(l.title, ("sans-serif", 20))
@@ -76,7 +77,10 @@ fn profile<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, l: &Line) -> Res {
         .map_err(e)?;
     ch.configure_mesh().y_desc("P = p/p_h").draw().map_err(e)?;
     ch.draw_series(LineSeries::new(
-        l.x.iter().zip(l.p).map(|(a, b)| (*a, *b)),
+        l.x.iter()
+            .zip(l.p)
+            .filter(|(x, _)| **x >= x0)
+            .map(|(a, b)| (*a, *b)),
         BLUE.stroke_width(2),
     ))
     .map_err(e)?
@@ -97,7 +101,7 @@ fn profile<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, l: &Line) -> Res {
             Circle::new((s.x, s.p), 6, RED.stroke_width(2)).into_dyn(),
             Text::new(
                 format!("spike P = {:.3}", s.p),
-                (s.x + 0.05, s.p * 1.08),
+                (s.x - 1.5, s.p * 1.06),
                 ("sans-serif", 15).into_font().color(&RED),
             )
             .into_dyn(),
@@ -127,7 +131,7 @@ fn profile<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, l: &Line) -> Res {
     ch.draw_series(LineSeries::new(
         l.x.iter()
             .zip(l.h)
-            .filter(|(_, h)| **h <= h_hi)
+            .filter(|(x, h)| **h <= h_hi && **x >= x0)
             .map(|(a, b)| (*a, *b)),
         GREEN.stroke_width(2),
     ))
@@ -150,7 +154,7 @@ fn marks<DB: DrawingBackend>(
         Circle::new((0.0, o.h_c), 5, BLACK.filled()).into_dyn(),
         Text::new(
             format!("H_c = {:.4}", o.h_c),
-            (0.05, o.h_c * 1.06),
+            (0.05, o.h_c * 1.2),
             font.clone(),
         )
         .into_dyn(),
