@@ -201,3 +201,39 @@ fn bad_point_inputs_exit_2_naming_the_input() {
         assert!(err.contains(needle), "{needle}: {err}");
     }
 }
+
+#[test]
+fn roelands_and_dowson_higginson_in_the_solve() {
+    // z from eta0 = 0.04 Pa s: z = alpha p0/(ln eta0 + 9.67) = 2e-8 x 1.96e8/6.4512 = 0.60764.
+    let text = BALL_ON_FLAT.replacen(
+        "grid = 129",
+        "grid = 129\nroelands = true\ndowson_higginson = true",
+        1,
+    );
+    let v = json(&tmp("roelands.toml", &text), true);
+    let z = v["models"]["viscosity"]["z"].as_f64().unwrap();
+    let hand = 2e-8 * 1.96e8 / (0.04f64.ln() + 9.67);
+    assert!(
+        (z / hand - 1.0).abs() < 1e-12 && (z - 0.6076).abs() < 1e-3,
+        "z {z}"
+    );
+    assert_eq!(v["models"]["density"]["model"], "dowson-higginson");
+    assert_eq!(v["numerical"]["status"], "converged");
+    // Roelands gives less viscosity than Barus at p_h = 0.8 GPa: a thinner central film than
+    // the Barus solve of the same case (and than NVM, a Barus fit).
+    let barus = json(&tmp("barus.toml", BALL_ON_FLAT), true);
+    let (hc_r, hc_b) = (film(&v, "ehlmap", "h_c"), film(&barus, "ehlmap", "h_c"));
+    assert!(
+        hc_r < 0.98 * hc_b && hc_r > 0.5 * hc_b,
+        "Roelands {hc_r} vs Barus {hc_b}"
+    );
+    // a bad index names its input
+    let bad = BALL_ON_FLAT.replacen("grid = 129", "grid = 129\nroelands_z = -0.6", 1);
+    let out = ehlmap(&[
+        "case",
+        tmp("bad-z.toml", &bad).to_str().unwrap(),
+        "--no-solve",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("roelands_z"));
+}

@@ -82,7 +82,8 @@ pub(super) fn run(
             hmin_regime * r,
         ),
     ];
-    let case = LineCase::new(m, l).map_err(|e| e.to_string())?;
+    let models = spec.models(eta0, alpha, p_h)?;
+    let case = LineCase::with_models(m, l, models).map_err(|e| e.to_string())?;
     let venner = case.venner();
     let mut numerical = None;
     let mut p_max = None;
@@ -116,6 +117,7 @@ pub(super) fn run(
         eta0,
         alpha,
         lubricant: lub,
+        models,
         w_prime,
         u_mean: u_m,
         g,

@@ -10,7 +10,9 @@
 pub mod line;
 pub mod point;
 
+use crate::lubricant::{Density, Viscosity};
 use crate::oils::{LubricantSpec, Resolved};
+use crate::params::Models;
 use serde::{Deserialize, Serialize};
 
 /// One body: radii (m; negative for concave; `radius_y` omitted or `inf` for a cylinder axis),
@@ -53,6 +55,15 @@ pub struct CaseSpec {
     /// Finest grid: points (line, default 4097) or points per direction (point, default 129).
     #[serde(default)]
     pub grid: Option<usize>,
+    /// Roelands viscosity in the solve with this index z (default: Barus) ...
+    #[serde(default)]
+    pub roelands_z: Option<f64>,
+    /// ... or with z from eta0, `z = alpha p0/(ln eta0 + 9.67)`.
+    #[serde(default)]
+    pub roelands: bool,
+    /// Dowson-Higginson density in the solve (default: incompressible).
+    #[serde(default)]
+    pub dowson_higginson: bool,
 }
 
 /// Everything derived from a case, and the results (SI units).
@@ -70,6 +81,8 @@ pub struct CaseReport {
     pub eta0: f64,
     pub alpha: f64,
     pub lubricant: Option<Resolved>,
+    /// The solver's lubricant models (the published formulas are Barus, incompressible).
+    pub models: Models,
     /// Load group (u_m convention): W' (line) or W (point).
     pub w_prime: f64,
     pub u_mean: f64,
@@ -211,6 +224,38 @@ impl CaseSpec {
         self.run(solve, false).map(|r| r.0)
     }
 
+    /// The solver's models: Roelands (`roelands_z`, or `roelands = true` for z from eta0) and
+    /// Dowson-Higginson density need the Hertzian pressure `p_h` (Pa).
+    pub fn models(&self, eta0: f64, alpha: f64, p_h: f64) -> Result<Models, String> {
+        let viscosity = match (self.roelands_z, self.roelands) {
+            (Some(_), true) => {
+                return Err("roelands_z and roelands = true are contradictory: give one".into())
+            }
+            (Some(z), false) => {
+                check(
+                    "roelands_z",
+                    z,
+                    z > 0.0,
+                    "the Roelands index must be positive",
+                )?;
+                Viscosity::Roelands { z, ph_pa: p_h }
+            }
+            (None, true) => Viscosity::roelands_from_eta0(eta0, p_h, alpha * p_h)
+                .map_err(|e| format!("roelands (z from eta0): {e}"))?,
+            (None, false) => Viscosity::Barus,
+        };
+        let density = if self.dowson_higginson {
+            Density::DowsonHigginson { ph_pa: p_h }
+        } else {
+            Density::Incompressible
+        };
+        Ok(Models {
+            viscosity,
+            density,
+            ..Models::default()
+        })
+    }
+
     /// `sigma = sqrt(Rq1^2 + Rq2^2)` when a roughness is given.
     fn sigma(&self) -> Option<f64> {
         match (self.body1.rq, self.body2.rq) {
@@ -295,6 +340,15 @@ pub fn summary(r: &CaseReport) -> String {
             l.name, l.temperature, l.nu, l.rho, l.walther.a, l.walther.b
         ));
     }
+    let z = match r.models.viscosity {
+        Viscosity::Roelands { z, .. } => format!(" z = {z:.3}"),
+        Viscosity::Barus => String::new(),
+    };
+    s.push_str(&format!(
+        "solver models: {}{z}, {}\n",
+        r.models.viscosity.name(),
+        r.models.density.name()
+    ));
     s.push_str(&format!(
         "eta0 = {:.4} Pa s, alpha = {:.3e} 1/Pa\n\
          Moes (u_s): M = {:.3}, L = {:.3}; solver: lambda = {:.4e}, alpha_bar = {:.3}\n",

@@ -108,7 +108,8 @@ pub(super) fn run(
             hmin_regime * rx,
         ),
     ];
-    let case = PointCase::new(m, l, d).map_err(|e| e.to_string())?;
+    let models = spec.models(eta0, alpha, p_h)?;
+    let case = PointCase::with_models(m, l, d, models).map_err(|e| e.to_string())?;
     let venner = case.venner();
     let mut numerical = None;
     let mut p_max = None;
@@ -141,6 +142,7 @@ pub(super) fn run(
         eta0,
         alpha,
         lubricant: lub,
+        models,
         w_prime: w,
         u_mean: u_m,
         g,
