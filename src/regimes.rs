@@ -124,7 +124,7 @@ fn draw<DB: DrawingBackend>(
 ) -> Result<(), String> {
     let title = match d {
         None => "Regimes of a line contact (Moes 1992 asymptotes)".to_string(),
-        Some(d) => format!("Regimes of a point contact, D = {d} (NVM 1994 asymptotes)"),
+        Some(d) => format!("Regimes of a point contact, D = {d:.4} (NVM 1994 asymptotes)"),
     };
     let mut ch = ChartBuilder::on(root)
         .caption(title, ("sans-serif", 20))
@@ -170,17 +170,25 @@ fn draw<DB: DrawingBackend>(
         .map_err(e)?;
     }
     if let Some((m, l, label)) = mark {
-        let p = (m.log10(), l.min(L_MAX));
+        let p = (m.log10().clamp(LOG_M.0, LOG_M.1), l.min(L_MAX));
         let label = if l > L_MAX {
             format!("{label}: L = {l:.0}, above the chart")
         } else {
             label.to_string()
         };
+        // the label goes left of the mark near the right edge
+        // (about 8 px a character at size 16, 166 px a decade of M on the 900 px chart)
+        let width = label.chars().count() as f64 * 8.0 / 166.0;
+        let lx = if p.0 + 0.1 + width > LOG_M.1 {
+            p.0 - 0.1 - width
+        } else {
+            p.0 + 0.08
+        };
         ch.draw_series([
             Cross::new(p, 8, RED.stroke_width(3)).into_dyn(),
             Text::new(
                 label,
-                (p.0 + 0.08, (p.1 + 0.4).min(L_MAX - 1.0)),
+                (lx, (p.1 + 0.4).min(L_MAX - 1.0)),
                 ("sans-serif", 16).into_font().color(&RED),
             )
             .into_dyn(),
@@ -201,7 +209,7 @@ pub fn write_regime_map(
     std::fs::create_dir_all(dir).map_err(|x| format!("--out {}: {x}", dir.display()))?;
     let stem = match d {
         None => "regimes".to_string(),
-        Some(d) => format!("regimes-D{d}"),
+        Some(d) => format!("regimes-D{d:.4}"),
     };
     let png = dir.join(format!("{stem}.png"));
     let svg = dir.join(format!("{stem}.svg"));
