@@ -40,6 +40,8 @@ pub enum Command {
     Bench(crate::bench::cli::BenchArgs),
     /// Where methods fail: each method's status over an (M, L) map.
     Stability(crate::bench::cli::StabilityArgs),
+    /// Charts: `regimes`, the regime map in Moes' (M, L) axes.
+    Chart(crate::regimes::ChartArgs),
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
@@ -143,6 +145,9 @@ pub struct SolveArgs {
     /// Write the X, Y, P, H fields, one row per node, to this Parquet file (point contacts).
     #[arg(long)]
     pub fields: Option<PathBuf>,
+    /// Draw the pictures (PNG and SVG) into this directory.
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
 }
 
 /// Finest-grid default and range of `--grid` for line contacts.
@@ -162,21 +167,35 @@ pub struct CaseArgs {
     /// Only the groups and formulas, no numerical solve.
     #[arg(long)]
     pub no_solve: bool,
+    /// Draw the pictures (PNG and SVG) of the solution into this directory.
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
 }
 
 /// Run `ehlmap case`.
 pub fn run_case(a: &CaseArgs) -> Result<i32, InputError> {
     let path = a.file.display();
-    let text = std::fs::read_to_string(&a.file).map_err(|e| InputError(format!("{path}: {e}")))?;
-    let spec: crate::case::CaseSpec = toml::from_str(&text).map_err(|e| {
-        InputError(format!(
-            "{path}: {}",
-            e.to_string().lines().collect::<Vec<_>>().join(" ")
-        ))
-    })?;
-    let r = spec
-        .report(!a.no_solve)
+    let spec = crate::case::read_case(&a.file).map_err(InputError)?;
+    if a.plot.is_some() && a.no_solve {
+        return Err(InputError("--plot needs a solve: drop --no-solve".into()));
+    }
+    let (r, fields) = spec
+        .run(!a.no_solve, a.plot.is_some())
         .map_err(|e| InputError(format!("{path}: {e}")))?;
+    if let (Some(dir), Some(o)) = (&a.plot, &r.numerical) {
+        let stem = a
+            .file
+            .file_stem()
+            .map_or("case".into(), |s| s.to_string_lossy());
+        let files = match &fields {
+            Some(crate::case::CaseFields::Line(p)) => crate::pictures::draw_line(dir, &stem, p, o),
+            Some(crate::case::CaseFields::Point(f)) => {
+                crate::pictures::draw_point(dir, &stem, f, o)
+            }
+            None => Err(format!("the solve returned no fields ({})", o.status)),
+        };
+        report_plot(files);
+    }
     if a.json {
         println!(
             "{}",
@@ -186,6 +205,18 @@ pub fn run_case(a: &CaseArgs) -> Result<i32, InputError> {
         print!("{}", crate::case::summary(&r));
     }
     Ok(0)
+}
+
+/// Say which pictures were written (stderr), or why none were (a failed solve is a result).
+fn report_plot(files: Result<Vec<PathBuf>, String>) {
+    match files {
+        Ok(f) => eprintln!(
+            "ehlmap: --plot wrote {} files, e.g. {}",
+            f.len(),
+            f[0].display()
+        ),
+        Err(e) => eprintln!("ehlmap: --plot: no pictures: {e}"),
+    }
 }
 
 /// An input error: printed as one line, exit code 2.
@@ -329,7 +360,7 @@ pub fn run_solve(a: &SolveArgs) -> Result<i32, InputError> {
             "--method newton with --grid {grid}: the dense Jacobian needs O(N^2) memory and O(N^3) time; use at most 4097"
         )));
     }
-    p.keep_profile = a.profile.is_some();
+    p.keep_profile = a.profile.is_some() || a.plot.is_some();
     let s = match a.accuracy {
         Some(t) if a.full_model => solve_line_to_accuracy(&case, &p, accuracy_arg(t)?, a.max_grid),
         Some(t) => solve_line_selected(&case, &p, accuracy_arg(t)?, a.max_grid).0,
@@ -344,6 +375,13 @@ pub fn run_solve(a: &SolveArgs) -> Result<i32, InputError> {
         ];
         crate::io::profile::write_profile(path, prof, &meta)
             .map_err(|e| InputError(format!("--profile: {e}")))?;
+    }
+    if let Some(dir) = &a.plot {
+        let stem = format!("line-M{}-L{}", case.m, case.l);
+        report_plot(match &s.profile {
+            Some(prof) => crate::pictures::draw_line(dir, &stem, prof, &s.outputs),
+            None => Err("the solve returned no profile".into()),
+        });
     }
     if a.json {
         println!(
@@ -387,7 +425,7 @@ fn run_solve_point(a: &SolveArgs) -> Result<i32, InputError> {
     p.mg.cycle = cycle_type(a.cycle);
     p.method = method_of(a.method);
     p.fallback = !a.no_fallback;
-    p.keep_fields = a.fields.is_some();
+    p.keep_fields = a.fields.is_some() || a.plot.is_some();
     let accuracy = a.accuracy.map(accuracy_arg).transpose()?;
     let run = |p: &PointSolveParams| match accuracy {
         // Point grids are per direction: at most 513 x 513 unless --max-grid is lower.
@@ -428,6 +466,16 @@ fn run_solve_point(a: &SolveArgs) -> Result<i32, InputError> {
                 path.display()
             ),
         }
+    }
+    if let Some(dir) = &a.plot {
+        let stem = format!("point-M{}-L{}-D{}", case.m, case.l, case.d);
+        report_plot(match &s.fields {
+            Some(f) => crate::pictures::draw_point(dir, &stem, f, &s.outputs),
+            None => Err(format!(
+                "the solve returned no fields ({})",
+                s.outputs.status
+            )),
+        });
     }
     if a.json {
         println!(

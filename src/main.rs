@@ -10,6 +10,7 @@ fn main() {
         Command::Case(a) => ehlmap::cli::run_case(a),
         Command::Bench(a) => ehlmap::bench::cli::run_bench(a),
         Command::Stability(a) => ehlmap::bench::cli::run_stability(a),
+        Command::Chart(a) => ehlmap::regimes::run_chart(a),
     };
     match result {
         Ok(code) => std::process::exit(code),

@@ -81,3 +81,40 @@ fn contradictory_inputs_exit_2_naming_the_input() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn line_case_with_a_walther_oil() {
+    // Example 7-1 with ISO VG 32 at 40 C instead of eta0/alpha: eta0 = nu40 rho(40 C) exactly
+    // (the Walther line passes through its 40 C point), rho = 860 (1 - 6.5e-4 x 25) kg/m^3,
+    // alpha the table's 1.9e-8 1/Pa.
+    let base = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/sweeps/cases/example-7-1.toml"
+    ))
+    .unwrap();
+    let text = base.replacen("eta0 = 0.003\nalpha = 2.3e-7\n", "", 1)
+        + "\n[lubricant]\noil = \"ISO VG 32\"\ntemperature = 40.0\n";
+    assert!(!text.contains("\neta0 ="));
+    let dir = std::env::temp_dir().join(format!("ehlmap-case-oil-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join("case.toml");
+    std::fs::write(&p, &text).unwrap();
+    let out = ehlmap(&["case", p.to_str().unwrap(), "--json", "--no-solve"]);
+    assert!(
+        out.status.success(),
+        "{}\n{text}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let eta0 = v["eta0"].as_f64().unwrap();
+    let hand = 32e-6 * 860.0 * (1.0 - 6.5e-4 * 25.0);
+    assert!((eta0 / hand - 1.0).abs() < 1e-12, "{eta0} vs {hand}");
+    assert_eq!(v["alpha"].as_f64().unwrap(), 1.9e-8);
+    // eta0/alpha given twice is contradictory
+    let both = format!("eta0 = 0.003\nalpha = 2.3e-7\n{text}");
+    std::fs::write(&p, both).unwrap();
+    let out = ehlmap(&["case", p.to_str().unwrap(), "--no-solve"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("contradictory"));
+    std::fs::remove_dir_all(&dir).ok();
+}
