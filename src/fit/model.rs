@@ -11,6 +11,27 @@
 
 use serde::{Deserialize, Serialize};
 
+/// A film formula with a flat parameter vector, as the least-squares fit sees it.
+pub trait FilmModel: Clone {
+    /// All parameters (fixed and free).
+    fn x(&self) -> &[f64];
+    fn x_mut(&mut self) -> &mut [f64];
+    /// The film H at (M, L, D); line models ignore D.
+    fn film(&self, m: f64, l: f64, d: f64) -> f64;
+}
+
+impl FilmModel for LineModel {
+    fn x(&self) -> &[f64] {
+        &self.x
+    }
+    fn x_mut(&mut self) -> &mut [f64] {
+        &mut self.x
+    }
+    fn film(&self, m: f64, l: f64, _d: f64) -> f64 {
+        self.eval(m, l)
+    }
+}
+
 /// Names of the fitted parameters, in vector order.
 pub const PARAM_NAMES: [&str; 12] = [
     "ln_a_EI", "alpha_EI", "ln_b_RP", "beta_RP", "ln_d_EP", "gamma_EP", "delta_EP", "p", "q", "s0",
@@ -25,6 +46,9 @@ pub struct LineModel {
 }
 
 impl LineModel {
+    /// The seven asymptote parameters (the blending powers p, q and the s-law stay Moes').
+    pub const ASYMPTOTES: [usize; 7] = [0, 1, 2, 3, 4, 5, 6];
+
     /// Moes 1992 (central film; `c_ri` = 3 is his flux-thickness constant).
     pub fn moes() -> Self {
         LineModel {
