@@ -36,10 +36,10 @@ fn table(md: &mut String, all: &ErrStats, rows: &[RegionStats]) {
 
 const LINE_FORM: &str =
     "Formula (Moes units): H = [ (H_RI^p + H_EI^p)^(s/p) + (H_RP^-q + H_EP^-q)^(-s/q) ]^(1/s), \
-s = s0 + s1 exp(-s2 H_EI/H_RI), H_RI = 2.4475/M (exact, fixed), H_EI = a M^alpha, \
+s = s0 + s1 exp(-s2 H_EI/H_RI), p = p0 + p1 exp(-s2 H_EI/H_RI), H_RI = 2.4475/M (exact, fixed), H_EI = a M^alpha, \
 H_RP = b L^beta (starting from its rigid limit 1.0496 L^(2/3), see the asymptote table), \
-H_EP = d M^gamma L^delta. The EI, RP and EP laws are fitted; p, q and the s-law \
-start from Moes' (7/3, 7/2, 7/5 + 8/5 exp(-2 H_EI/H_RI)) and are fitted too with 60 or more \
+H_EP = d M^gamma L^delta. The EI, RP and EP laws are fitted; p, q, the s-law and p1 \
+start from Moes' (7/3, 7/2, 7/5 + 8/5 exp(-2 H_EI/H_RI), 0) and are fitted too with 60 or more \
 converged cases (a 1 sigma of 0 marks a parameter held fixed).";
 
 const POINT_FORM: &str = "Formula (Moes point units, NVM 1994 form): H = { [H_RI^(3/2) + \

@@ -246,7 +246,7 @@ const LINE_STAGE1: [usize; 7] = [0, 1, 2, 3, 4, 5, 6];
 // (Holding H_RP at its rigid limit B_RP_CENTRAL L^(2/3) was tried on the nightly line sweep: max
 // error 5.5 % against 4.9 % free; the elastic data never reach that limit, so RP is fitted and
 // checked against the limit instead.)
-const LINE_STAGE2: [usize; 12] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11];
+const LINE_STAGE2: [usize; 13] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12];
 
 fn line_start(scale: f64) -> LineModel {
     let mut m = LineModel::moes();
@@ -261,7 +261,12 @@ fn line_start(scale: f64) -> LineModel {
 
 fn line_physical(m: &LineModel) -> bool {
     let x = &m.x;
-    x[7] > 0.5 && x[8] > 0.5 && x[9] > 0.5 && x[11] > 0.0 && x.iter().all(|v| v.abs() < 50.0)
+    x[7] > 0.5
+        && x[7] + x[12] > 0.5
+        && x[8] > 0.5
+        && x[9] > 0.5
+        && x[11] > 0.0
+        && x.iter().all(|v| v.abs() < 50.0)
 }
 
 fn line_report(
