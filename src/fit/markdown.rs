@@ -47,9 +47,9 @@ const POINT_FORM: &str = "Formula (Moes point units, NVM 1994 form): H = { [H_RI
 H_EI/H_RI)); H_RI = c_RI f_RI(D) D^e_RI M^-2, H_EI = a f_EI(D) D^e_EI M^alpha, H_RP = b f_RP(D) \
 D^e_RP L^beta, H_EP = d f_EP(D) D^e_EP M^gamma L^delta, H_00 = c_00/D, with f_* NVM's D factors \
 normalised to 1 at D = 1 and e_* free corrections (0 = NVM; held at 0 when the data have one D). \
-The asymptotes are fitted with the M exponents of H_EI and H_EP first held at NVM's (-2/15, \
--1/12: the converged point data hardly reach the elastic regime), then all of them and s0, s1 \
-too with 60 or more converged cases; c_00 = 1.8 fixed.";
+The asymptotes are fitted with alpha_EI and the whole H_EP law first held at NVM's (the \
+converged point data hardly reach the elastic regimes), then all of them and s0, s1 too (kept only \
+if physical and better) with 60 or more converged cases; c_00 = 1.8 fixed.";
 
 fn quantity(md: &mut String, q: &QuantityFit) {
     let _ = writeln!(
