@@ -1,6 +1,8 @@
 //! The fit report on a small dataset made by ehlmap itself (`tests/data/smoke-line`: the smoke
 //! sweep, 36 line cases on 2049 points, committed): the fitted formula beats Moes 1992 on the
-//! same cases, its exponents are physical, and bad datasets give clear errors.
+//! same cases, its exponents are physical, and bad datasets give clear errors. Rows whose
+//! Richardson error estimate exceeds 2 % (the four M = 1000 cases of this dataset, 2.7 to 3.9 %)
+//! are left out and listed; the fit uses the other 32.
 
 use ehlmap::fit::dataset::load_fit_input;
 use ehlmap::fit::report::{fit_report, FitInput};
@@ -14,24 +16,37 @@ fn data() -> PathBuf {
 #[test]
 fn fitted_formula_beats_moes_on_the_committed_dataset() {
     let input = load_fit_input(&[data()]).unwrap();
-    assert_eq!(input.points.len(), 36);
-    assert_eq!(input.failed, 0);
+    assert_eq!(input.line.len(), 32);
+    assert_eq!(input.excluded.len(), 4, "{:?}", input.excluded);
+    assert!(input.excluded.iter().all(|e| e.contains("M = 1000.0000")));
+    assert_eq!(input.failed_line, 0);
+    assert!(input.point.is_empty());
     let r = fit_report(&input, false).unwrap();
-    let moes = r.moes_1992.as_ref().unwrap();
+    let r = r.line;
+    assert!(r.skipped.is_none());
+    let moes = r.published[0].overall.as_ref().unwrap();
+    assert_eq!(r.published[0].name, "Moes 1992");
+    // Dowson-Toyoda needs G, which the dataset does not carry.
+    assert_eq!(
+        r.published[1].skipped.as_deref(),
+        Some("skipped: dataset has no G")
+    );
+    let (h_c, h_min) = (r.h_c.as_ref().unwrap(), r.h_min.as_ref().unwrap());
     println!(
         "fit H_c max {:+.3}, H_min max {:+.3}, Moes max {:+.3}",
-        r.h_c.overall.max, r.h_min.overall.max, moes.max
+        h_c.overall.max, h_min.overall.max, moes.max
     );
-    // Measured: fit 2.4 % (H_c), 1.3 % (H_min); Moes 1992 8.0 % on these cases.
-    assert!(r.h_c.overall.max.abs() < 0.03, "{:?}", r.h_c.overall);
-    assert!(r.h_min.overall.max.abs() < 0.03, "{:?}", r.h_min.overall);
-    assert!(r.h_c.overall.max.abs() < moes.max.abs());
-    assert!(r.h_c.overall.rms < moes.rms);
+    // Measured on the 32 cases: fit 2.4 % (H_c), 1.3 % (H_min); Moes 1992 5.9 % (8.0 % with
+    // the four excluded M = 1000 rows).
+    assert!(h_c.overall.max.abs() < 0.03, "{:?}", h_c.overall);
+    assert!(h_min.overall.max.abs() < 0.03, "{:?}", h_min.overall);
+    assert!(h_c.overall.max.abs() < moes.max.abs());
+    assert!(h_c.overall.rms < moes.rms);
     // Elastic-isoviscous exponent near Moes' -1/5 and piezoviscous exponent of L near 3/4.
-    let p = |name: &str| r.h_c.params.iter().find(|p| p.name == name).unwrap().value;
+    let p = |name: &str| h_c.params.iter().find(|p| p.name == name).unwrap().value;
     assert!((p("alpha_EI") + 0.2).abs() < 0.06, "{}", p("alpha_EI"));
     assert!((p("delta_EP") - 0.75).abs() < 0.1, "{}", p("delta_EP"));
-    assert!(r.h_c.params.iter().all(|p| p.sigma.is_finite()));
+    assert!(h_c.params.iter().all(|p| p.sigma.is_finite()));
 }
 
 #[test]
@@ -39,9 +54,10 @@ fn empty_or_tiny_datasets_are_clear_errors() {
     let e = fit_report(&FitInput::default(), false).unwrap_err();
     assert!(e.contains("no converged cases"), "{e}");
     let mut input = load_fit_input(&[data()]).unwrap();
-    input.points.truncate(5);
+    input.line.truncate(5);
     let e = fit_report(&input, false).unwrap_err();
     assert!(e.contains("too few"), "{e}");
+    assert!(e.contains("line skipped: 5 cases, need at least 12"), "{e}");
     assert!(load_fit_input(&[PathBuf::from("/nonexistent/dataset")]).is_err());
 }
 
@@ -65,7 +81,11 @@ fn fit_command_writes_report_json_and_charts() {
         String::from_utf8_lossy(&run.stderr)
     );
     let v: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
-    assert_eq!(v["converged_cases"], 36);
+    assert_eq!(v["line"]["converged_cases"], 32);
+    assert!(v["point"]["skipped"]
+        .as_str()
+        .unwrap()
+        .starts_with("skipped: 0 cases"));
     for f in [
         "regime_map.png",
         "report.md",

@@ -1,10 +1,13 @@
 //! Charts of a fit (PNG and SVG via plotters; text by ab_glyph with the bundled DejaVu Sans, so
-//! nothing is needed from the system): parity plot, H_c over M per L with the fitted formula and
-//! Moes 1992, and the relative-error map over (log M, L).
+//! nothing is needed from the system), per contact: parity plot (fit and the published formula),
+//! H_c over M per L with the fitted formula and its four asymptotes (dashed), the relative-error
+//! map over (log M, L), and the contour map of the fitted H_c(M, L) with the regime boundaries
+//! (where two asymptotes cross) as contour lines of ln(H_a/H_b) = 0, by marching squares.
+//! Point charts are drawn at D = 1 (curves, contours) or over all D (parity, error map).
 
-use crate::fit::model::LineModel;
-use crate::fit::report::FitPoint;
-use crate::formulas::moes_line_hc;
+use crate::fit::charts_map::{error_map, regime_map};
+use crate::fit::report::{FitPoint, FittedModel};
+use crate::formulas::{moes_line_hc, nvm_point_hc};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
@@ -20,9 +23,9 @@ pub(crate) fn ensure_font() {
     });
 }
 
-type Res = Result<(), String>;
+pub(crate) type Res = Result<(), String>;
 
-fn e<T: std::fmt::Debug>(x: T) -> String {
+pub(crate) fn e<T: std::fmt::Debug>(x: T) -> String {
     format!("{x:?}")
 }
 
@@ -49,15 +52,63 @@ fn both(
     Ok(())
 }
 
-fn parity<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    pts: &[FitPoint],
-    model: &LineModel,
-) -> Res {
+/// What a chart draws: the points, the fitted model and the contact's published formula.
+pub(crate) struct Ctx<'a> {
+    pub pts: &'a [FitPoint],
+    pub model: &'a FittedModel,
+    /// D at which curves and maps are drawn (1 for line contacts).
+    pub d: f64,
+}
+
+impl Ctx<'_> {
+    pub fn published(&self, m: f64, l: f64, d: f64) -> f64 {
+        match self.model {
+            FittedModel::Line(_) => moes_line_hc(m, l),
+            FittedModel::Point(_) => nvm_point_hc(m, l, d),
+        }
+    }
+    pub fn published_name(&self) -> &'static str {
+        match self.model {
+            FittedModel::Line(_) => "Moes 1992",
+            FittedModel::Point(_) => "NVM 1994",
+        }
+    }
+    pub fn eval(&self, m: f64, l: f64) -> f64 {
+        self.model.eval(m, l, self.d)
+    }
+    /// The four asymptotes at (M, L) and the chart's D.
+    pub fn asymptotes(&self, m: f64, l: f64) -> [f64; 4] {
+        match self.model {
+            FittedModel::Line(x) => x.asymptotes(m, l),
+            FittedModel::Point(x) => x.asymptotes(m, l, self.d),
+        }
+    }
+    /// The points at the chart's D.
+    pub fn at_d(&self) -> Vec<FitPoint> {
+        self.pts
+            .iter()
+            .filter(|p| p.d.is_none_or(|d| (d - self.d).abs() < 1e-9))
+            .copied()
+            .collect()
+    }
+    pub fn suffix(&self) -> String {
+        match self.model {
+            FittedModel::Line(_) => String::new(),
+            FittedModel::Point(_) => format!(", point contact, D = {}", self.d),
+        }
+    }
+}
+
+fn parity<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, c: &Ctx) -> Res {
+    let pts = c.pts;
     let lo = pts.iter().map(|p| p.h_c).fold(f64::INFINITY, f64::min) * 0.8;
     let hi = pts.iter().map(|p| p.h_c).fold(0.0, f64::max) * 1.25;
+    let title = match c.model {
+        FittedModel::Line(_) => "Fitted formula vs numerics (H_c, line)",
+        FittedModel::Point(_) => "Fitted formula vs numerics (H_c, point, all D)",
+    };
     let mut ch = ChartBuilder::on(root)
-        .caption("Fitted formula vs numerics (H_c)", ("sans-serif", 22))
+        .caption(title, ("sans-serif", 22))
         .margin(12)
         .x_label_area_size(40)
         .y_label_area_size(56)
@@ -70,21 +121,26 @@ fn parity<DB: DrawingBackend>(
         .map_err(e)?;
     ch.draw_series(LineSeries::new([(lo, lo), (hi, hi)], BLACK.stroke_width(1)))
         .map_err(e)?;
+    let dd = |p: &FitPoint| p.d.unwrap_or(1.0);
     ch.draw_series(
         pts.iter()
-            .map(|p| Circle::new((p.h_c, model.eval(p.m, p.l)), 3, BLUE.filled())),
+            .map(|p| Circle::new((p.h_c, c.model.eval(p.m, p.l, dd(p))), 3, BLUE.filled())),
     )
     .map_err(e)?
     .label("fit")
     .legend(|(x, y)| Circle::new((x, y), 3, BLUE.filled()));
-    ch.draw_series(
-        pts.iter()
-            .map(|p| Cross::new((p.h_c, moes_line_hc(p.m, p.l)), 3, RED.stroke_width(1))),
-    )
+    ch.draw_series(pts.iter().map(|p| {
+        Cross::new(
+            (p.h_c, c.published(p.m, p.l, dd(p))),
+            3,
+            RED.stroke_width(1),
+        )
+    }))
     .map_err(e)?
-    .label("Moes 1992")
+    .label(c.published_name())
     .legend(|(x, y)| Cross::new((x, y), 3, RED.stroke_width(1)));
     ch.configure_series_labels()
+        .position(SeriesLabelPosition::UpperLeft)
         .background_style(WHITE.mix(0.8))
         .border_style(BLACK)
         .draw()
@@ -92,55 +148,58 @@ fn parity<DB: DrawingBackend>(
     Ok(())
 }
 
-fn distinct(mut v: Vec<f64>) -> Vec<f64> {
-    v.sort_by(|a, b| a.partial_cmp(b).expect("finite"));
+pub(crate) fn distinct(mut v: Vec<f64>) -> Vec<f64> {
+    v.sort_by(f64::total_cmp);
     v.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * b.abs().max(1.0));
     v
 }
 
-fn curves<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    pts: &[FitPoint],
-    model: &LineModel,
-) -> Res {
-    let m_lo = pts.iter().map(|p| p.m).fold(f64::INFINITY, f64::min);
-    let m_hi = pts.iter().map(|p| p.m).fold(0.0, f64::max);
-    let h_lo = pts.iter().map(|p| p.h_c).fold(f64::INFINITY, f64::min) * 0.7;
-    let h_hi = pts.iter().map(|p| p.h_c).fold(0.0, f64::max) * 1.4;
-    let mut ch = ChartBuilder::on(root)
+/// Log-spaced grid of n + 1 values from lo to hi.
+pub(crate) fn log_grid(lo: f64, hi: f64, n: usize) -> Vec<f64> {
+    (0..=n)
+        .map(|i| lo * (hi / lo).powf(i as f64 / n as f64))
+        .collect()
+}
+
+fn curves<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, c: &Ctx) -> Res {
+    let pts = c.at_d();
+    let m_lo = pts.iter().map(|p| p.m).fold(f64::INFINITY, f64::min) * 0.8;
+    let m_hi = pts.iter().map(|p| p.m).fold(0.0, f64::max) * 1.25;
+    let h_lo = pts.iter().map(|p| p.h_c).fold(f64::INFINITY, f64::min) * 0.6;
+    let h_hi = pts.iter().map(|p| p.h_c).fold(0.0, f64::max) * 1.6;
+    let ls = distinct(pts.iter().map(|p| p.l).collect());
+    let areas = root.split_evenly((1, 2));
+    let grid = log_grid(m_lo, m_hi, 120);
+    let names = ["RI", "EI", "RP", "EP"];
+    // Left panel: per L, fit (solid), data (dots), published (thin dotted); right panel: the
+    // fitted formula with its four asymptotes (dashed) for the smallest and largest L.
+    let mut ch = ChartBuilder::on(&areas[0])
         .caption(
-            "H_c over M per L: numerics (dots), fit (lines), Moes 1992 (dashed)",
-            ("sans-serif", 20),
+            format!("H_c over M per L{}", c.suffix()),
+            ("sans-serif", 18),
         )
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(56)
-        .build_cartesian_2d(
-            (m_lo * 0.8..m_hi * 1.25).log_scale(),
-            (h_lo..h_hi).log_scale(),
-        )
+        .margin(10)
+        .x_label_area_size(36)
+        .y_label_area_size(52)
+        .build_cartesian_2d((m_lo..m_hi).log_scale(), (h_lo..h_hi).log_scale())
         .map_err(e)?;
     ch.configure_mesh()
         .x_desc("M")
         .y_desc("H_c (Moes units)")
         .draw()
         .map_err(e)?;
-    let ls = distinct(pts.iter().map(|p| p.l).collect());
     for (k, &l) in ls.iter().enumerate() {
         let color = Palette99::pick(k).to_rgba();
-        let grid: Vec<f64> = (0..=80)
-            .map(|i| m_lo * 0.8 * ((m_hi * 1.25) / (m_lo * 0.8)).powf(i as f64 / 80.0))
-            .collect();
         ch.draw_series(LineSeries::new(
-            grid.iter().map(|&m| (m, model.eval(m, l))),
+            grid.iter().map(|&m| (m, c.eval(m, l))),
             color.stroke_width(2),
         ))
         .map_err(e)?
         .label(format!("L = {l}"))
         .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], color.stroke_width(2)));
         ch.draw_series(DashedLineSeries::new(
-            grid.iter().map(|&m| (m, moes_line_hc(m, l))),
-            4,
+            grid.iter().map(|&m| (m, c.published(m, l, c.d))),
+            2,
             4,
             color.stroke_width(1),
         ))
@@ -148,11 +207,79 @@ fn curves<DB: DrawingBackend>(
         ch.draw_series(
             pts.iter()
                 .filter(|p| (p.l - l).abs() <= 1e-9 * l.max(1.0))
-                .map(|p| Circle::new((p.m, p.h_c), 3, color.filled())),
+                .map(|p| Circle::new((p.m, p.h_c), 4, color.filled())),
         )
         .map_err(e)?;
     }
     ch.configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()
+        .map_err(e)?;
+    let mut ch = ChartBuilder::on(&areas[1])
+        .caption(
+            "fit (solid) and its asymptotes (dashed)",
+            ("sans-serif", 18),
+        )
+        .margin(10)
+        .x_label_area_size(36)
+        .y_label_area_size(52)
+        .build_cartesian_2d((m_lo..m_hi).log_scale(), (h_lo..h_hi).log_scale())
+        .map_err(e)?;
+    ch.configure_mesh().x_desc("M").draw().map_err(e)?;
+    let colors = [BLACK, RED, GREEN, BLUE];
+    let show: Vec<f64> = match (ls.first(), ls.last()) {
+        (Some(&a), Some(&b)) if b > a && a == 0.0 => vec![b],
+        (Some(&a), Some(&b)) if b > a => vec![a, b],
+        (Some(&a), _) => vec![a],
+        _ => vec![],
+    };
+    for &l in &show {
+        ch.draw_series(LineSeries::new(
+            grid.iter().map(|&m| (m, c.eval(m, l))),
+            BLACK.stroke_width(2),
+        ))
+        .map_err(e)?;
+        for (k, name) in names.iter().enumerate() {
+            if l == 0.0 && k >= 2 {
+                continue;
+            }
+            let col = colors[k];
+            let s = ch
+                .draw_series(DashedLineSeries::new(
+                    grid.iter()
+                        .map(|&m| (m, c.asymptotes(m, l)[k]))
+                        .filter(|&(_, h)| h > h_lo && h < h_hi),
+                    6,
+                    4,
+                    col.stroke_width(2),
+                ))
+                .map_err(e)?;
+            if l == show[0] {
+                s.label(format!("H_{name}")).legend(move |(x, y)| {
+                    PathElement::new([(x, y), (x + 16, y)], col.stroke_width(2))
+                });
+            }
+        }
+    }
+    // The L = 0 iso asymptotes as well, when L = 0 is in the data.
+    if ls.first() == Some(&0.0) {
+        ch.draw_series(LineSeries::new(
+            grid.iter().map(|&m| (m, c.eval(m, 0.0))),
+            RGBColor(120, 120, 120).stroke_width(2),
+        ))
+        .map_err(e)?
+        .label("fit, L = 0")
+        .legend(|(x, y)| {
+            PathElement::new(
+                [(x, y), (x + 16, y)],
+                RGBColor(120, 120, 120).stroke_width(2),
+            )
+        });
+    }
+    ch.configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
         .background_style(WHITE.mix(0.8))
         .border_style(BLACK)
         .draw()
@@ -160,204 +287,32 @@ fn curves<DB: DrawingBackend>(
     Ok(())
 }
 
-fn error_map<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    pts: &[FitPoint],
-    model: &LineModel,
-) -> Res {
-    let m_lo = pts.iter().map(|p| p.m).fold(f64::INFINITY, f64::min);
-    let m_hi = pts.iter().map(|p| p.m).fold(0.0, f64::max);
-    let l_hi = pts.iter().map(|p| p.l).fold(0.0, f64::max).max(1.0);
-    let errs: Vec<f64> = pts
-        .iter()
-        .map(|p| model.eval(p.m, p.l) / p.h_c - 1.0)
-        .collect();
-    let emax = errs.iter().fold(1e-6f64, |a, v| a.max(v.abs()));
-    let mut ch = ChartBuilder::on(root)
-        .caption(
-            format!(
-                "Relative error of the fit (red +, blue -; full colour = {:.2} %)",
-                100.0 * emax
-            ),
-            ("sans-serif", 20),
-        )
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(48)
-        .build_cartesian_2d(
-            (m_lo * 0.8..m_hi * 1.25).log_scale(),
-            -0.05 * l_hi..1.05 * l_hi,
-        )
-        .map_err(e)?;
-    ch.configure_mesh()
-        .x_desc("M")
-        .y_desc("L")
-        .draw()
-        .map_err(e)?;
-    ch.draw_series(pts.iter().zip(&errs).map(|(p, &err)| {
-        let t = (err.abs() / emax).clamp(0.0, 1.0);
-        let c = if err >= 0.0 {
-            RGBColor(255, (255.0 * (1.0 - t)) as u8, (255.0 * (1.0 - t)) as u8)
-        } else {
-            RGBColor((255.0 * (1.0 - t)) as u8, (255.0 * (1.0 - t)) as u8, 255)
-        };
-        EmptyElement::at((p.m, p.l))
-            + Circle::new((0, 0), 7, c.filled())
-            + Circle::new((0, 0), 7, BLACK.stroke_width(1))
-    }))
-    .map_err(e)?;
-    Ok(())
-}
-
-/// Where two asymptote laws of `model` cross, on a log-M grid at fixed L: the M values at which
-/// f(M) changes sign.
-fn crossings(ms: &[f64], f: impl Fn(f64) -> f64) -> Vec<f64> {
-    let mut out = vec![];
-    for w in ms.windows(2) {
-        let (a, b) = (f(w[0]), f(w[1]));
-        if a.is_finite() && b.is_finite() && a.signum() != b.signum() {
-            // Log-linear interpolation of the sign change.
-            let t = a / (a - b);
-            out.push((w[0].ln() + t * (w[1].ln() - w[0].ln())).exp());
-        }
-    }
-    out
-}
-
-/// A regime boundary: its name, colour and the (M, L) points found on it.
-type Boundary = (&'static str, RGBColor, Vec<(f64, f64)>);
-
-fn regime_map<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    pts: &[FitPoint],
-    model: &LineModel,
-) -> Res {
-    let m_lo = pts.iter().map(|p| p.m).fold(f64::INFINITY, f64::min) * 0.8;
-    let m_hi = pts.iter().map(|p| p.m).fold(0.0, f64::max) * 1.25;
-    let l_hi = pts.iter().map(|p| p.l).fold(0.0, f64::max).max(1.0);
-    let mut ch = ChartBuilder::on(root)
-        .caption(
-            "Fitted H_c(M, L) with regime boundaries (where two asymptotes cross)",
-            ("sans-serif", 19),
-        )
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(48)
-        .build_cartesian_2d((m_lo..m_hi).log_scale(), 0.0..l_hi)
-        .map_err(e)?;
-    ch.configure_mesh()
-        .x_desc("M")
-        .y_desc("L")
-        .draw()
-        .map_err(e)?;
-    // Filled map of log H_c on a 60 x 40 raster, light (thin film) to dark blue (thick film).
-    let (nx, ny) = (60usize, 40usize);
-    let mgrid: Vec<f64> = (0..=nx)
-        .map(|i| m_lo * (m_hi / m_lo).powf(i as f64 / nx as f64))
-        .collect();
-    let lgrid: Vec<f64> = (0..=ny).map(|j| l_hi * j as f64 / ny as f64).collect();
-    let (mut hmin, mut hmax) = (f64::INFINITY, 0.0f64);
-    for &m in &mgrid {
-        for &l in &lgrid {
-            let h = model.eval(m, l);
-            hmin = hmin.min(h);
-            hmax = hmax.max(h);
-        }
-    }
-    let shade = |h: f64| {
-        let t = ((h.ln() - hmin.ln()) / (hmax.ln() - hmin.ln())).clamp(0.0, 1.0);
-        RGBColor(
-            (235.0 - 185.0 * t) as u8,
-            (240.0 - 150.0 * t) as u8,
-            (250.0 - 90.0 * t) as u8,
-        )
-    };
-    ch.draw_series((0..nx).flat_map(|i| {
-        let (mg, lg) = (&mgrid, &lgrid);
-        (0..ny).map(move |j| {
-            let h = model.eval((mg[i] * mg[i + 1]).sqrt(), 0.5 * (lg[j] + lg[j + 1]));
-            Rectangle::new([(mg[i], lg[j]), (mg[i + 1], lg[j + 1])], shade(h).filled())
-        })
-    }))
-    .map_err(e)?;
-    // Boundaries: RI = EI (isoviscous), RP = EP (piezoviscous), iso bracket = piezo bracket.
-    let fine: Vec<f64> = (0..=400)
-        .map(|i| m_lo * (m_hi / m_lo).powf(i as f64 / 400.0))
-        .collect();
-    let (p, q) = (model.x[7], model.x[8]);
-    let mut lines: Vec<Boundary> = vec![
-        ("RI = EI", RGBColor(0, 0, 0), vec![]),
-        ("RP = EP", RGBColor(200, 30, 30), vec![]),
-        ("isoviscous = piezoviscous", RGBColor(30, 130, 30), vec![]),
-    ];
-    for &l in lgrid.iter().skip(1) {
-        let a = |m: f64| model.asymptotes(m, l);
-        for m in crossings(&fine, |m| a(m)[0].ln() - a(m)[1].ln()) {
-            lines[0].2.push((m, l));
-        }
-        for m in crossings(&fine, |m| a(m)[2].ln() - a(m)[3].ln()) {
-            lines[1].2.push((m, l));
-        }
-        let iso = |m: f64| (a(m)[0].powf(p) + a(m)[1].powf(p)).powf(1.0 / p);
-        let piezo = |m: f64| (a(m)[2].powf(-q) + a(m)[3].powf(-q)).powf(-1.0 / q);
-        for m in crossings(&fine, |m| iso(m).ln() - piezo(m).ln()) {
-            lines[2].2.push((m, l));
-        }
-    }
-    for (name, color, pts_line) in lines {
-        if pts_line.is_empty() {
-            continue;
-        }
-        ch.draw_series(
-            pts_line
-                .iter()
-                .map(|&xy| Circle::new(xy, 2, color.filled())),
-        )
-        .map_err(e)?
-        .label(name)
-        .legend(move |(x, y)| Circle::new((x, y), 3, color.filled()));
-    }
-    ch.draw_series(
-        pts.iter()
-            .map(|p| Cross::new((p.m, p.l), 3, RGBColor(90, 90, 90).stroke_width(1))),
-    )
-    .map_err(e)?
-    .label("solved cases")
-    .legend(|(x, y)| Cross::new((x, y), 3, RGBColor(90, 90, 90).stroke_width(1)));
-    ch.configure_series_labels()
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .draw()
-        .map_err(e)?;
-    Ok(())
-}
-
-/// Write parity, curves and error-map charts (PNG and SVG) into `dir`; returns the file stems.
+/// Write the charts of one contact (PNG and SVG) into `dir`, file stems prefixed with `prefix`;
+/// returns the stems.
 pub fn write_charts(
     dir: &Path,
+    prefix: &str,
     pts: &[FitPoint],
-    model: &LineModel,
+    model: &FittedModel,
 ) -> Result<Vec<String>, String> {
     if pts.is_empty() {
         return Ok(vec![]);
     }
-    let size = (900, 650);
+    // Point charts at the largest D of the data (1, circular, in the sweeps).
+    let d = pts.iter().filter_map(|p| p.d).fold(0.0f64, f64::max);
+    let d = if d > 0.0 { d } else { 1.0 };
+    let c = Ctx { pts, model, d };
     let mut stems = vec![];
-    // One chart function, drawn to both backends (their types differ, hence the macro).
     macro_rules! chart {
-        ($name:literal, $draw:ident) => {
-            both(
-                &dir.join($name),
-                size,
-                |r| $draw(r, pts, model),
-                |r| $draw(r, pts, model),
-            )?;
-            stems.push($name.to_string());
+        ($name:literal, $draw:ident, $size:expr) => {
+            let stem = format!("{prefix}{}", $name);
+            both(&dir.join(&stem), $size, |r| $draw(r, &c), |r| $draw(r, &c))?;
+            stems.push(stem);
         };
     }
-    chart!("parity", parity);
-    chart!("hc_vs_m", curves);
-    chart!("error_map", error_map);
-    chart!("regime_map", regime_map);
+    chart!("parity", parity, (900, 700));
+    chart!("hc_vs_m", curves, (1400, 650));
+    chart!("error_map", error_map, (900, 650));
+    chart!("regime_map", regime_map, (1000, 700));
     Ok(stems)
 }

@@ -1,9 +1,12 @@
-//! `ehlmap fit DATASET... [--out DIR] [--json]`: fit, report, charts.
+//! `ehlmap fit DATASET... [--out DIR] [--json]`: fit, report, charts. A mixed dataset is fitted
+//! per contact (line charts `parity.png` ..., point charts `point_parity.png` ...); a contact with
+//! too few cases is reported as skipped; exit 2 only when nothing could be fitted.
 
 use crate::cli::InputError;
 use crate::fit::charts::write_charts;
 use crate::fit::dataset::load_fit_input;
-use crate::fit::report::{fit_report, to_markdown};
+use crate::fit::markdown::to_markdown;
+use crate::fit::report::fit_report;
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
@@ -40,8 +43,18 @@ pub fn run_fit(a: &FitArgs) -> Result<i32, InputError> {
         .map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
     let json = serde_json::to_string_pretty(&report).expect("report serialises");
     let mut md = to_markdown(&report);
-    let charts = write_charts(&out, &input.points, &report.h_c.model)
-        .map_err(|e| InputError(format!("charts: {e}")))?;
+    let mut charts = vec![];
+    for (prefix, pts, c) in [
+        ("", &input.line, &report.line),
+        ("point_", &input.point, &report.point),
+    ] {
+        if let Some(q) = &c.h_c {
+            charts.extend(
+                write_charts(&out, prefix, pts, &q.model)
+                    .map_err(|e| InputError(format!("charts: {e}")))?,
+            );
+        }
+    }
     if !charts.is_empty() {
         md.push_str("\n## Charts\n\n");
         for c in &charts {

@@ -1,11 +1,18 @@
 //! Reading sweep datasets for the fit: every part file of each directory (arrow-rs reader),
-//! deduplicated by case id across directories, line-contact converged valid rows only; failed
-//! rows and duplicates are counted for the report.
+//! deduplicated by case id across directories, converged valid rows only, split by contact
+//! (line / point; a mixed dataset gives both); failed rows and duplicates are counted for the
+//! report. Converged rows whose Richardson error estimate of H_c or H_min exceeds
+//! [`MAX_ERROR_ESTIMATE`] are left out as grid-unconverged (a fit to 2 % cannot use data that are
+//! themselves uncertain by more), each listed with its estimate in the report. The datasets carry no G column, so `FitPoint::g` is None (formulas that need G are
+//! skipped by the report).
 
 use crate::fit::report::{FitInput, FitPoint};
 use crate::io::results::read_dataset;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
+
+/// Largest Richardson error estimate (H_c_err, H_min_err) of a row used by the fit.
+pub const MAX_ERROR_ESTIMATE: f64 = 0.02;
 
 /// Load the fit input from one or more dataset directories.
 pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, String> {
@@ -29,22 +36,36 @@ pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, String> {
         ..FitInput::default()
     };
     for row in by_id.values() {
-        match (
-            row.contact.as_str(),
-            row.status.as_str(),
-            row.valid,
-            row.h_c,
-            row.h_min,
-        ) {
-            ("line", "converged", true, Some(h_c), Some(h_min)) if h_c > 0.0 && h_min > 0.0 => {
-                input.points.push(FitPoint {
-                    m: row.m,
-                    l: row.l,
-                    h_c,
-                    h_min,
-                })
-            }
-            _ => input.failed += 1,
+        let ok = row.status == "converged" && row.valid;
+        let point = match (row.h_c, row.h_min) {
+            (Some(h_c), Some(h_min)) if ok && h_c > 0.0 && h_min > 0.0 => Some(FitPoint {
+                m: row.m,
+                l: row.l,
+                d: row.d,
+                h_c,
+                h_min,
+                g: None,
+            }),
+            _ => None,
+        };
+        let est = row.h_c_err.unwrap_or(0.0).max(row.h_min_err.unwrap_or(0.0));
+        if point.is_some() && est > MAX_ERROR_ESTIMATE {
+            input.excluded.push(format!(
+                "{} M = {:.4}, L = {}{}: error estimate {:.1} % > {:.0} %",
+                row.contact,
+                row.m,
+                row.l,
+                row.d.map_or(String::new(), |d| format!(", D = {d}")),
+                100.0 * est,
+                100.0 * MAX_ERROR_ESTIMATE
+            ));
+            continue;
+        }
+        match (row.contact.as_str(), point) {
+            ("line", Some(p)) => input.line.push(p),
+            ("point", Some(p)) if p.d.is_some() => input.point.push(p),
+            ("point", _) => input.failed_point += 1,
+            _ => input.failed_line += 1,
         }
     }
     Ok(input)

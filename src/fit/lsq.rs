@@ -1,37 +1,40 @@
 //! The least-squares problem in log space, solved by Levenberg-Marquardt (`levenberg-marquardt`
 //! on nalgebra), with parameter uncertainties from the Jacobian: cov = sigma^2 (J^T J)^-1,
-//! sigma^2 = sum r^2 / (m - n).
+//! sigma^2 = sum r^2 / (m - n). Generic over [`FilmModel`]: the line and point models share it.
 
+use crate::fit::model::FilmModel;
+#[cfg(test)]
 use crate::fit::model::LineModel;
 use levenberg_marquardt::{LeastSquaresProblem, LevenbergMarquardt};
 use nalgebra::storage::Owned;
 use nalgebra::{DMatrix, DVector, Dyn};
 
-/// One data point: (M, L) and the film value to fit.
+/// One data point: (M, L, D) and the film value to fit (`d` is ignored by line models).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sample {
     pub m: f64,
     pub l: f64,
+    pub d: f64,
     pub h: f64,
 }
 
 const PENALTY: f64 = 1e3;
 
-struct Problem<'a> {
+struct Problem<'a, Mo: FilmModel> {
     data: &'a [Sample],
-    model: LineModel,
+    model: Mo,
     /// Indices of the free parameters in `model.x`.
     free: Vec<usize>,
 }
 
-impl Problem<'_> {
+impl<Mo: FilmModel> Problem<'_, Mo> {
     /// Log residuals; where the model is not finite (a trial step far outside the physical
     /// range) a large finite penalty steers the search back.
-    fn residuals_at(&self, model: &LineModel) -> DVector<f64> {
+    fn residuals_at(&self, model: &Mo) -> DVector<f64> {
         DVector::from_iterator(
             self.data.len(),
             self.data.iter().map(|s| {
-                let r = model.eval(s.m, s.l).ln() - s.h.ln();
+                let r = model.film(s.m, s.l, s.d).ln() - s.h.ln();
                 if r.is_finite() {
                     r
                 } else {
@@ -42,19 +45,22 @@ impl Problem<'_> {
     }
 }
 
-impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
+impl<Mo: FilmModel> LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_, Mo> {
     type ResidualStorage = Owned<f64, Dyn>;
     type JacobianStorage = Owned<f64, Dyn, Dyn>;
     type ParameterStorage = Owned<f64, Dyn>;
 
     fn set_params(&mut self, x: &DVector<f64>) {
         for (k, v) in self.free.iter().zip(x.iter()) {
-            self.model.x[*k] = *v;
+            self.model.x_mut()[*k] = *v;
         }
     }
 
     fn params(&self) -> DVector<f64> {
-        DVector::from_iterator(self.free.len(), self.free.iter().map(|&k| self.model.x[k]))
+        DVector::from_iterator(
+            self.free.len(),
+            self.free.iter().map(|&k| self.model.x()[k]),
+        )
     }
 
     fn residuals(&self) -> Option<DVector<f64>> {
@@ -65,11 +71,11 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
     fn jacobian(&self) -> Option<DMatrix<f64>> {
         let mut jac = DMatrix::zeros(self.data.len(), self.free.len());
         for (col, &k) in self.free.iter().enumerate() {
-            let step = 1e-6 * (1.0 + self.model.x[k].abs());
+            let step = 1e-6 * (1.0 + self.model.x()[k].abs());
             let mut plus = self.model.clone();
             let mut minus = self.model.clone();
-            plus.x[k] += step;
-            minus.x[k] -= step;
+            plus.x_mut()[k] += step;
+            minus.x_mut()[k] -= step;
             let d = (self.residuals_at(&plus) - self.residuals_at(&minus)) / (2.0 * step);
             if d.iter().any(|v| !v.is_finite()) {
                 return None;
@@ -82,8 +88,8 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
 
 /// Outcome of a fit.
 #[derive(Clone, Debug, PartialEq)]
-pub struct LsqFit {
-    pub model: LineModel,
+pub struct LsqFit<Mo> {
+    pub model: Mo,
     /// One-sigma uncertainties of all parameters (0 for fixed ones, NaN where J^T J is singular).
     pub sigma: Vec<f64>,
     /// RMS of the log residuals.
@@ -92,12 +98,13 @@ pub struct LsqFit {
     pub evaluations: usize,
 }
 
-/// The seven asymptote parameters (the blending powers p, q and the s-law stay Moes').
-pub const ASYMPTOTES: [usize; 7] = [0, 1, 2, 3, 4, 5, 6];
-
 /// Fit the parameters of `start` listed in `free` to `data` (needs more points than free
 /// parameters); the others stay as they are.
-pub fn fit(data: &[Sample], start: &LineModel, free: &[usize]) -> Result<LsqFit, String> {
+pub fn fit<Mo: FilmModel>(
+    data: &[Sample],
+    start: &Mo,
+    free: &[usize],
+) -> Result<LsqFit<Mo>, String> {
     let n = free.len();
     if data.len() <= n {
         return Err(format!(
@@ -125,7 +132,7 @@ pub fn fit(data: &[Sample], start: &LineModel, free: &[usize]) -> Result<LsqFit,
         .ok_or("the fitted model is not finite on the data")?;
     let m = data.len();
     let s2 = r.norm_squared() / (m - n) as f64;
-    let mut sigma = vec![0.0; start.x.len()];
+    let mut sigma = vec![0.0; start.x().len()];
     let diag: Vec<f64> = match problem
         .jacobian()
         .and_then(|j| (j.transpose() * &j).try_inverse())
@@ -165,13 +172,14 @@ mod tests {
                 data.push(Sample {
                     m,
                     l,
+                    d: 1.0,
                     h: truth.eval(m, l),
                 });
             }
         }
         let mut start = LineModel::moes();
         start.c_ri = 2.4475;
-        let f = fit(&data, &start, &ASYMPTOTES).unwrap();
+        let f = fit(&data, &start, &LineModel::ASYMPTOTES).unwrap();
         let worst = data
             .iter()
             .map(|s| (f.model.eval(s.m, s.l) / s.h - 1.0).abs())
@@ -186,10 +194,11 @@ mod tests {
             Sample {
                 m: 1.0,
                 l: 1.0,
+                d: 1.0,
                 h: 1.0
             };
             5
         ];
-        assert!(fit(&data, &LineModel::moes(), &ASYMPTOTES).is_err());
+        assert!(fit(&data, &LineModel::moes(), &LineModel::ASYMPTOTES).is_err());
     }
 }

@@ -1,13 +1,19 @@
-//! Fitting a Moes-style film-thickness formula to sweep results, and checking it.
+//! Fitting Moes/NVM-style film-thickness formulas to sweep results, and checking them.
 //!
-//! [`model`] defines the blended-asymptote formula, [`lsq`] fits it in log space by
-//! Levenberg-Marquardt with parameter uncertainties, [`stats`] turns formula-vs-data errors into
-//! tables (overall and per region of the (M, L) plane).
+//! [`model`] (line, Moes 1992 form) and [`point_model`] (point, NVM 1994 form) define the
+//! blended-asymptote formulas, [`lsq`] fits either in log space by Levenberg-Marquardt with
+//! parameter uncertainties, [`stats`] turns formula-vs-data errors into tables (overall and per
+//! region of the (M, L) plane), [`checks`] compares the fitted asymptotes with the solver's limit
+//! solves, [`report`] and [`markdown`] assemble the report, [`charts`] draws it.
 
 pub mod charts;
+pub mod charts_map;
+pub mod checks;
 pub mod cli;
 pub mod dataset;
 pub mod lsq;
+pub mod markdown;
 pub mod model;
+pub mod point_model;
 pub mod report;
 pub mod stats;

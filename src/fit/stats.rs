@@ -94,6 +94,26 @@ pub fn region_table(points: &[(f64, f64, f64, f64)]) -> Vec<RegionStats> {
     out
 }
 
+/// Statistics per ellipticity D of (D, formula, data) tuples, in increasing D.
+pub fn d_table(points: &[(f64, f64, f64)]) -> Vec<RegionStats> {
+    let mut ds: Vec<f64> = points.iter().map(|p| p.0).collect();
+    ds.sort_by(f64::total_cmp);
+    ds.dedup();
+    ds.iter()
+        .filter_map(|&d| {
+            let sel: Vec<_> = points
+                .iter()
+                .filter(|p| p.0 == d)
+                .map(|&(d, f, h)| (f64::NAN, d, f, h))
+                .collect();
+            err_stats(&sel).map(|stats| RegionStats {
+                region: format!("D = {d}"),
+                stats,
+            })
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,0 +1,147 @@
+//! Markdown rendering of a [`FitReport`]: one section per contact (fitted formula with
+//! coefficients and uncertainties, error tables overall / per (M, L) region / per D, the
+//! published formulas on the same cases, asymptote checks), or the reason it was skipped.
+
+use crate::fit::report::{ContactReport, FitReport, QuantityFit};
+use crate::fit::stats::{ErrStats, RegionStats};
+use std::fmt::Write;
+
+fn pct(v: f64) -> String {
+    format!("{:+.2} %", 100.0 * v)
+}
+
+fn stats_row(name: &str, s: &ErrStats) -> String {
+    let at = if s.worst_m.is_nan() {
+        String::new()
+    } else {
+        format!("M = {:.4}, L = {:.3}", s.worst_m, s.worst_l)
+    };
+    format!(
+        "| {name} | {} | {} | {:.2} % | {} | {at} |\n",
+        s.n,
+        pct(s.max),
+        100.0 * s.rms,
+        pct(s.mean),
+    )
+}
+
+fn table(md: &mut String, all: &ErrStats, rows: &[RegionStats]) {
+    md.push_str("| region | n | max error | RMS | mean | worst at |\n|---|---|---|---|---|---|\n");
+    md.push_str(&stats_row("all", all));
+    for rg in rows {
+        md.push_str(&stats_row(&rg.region, &rg.stats));
+    }
+    md.push('\n');
+}
+
+const LINE_FORM: &str =
+    "Formula (Moes units): H = [ (H_RI^p + H_EI^p)^(s/p) + (H_RP^-q + H_EP^-q)^(-s/q) ]^(1/s), \
+s = s0 + s1 exp(-s2 H_EI/H_RI), p = p0 + p1 exp(-s2 H_EI/H_RI), H_RI = 2.4475/M (exact, fixed), H_EI = a M^alpha, \
+H_RP = b L^beta (starting from its rigid limit 1.0496 L^(2/3), see the asymptote table), \
+H_EP = d M^gamma L^delta. The EI, RP and EP laws are fitted; p, q, the s-law and p1 \
+start from Moes' (7/3, 7/2, 7/5 + 8/5 exp(-2 H_EI/H_RI), 0) and are fitted too with 60 or more \
+converged cases (a 1 sigma of 0 marks a parameter held fixed).";
+
+const POINT_FORM: &str = "Formula (Moes point units, NVM 1994 form): H = { [H_RI^(3/2) + \
+(H_EI^-4 + H_00^-4)^(-3/8)]^(2s/3) + (H_RP^-8 + H_EP^-8)^(-s/8) }^(1/s), s = s0 (1 + exp(-s1 \
+H_EI/H_RI)); H_RI = c_RI f_RI(D) D^e_RI M^-2, H_EI = a f_EI(D) D^e_EI M^alpha, H_RP = b f_RP(D) \
+D^e_RP L^beta, H_EP = d f_EP(D) D^e_EP M^gamma L^delta, H_00 = c_00/D, with f_* NVM's D factors \
+normalised to 1 at D = 1 and e_* free corrections (0 = NVM; held at 0 when the data have one D). \
+The asymptotes are fitted with alpha_EI and the whole H_EP law first held at NVM's (the \
+converged point data hardly reach the elastic regimes), then all of them and s0, s1 too (kept only \
+if physical and better) with 60 or more converged cases; c_00 = 1.8 fixed.";
+
+fn quantity(md: &mut String, q: &QuantityFit) {
+    let _ = writeln!(
+        md,
+        "### {} (LM converged: {}, RMS of log residuals {:.2e})\n",
+        q.quantity, q.converged, q.rms_log
+    );
+    let _ = writeln!(md, "| parameter | value | 1 sigma |\n|---|---|---|");
+    for p in &q.params {
+        let _ = writeln!(md, "| {} | {:.5} | {:.1e} |", p.name, p.value, p.sigma);
+    }
+    md.push('\n');
+    table(md, &q.overall, &q.regions);
+    if !q.per_d.is_empty() {
+        let _ = writeln!(md, "Per ellipticity:\n");
+        table(md, &q.overall, &q.per_d);
+    }
+}
+
+fn contact(md: &mut String, c: &ContactReport) {
+    let _ = writeln!(md, "## {} contact\n", c.contact);
+    if let Some(why) = &c.skipped {
+        let _ = writeln!(md, "{why} (failed rows: {}).\n", c.failed_cases);
+        return;
+    }
+    let _ = writeln!(
+        md,
+        "Converged cases fitted: {}; failed rows left out: {}.\n",
+        c.converged_cases, c.failed_cases
+    );
+    let form = if c.contact == "line" {
+        LINE_FORM
+    } else {
+        POINT_FORM
+    };
+    let _ = writeln!(md, "{form}\n");
+    for q in [&c.h_c, &c.h_min].into_iter().flatten() {
+        quantity(md, q);
+    }
+    for p in &c.published {
+        let _ = writeln!(md, "### {} on the same cases (H_c)\n", p.name);
+        match (&p.overall, &p.skipped) {
+            (Some(all), _) => table(md, all, &p.regions),
+            (None, Some(why)) => {
+                let _ = writeln!(md, "{why}.\n");
+            }
+            (None, None) => {}
+        }
+    }
+    if !c.asymptotes.is_empty() {
+        let _ = writeln!(
+            md,
+            "### Asymptotes (H_c) against the solver's limit solves\n"
+        );
+        let _ = writeln!(
+            md,
+            "| asymptote | fitted law | at | solver H_c | asymptote | ratio | note |\n|---|---|---|---|---|---|---|"
+        );
+        for a in &c.asymptotes {
+            let d = a.d.map_or(String::new(), |d| format!(", D = {d}"));
+            let _ = writeln!(
+                md,
+                "| {} | {} | M = {}, L = {}{d} ({}) | {} | {:.5} | {} | {} |",
+                a.asymptote,
+                a.law,
+                a.m,
+                a.l,
+                a.elasticity,
+                a.solver_h_c.map_or("failed".into(), |v| format!("{v:.5}")),
+                a.fitted,
+                a.ratio.map_or("-".into(), |v| format!("{v:.4}")),
+                a.note
+            );
+        }
+        md.push('\n');
+    }
+}
+
+/// Markdown of the report.
+pub fn to_markdown(r: &FitReport) -> String {
+    let mut md = String::new();
+    let _ = writeln!(md, "# ehlmap film-thickness fit\n");
+    let _ = writeln!(
+        md,
+        "Datasets: {}. Duplicate rows dropped: {}. A mixed dataset is fitted per contact.\n",
+        r.datasets.join(", "),
+        r.duplicate_rows
+    );
+    for e in &r.excluded {
+        let _ = writeln!(md, "Excluded: {e}.");
+    }
+    contact(&mut md, &r.line);
+    contact(&mut md, &r.point);
+    md
+}
