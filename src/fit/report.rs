@@ -408,9 +408,11 @@ fn point_report(
 pub fn fit_report(input: &FitInput, limit_solves: bool) -> Result<FitReport, String> {
     if input.line.is_empty() && input.point.is_empty() {
         return Err(format!(
-            "no converged cases in {} ({} failed rows): nothing to fit",
+            "no converged cases in {} ({} failed rows, {} excluded for an error estimate \
+             above 2 %): nothing to fit",
             input.datasets.join(", "),
-            input.failed_line + input.failed_point
+            input.failed_line + input.failed_point,
+            input.excluded.len()
         ));
     }
     let line = line_report(&input.line, input.failed_line, limit_solves)?;

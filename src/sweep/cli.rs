@@ -107,12 +107,6 @@ pub fn resolve_threads(arg: Option<u32>) -> Result<usize, InputError> {
 pub fn run_sweep(args: &SweepArgs) -> Result<i32, InputError> {
     let spec = spec::load(&args.spec).map_err(|e| InputError(e.to_string()))?;
     let cases = plan::plan(&spec).map_err(|e| InputError(e.to_string()))?;
-    if args.fit && !spec.has(spec::Contact::Line) {
-        return Err(InputError(format!(
-            "--fit: the fit report covers line contacts only ({} has no line cases)",
-            args.spec.display()
-        )));
-    }
     let shard = resolve_shard(args.shard.as_deref())?;
     let threads = resolve_threads(args.threads)?;
     let base = args.out.clone().unwrap_or_else(|| spec.output.dir.clone());
