@@ -36,6 +36,7 @@ use crate::formulas::{moes_line_asymptotes, moes_line_hc, nvm_point_asymptotes, 
 use crate::lubricant::{Density, Viscosity};
 use crate::params::{Elasticity, LineCase, Models, PointCase};
 use crate::solution::Outputs;
+use crate::solver::ladder::Attempt;
 use crate::solver::line::{solve_line, solve_line_to_accuracy, LineSolution, LineSolveParams};
 use crate::solver::point::{solve_point, solve_point_to_accuracy, PointSolution, PointSolveParams};
 use crate::solver::{SolveInfo, Status};
@@ -297,12 +298,42 @@ fn verify(
     (sel, cost.0, cost.1)
 }
 
-/// Add the check cost to a solution's cost.
-fn add_cost(o: &mut Outputs, info: &mut SolveInfo, wu: f64, wall: f64) {
+/// Finish a selected solve `s`: a simplified model that did not converge is replaced by the full
+/// model (`full()`, noted in the reason); the answer is annotated with its model, and the cost
+/// of the checks (`check` = work units, seconds) and of a failed simplified solve is added.
+fn finish<S: Attempt>(
+    mut s: S,
+    sel: Selection,
+    full: impl FnOnce() -> S,
+    check: (f64, f64),
+) -> (S, Selection) {
+    let (mut wu, mut wall) = check;
+    let sel = if sel.model != ModelChoice::Full && s.info().status != Status::Converged {
+        wu += s.info().work_units;
+        wall += s.info().wall_s;
+        s = full();
+        let note = format!(" ({} model did not converge; full model solved)", sel.model);
+        let (info, o) = s.parts();
+        o.reason.push_str(&note);
+        info.reason.push_str(&note);
+        Selection {
+            model: ModelChoice::Full,
+            neglected: 0.0,
+            ..sel
+        }
+    } else {
+        sel
+    };
+    let (info, o) = s.parts();
+    // The closed form annotated itself when it was built.
+    if o.model_used != ModelChoice::ClosedForm.as_str() {
+        annotate(o, info, &sel);
+    }
     o.work_units += wu;
     o.wall_s += wall;
     info.work_units += wu;
     info.wall_s += wall;
+    (s, sel)
 }
 
 /// Solve a line case with the cheapest verified model to `target` (refining up to `max_grid`);
@@ -319,7 +350,7 @@ pub fn solve_line_selected(
     cp.keep_profile = false;
     let (sel, wu, wall) = verify(screened, target, |model| solve_line_model(case, &cp, model));
     let full = |p: &LineSolveParams| solve_line_to_accuracy(case, p, target, max_grid);
-    let mut s = match sel.model {
+    let s = match sel.model {
         ModelChoice::Full => full(params),
         ModelChoice::ClosedForm => closed_form_line(case.m, &sel),
         model => {
@@ -330,24 +361,7 @@ pub fn solve_line_selected(
             }
         }
     };
-    let sel = if sel.model != ModelChoice::Full && s.outputs.status != Status::Converged {
-        s = full(params);
-        let note = format!(" ({} model did not converge; full model solved)", sel.model);
-        s.outputs.reason.push_str(&note);
-        s.info.reason.push_str(&note);
-        Selection {
-            model: ModelChoice::Full,
-            neglected: 0.0,
-            ..sel
-        }
-    } else {
-        sel
-    };
-    if sel.model != ModelChoice::ClosedForm {
-        annotate(&mut s.outputs, &mut s.info, &sel);
-    }
-    add_cost(&mut s.outputs, &mut s.info, wu, wall);
-    (s, sel)
+    finish(s, sel, || full(params), (wu, wall))
 }
 
 /// [`solve_line_selected`] for point contacts (no closed form).
@@ -365,7 +379,7 @@ pub fn solve_point_selected(
         solve_point_model(case, &cp, model)
     });
     let full = |p: &PointSolveParams| solve_point_to_accuracy(case, p, target, max_grid);
-    let mut s = match sel.model {
+    let s = match sel.model {
         ModelChoice::Full => full(params),
         model => {
             let (l, models) = simplified(model, case.l, &case.models);
@@ -375,22 +389,7 @@ pub fn solve_point_selected(
             }
         }
     };
-    let sel = if sel.model != ModelChoice::Full && s.outputs.status != Status::Converged {
-        s = full(params);
-        let note = format!(" ({} model did not converge; full model solved)", sel.model);
-        s.outputs.reason.push_str(&note);
-        s.info.reason.push_str(&note);
-        Selection {
-            model: ModelChoice::Full,
-            neglected: 0.0,
-            ..sel
-        }
-    } else {
-        sel
-    };
-    annotate(&mut s.outputs, &mut s.info, &sel);
-    add_cost(&mut s.outputs, &mut s.info, wu, wall);
-    (s, sel)
+    finish(s, sel, || full(params), (wu, wall))
 }
 
 /// Solve with a fixed model (no selection) on one grid: the reference the selection is checked

@@ -57,3 +57,47 @@ fn error_estimates_are_honest_on_a_validation_set() {
     // The issue asks for at least 95 % honest estimates: with 12 cases that is all of them.
     assert_eq!(honest, total, "{honest}/{total} honest");
 }
+
+/// Point contacts: the same check, against Richardson over 129^2 and 257^2 nodes.
+#[test]
+fn point_error_estimates_are_honest_on_a_validation_set() {
+    use ehlmap::params::PointCase;
+    use ehlmap::solver::point::{solve_point, solve_point_to_accuracy, PointSolveParams};
+    let run = |c: &PointCase, g: usize| {
+        let mut p = PointSolveParams::default();
+        p.mg.grid = g;
+        let o = solve_point(c, &p).outputs;
+        assert_eq!(o.status, Status::Converged, "reference: {}", o.reason);
+        o
+    };
+    let (mut honest, mut total) = (0, 0);
+    for (m, l, d) in [
+        (5.0, 5.0, 1.0),
+        (10.0, 0.0, 1.0),
+        (20.0, 10.0, 0.5),
+        (30.0, 5.0, 0.25),
+        (50.0, 10.0, 1.0),
+    ] {
+        let case = PointCase::new(m, l, d).unwrap();
+        let (a, b) = (run(&case, 129), run(&case, 257));
+        let hc = richardson2(a.h_c, b.h_c).extrapolated;
+        let hm = richardson2(a.h_min, b.h_min).extrapolated;
+        let o = solve_point_to_accuracy(&case, &PointSolveParams::default(), 0.02, 129).outputs;
+        assert_eq!(
+            o.status,
+            Status::Converged,
+            "M={m} L={l} D={d}: {}",
+            o.reason
+        );
+        let est = o.error_estimate.expect("an estimate");
+        let truth = (o.h_c / hc - 1.0).abs().max((o.h_min / hm - 1.0).abs());
+        println!(
+            "point M={m} L={l} D={d}: grid {} estimate {est:.2e} true {truth:.2e} met {:?}",
+            o.grid, o.accuracy_met
+        );
+        total += 1;
+        honest += usize::from(truth <= est);
+    }
+    // At least 95 %: with 5 cases, all of them.
+    assert_eq!(honest, total, "{honest}/{total} honest");
+}

@@ -10,7 +10,7 @@ use crate::fit::report::{FitPoint, FittedModel};
 use crate::formulas::{moes_line_hc, nvm_point_hc};
 use plotters::coord::Shift;
 use plotters::prelude::*;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Once;
 
 static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
@@ -29,16 +29,17 @@ pub(crate) fn e<T: std::fmt::Debug>(x: T) -> String {
     format!("{x:?}")
 }
 
-/// Draw with `f` into `stem.png` and `stem.svg`.
-fn both(
+/// Draw with `f` into `stem.png` and with `g` into `stem.svg` (shared by every chart module).
+pub(crate) fn both(
     stem: &Path,
     size: (u32, u32),
-    f: impl Fn(&DrawingArea<BitMapBackend, Shift>) -> Res + Copy,
+    f: impl Fn(&DrawingArea<BitMapBackend, Shift>) -> Res,
     g: impl Fn(&DrawingArea<SVGBackend, Shift>) -> Res,
 ) -> Res {
     ensure_font();
-    let png = stem.with_extension("png");
-    let svg = stem.with_extension("svg");
+    // Appended, not `with_extension`: a stem may hold a dot (`film-D0.5`).
+    let png = PathBuf::from(format!("{}.png", stem.display()));
+    let svg = PathBuf::from(format!("{}.svg", stem.display()));
     {
         let root = BitMapBackend::new(&png, size).into_drawing_area();
         root.fill(&WHITE).map_err(e)?;

@@ -29,23 +29,12 @@ fn both(
     f: impl Fn(&DrawingArea<BitMapBackend, Shift>) -> Res,
     g: impl Fn(&DrawingArea<SVGBackend, Shift>) -> Res,
 ) -> Result<Vec<PathBuf>, String> {
-    crate::fit::charts::ensure_font();
     std::fs::create_dir_all(dir).map_err(|x| format!("--plot {}: {x}", dir.display()))?;
-    let png = dir.join(format!("{stem}.png"));
-    let svg = dir.join(format!("{stem}.svg"));
-    {
-        let root = BitMapBackend::new(&png, size).into_drawing_area();
-        root.fill(&WHITE).map_err(e)?;
-        f(&root)?;
-        root.present().map_err(e)?;
-    }
-    {
-        let root = SVGBackend::new(&svg, size).into_drawing_area();
-        root.fill(&WHITE).map_err(e)?;
-        g(&root)?;
-        root.present().map_err(e)?;
-    }
-    Ok(vec![png, svg])
+    crate::fit::charts::both(&dir.join(stem), size, f, g)?;
+    Ok(vec![
+        dir.join(format!("{stem}.png")),
+        dir.join(format!("{stem}.svg")),
+    ])
 }
 
 /// Centre-line data: X, P, H and the outputs.

@@ -68,6 +68,11 @@ pub fn run_ladder<S: Attempt>(names: &[&str], mut run: impl FnMut(usize) -> S) -
     s
 }
 
+/// Cycles a grid of the accuracy ladder below the finest allowed one may take: a grid that has
+/// not converged by then does not resolve the case (full multigrid converges in about 5-15), and
+/// the ladder moves on instead of spending the full cycle budget on it.
+pub const COARSE_LADDER_CYCLES: usize = 20;
+
 /// Solve on `start`, 2 start - 1, ... points (up to `max_grid`) until the error estimate between
 /// the last two grids is below `target`. The estimate is Richardson's with order p,
 /// |Q_h - Q_2h| / ((2^p - 1) |Q_h|), max over H_c and H_min, from two consecutive converged

@@ -14,7 +14,7 @@
 
 use crate::params::LineCase;
 use crate::solution::{line_outputs, Outputs, Profile};
-use crate::solver::ladder::{refine_to_accuracy, run_ladder, Attempt};
+use crate::solver::ladder::{refine_to_accuracy, run_ladder, Attempt, COARSE_LADDER_CYCLES};
 use crate::solver::multigrid::{CycleType, LineMgParams, LineMultigrid};
 use crate::solver::single_grid::solve_relax;
 use crate::solver::SolveInfo;
@@ -193,6 +193,9 @@ pub fn solve_line_to_accuracy(
         let mut p = *params;
         p.mg.grid = grid;
         p.fallback = params.fallback && last;
+        if !last {
+            p.mg.max_cycles = p.mg.max_cycles.min(COARSE_LADDER_CYCLES);
+        }
         solve_line(case, &p)
     })
 }

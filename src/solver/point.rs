@@ -16,7 +16,7 @@ use crate::problem::point_domain::PointDomainParams;
 use crate::solution::grid_level;
 use crate::solution::{line_outputs, parabola_vertex, Outputs};
 use crate::solver::fmg::fmg_solve;
-use crate::solver::ladder::{refine_to_accuracy, run_ladder, Attempt};
+use crate::solver::ladder::{refine_to_accuracy, run_ladder, Attempt, COARSE_LADDER_CYCLES};
 use crate::solver::line::Method;
 use crate::solver::multigrid::CycleType;
 use crate::solver::point_mg::PointMultigrid;
@@ -296,6 +296,9 @@ pub fn solve_point_to_accuracy(
         let mut p = *params;
         p.mg.grid = grid;
         p.fallback = params.fallback && last;
+        if !last {
+            p.mg.max_cycles = p.mg.max_cycles.min(COARSE_LADDER_CYCLES);
+        }
         solve_point(case, &p)
     })
 }

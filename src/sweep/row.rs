@@ -176,7 +176,6 @@ fn fill_outputs(row: &mut CaseRow, o: &Outputs, attempt: usize, valid: &mut bool
 }
 
 fn solve_line_row(case: &Case, sweep: &str) -> CaseRow {
-    let mut row = input_row(case, sweep);
     let lc = match case.line_case() {
         Ok(lc) => lc,
         Err(e) => return invalid_row(case, sweep, e),
@@ -186,26 +185,35 @@ fn solve_line_row(case: &Case, sweep: &str) -> CaseRow {
         Some(target) => solve_line_selected(&lc, &params, target, case.numerics.grid).0,
         None => solve_line(&lc, &params),
     };
-    let o = &s.outputs;
+    build_row(case, sweep, &s.outputs, s.attempt, |g| {
+        solve_line(&lc, &solve_params(case, g)).outputs
+    })
+}
+
+/// The row of a finished solve: its outputs, the error columns (the accuracy target's estimate,
+/// or Richardson against `half(grid)`, a solve on the half grid, when the spec asks for it), the
+/// cost of every solve, `error_estimate` and `valid`.
+fn build_row(
+    case: &Case,
+    sweep: &str,
+    o: &Outputs,
+    attempt: usize,
+    half: impl FnOnce(usize) -> Outputs,
+) -> CaseRow {
+    let mut row = input_row(case, sweep);
     let mut valid = true;
-    fill_outputs(&mut row, o, s.attempt, &mut valid);
+    fill_outputs(&mut row, o, attempt, &mut valid);
     let (mut wu, mut wall) = (o.work_units, o.wall_s);
     if let Some(est) = o.error_estimate {
         // Accuracy target: the estimate of the chosen grid (max over H_c and H_min).
         row.h_c_err = finite(est, &mut valid);
         row.h_min_err = row.h_c_err;
     } else if wants_half_grid(case, o.grid) {
-        let coarse = solve_line(&lc, &solve_params(case, half_grid(o.grid)));
-        wu += coarse.outputs.work_units;
-        wall += coarse.outputs.wall_s;
-        (row.h_c_err, row.h_min_err) = half_grid_errors(o, &coarse.outputs);
+        let coarse = half(half_grid(o.grid));
+        wu += coarse.work_units;
+        wall += coarse.wall_s;
+        (row.h_c_err, row.h_min_err) = half_grid_errors(o, &coarse);
     }
-    finish_row(&mut row, wu, wall, valid);
-    row
-}
-
-/// The cost columns, `error_estimate` (the larger of the two error columns) and `valid`.
-fn finish_row(row: &mut CaseRow, wu: f64, wall: f64, mut valid: bool) {
     row.work_units = finite(wu, &mut valid);
     row.wall_s = finite(wall, &mut valid);
     row.error_estimate = match (row.h_c_err, row.h_min_err) {
@@ -213,6 +221,7 @@ fn finish_row(row: &mut CaseRow, wu: f64, wall: f64, mut valid: bool) {
         (a, b) => a.or(b),
     };
     row.valid = valid;
+    row
 }
 
 fn point_params(case: &Case, grid: usize) -> PointSolveParams {
@@ -230,7 +239,6 @@ fn point_params(case: &Case, grid: usize) -> PointSolveParams {
 }
 
 fn solve_point_row(case: &Case, sweep: &str) -> CaseRow {
-    let mut row = input_row(case, sweep);
     let pc = match case.point_case() {
         Ok(pc) => pc,
         Err(e) => return invalid_row(case, sweep, e),
@@ -240,24 +248,12 @@ fn solve_point_row(case: &Case, sweep: &str) -> CaseRow {
         Some(target) => solve_point_selected(&pc, &params, target, case.numerics.grid).0,
         None => solve_point(&pc, &params),
     };
-    let o = &s.outputs;
-    let mut valid = true;
-    fill_outputs(&mut row, o, s.attempt, &mut valid);
     // D and k are inputs (k from the exact Hertz ellipse, set by input_row); a solver that
     // reports them must agree.
-    debug_assert!(o.d.is_none_or(|d| d == pc.d));
-    let (mut wu, mut wall) = (o.work_units, o.wall_s);
-    if let Some(est) = o.error_estimate {
-        row.h_c_err = finite(est, &mut valid);
-        row.h_min_err = row.h_c_err;
-    } else if wants_half_grid(case, o.grid) {
-        let coarse = solve_point(&pc, &point_params(case, half_grid(o.grid)));
-        wu += coarse.outputs.work_units;
-        wall += coarse.outputs.wall_s;
-        (row.h_c_err, row.h_min_err) = half_grid_errors(o, &coarse.outputs);
-    }
-    finish_row(&mut row, wu, wall, valid);
-    row
+    debug_assert!(s.outputs.d.is_none_or(|d| d == pc.d));
+    build_row(case, sweep, &s.outputs, s.attempt, |g| {
+        solve_point(&pc, &point_params(case, g)).outputs
+    })
 }
 
 pub(crate) fn solve_guarded(case: &Case, sweep: &str) -> CaseRow {
