@@ -34,6 +34,13 @@ pub fn richardson3(coarse: f64, mid: f64, fine: f64) -> Richardson {
     }
 }
 
+/// Richardson's estimate of the relative error of the fine value from grids h (`coarse`) and
+/// h/2 (`fine`) for a quantity converging at `order`: |Q_h/2 - Q_h| / ((2^p - 1) |Q_h/2|).
+pub fn relative_error(coarse: f64, fine: f64, order: f64) -> f64 {
+    let factor = 1.0 / (2f64.powf(order) - 1.0);
+    factor * ((fine - coarse) / fine).abs()
+}
+
 /// Richardson from two grids h, h/2 assuming second order.
 pub fn richardson2(coarse: f64, fine: f64) -> Richardson {
     let extrapolated = fine + (fine - coarse) / 3.0;

@@ -195,13 +195,14 @@ fn annotate(o: &mut Outputs, info: &mut SolveInfo, sel: &Selection) {
     info.reason.push_str(&note);
 }
 
-/// The closed-form rigid-isoviscous line answer.
-pub fn closed_form_line(m: f64, sel: &Selection) -> LineSolution {
+/// The closed-form rigid-isoviscous line answer (no discretisation error: its estimate is 0
+/// until [`finish`] adds the neglected effect).
+pub fn closed_form_line(m: f64) -> LineSolution {
     let reason = "closed form: rigid-isoviscous line contact, H_c = H_min = 2.4475/M (Martin, \
                   Reynolds exit condition)"
         .to_string();
     let h = MARTIN_CENTRAL / m;
-    let mut outputs = Outputs {
+    let outputs = Outputs {
         h_c: h,
         h_c_pmax: MARTIN_FLUX / m,
         h_min: h,
@@ -219,13 +220,13 @@ pub fn closed_form_line(m: f64, sel: &Selection) -> LineSolution {
         grid: 0,
         levels: 0,
         level: None,
-        model_used: String::new(),
+        model_used: ModelChoice::ClosedForm.as_str().to_string(),
         work_units: 0.0,
         wall_s: 0.0,
         error_estimate: Some(0.0),
         accuracy_met: Some(true),
     };
-    let mut info = SolveInfo {
+    let info = SolveInfo {
         status: Status::Converged,
         reason,
         history: vec![],
@@ -234,7 +235,6 @@ pub fn closed_form_line(m: f64, sel: &Selection) -> LineSolution {
         grid: 0,
         levels: 0,
     };
-    annotate(&mut outputs, &mut info, sel);
     LineSolution {
         outputs,
         info,
@@ -275,15 +275,14 @@ fn verify(
     );
     let limit = CHECK_FRACTION * target;
     let screened = sel.neglected * SCREEN_MARGIN;
-    let kept = match measured_effect(&full, &simple) {
-        Some(e) if e < limit => Some((e, Some(e))),
-        Some(_) => None,
+    let measured = measured_effect(&full, &simple);
+    let neglected = match measured {
+        Some(e) => (e < limit).then_some(e),
         // The full check did not converge: trust the screen with a margin.
-        None if simple.status == Status::Converged && screened < limit => Some((screened, None)),
-        None => None,
+        None => (simple.status == Status::Converged && screened < limit).then_some(screened),
     };
-    let sel = match kept {
-        Some((neglected, measured)) => Selection {
+    let sel = match neglected {
+        Some(neglected) => Selection {
             neglected,
             measured,
             ..sel
@@ -291,7 +290,7 @@ fn verify(
         None => Selection {
             model: ModelChoice::Full,
             neglected: 0.0,
-            measured: measured_effect(&full, &simple),
+            measured,
             ..sel
         },
     };
@@ -325,10 +324,7 @@ fn finish<S: Attempt>(
         sel
     };
     let (info, o) = s.parts();
-    // The closed form annotated itself when it was built.
-    if o.model_used != ModelChoice::ClosedForm.as_str() {
-        annotate(o, info, &sel);
-    }
+    annotate(o, info, &sel);
     o.work_units += wu;
     o.wall_s += wall;
     info.work_units += wu;
@@ -352,7 +348,7 @@ pub fn solve_line_selected(
     let full = |p: &LineSolveParams| solve_line_to_accuracy(case, p, target, max_grid);
     let s = match sel.model {
         ModelChoice::Full => full(params),
-        ModelChoice::ClosedForm => closed_form_line(case.m, &sel),
+        ModelChoice::ClosedForm => closed_form_line(case.m),
         model => {
             let (l, models) = simplified(model, case.l, &case.models);
             match LineCase::with_models(case.m, l, models) {
@@ -396,8 +392,7 @@ pub fn solve_point_selected(
 /// against.
 pub fn solve_line_model(case: &LineCase, params: &LineSolveParams, model: ModelChoice) -> Outputs {
     if model == ModelChoice::ClosedForm {
-        let sel = select(case.m, case.l, None, &case.models, 1.0);
-        return closed_form_line(case.m, &sel).outputs;
+        return closed_form_line(case.m).outputs;
     }
     let (l, models) = simplified(model, case.l, &case.models);
     match LineCase::with_models(case.m, l, models) {
@@ -471,8 +466,7 @@ mod tests {
 
     #[test]
     fn closed_form_is_martins_film() {
-        let sel = select(0.01, 0.0, None, &Models::default(), 0.01);
-        let s = closed_form_line(0.01, &sel);
+        let s = closed_form_line(0.01);
         assert!((s.outputs.h_c * 0.01 - 2.4475).abs() < 1e-12);
         assert_eq!(s.outputs.h_c, s.outputs.h_min);
         assert_eq!(s.outputs.model_used, "closed-form");

@@ -4,7 +4,7 @@
 //! numerical solve ([`solve_line`]) beside Moes 1992, Dowson-Toyoda, Dowson-Higginson and the
 //! textbook regime formula.
 
-use super::{check, e_reduced, film_parameter, CaseFields, CaseReport, CaseSpec};
+use super::{add_numerical, check, e_reduced, film_parameter, CaseFields, CaseReport, CaseSpec};
 use crate::formulas::{
     dowson_higginson_line_hmin, dowson_toyoda_line_hc, line_g_params, line_regime_hmin,
     moes_line_hc, HdGroups,
@@ -94,15 +94,7 @@ pub(super) fn run(
         p.keep_profile = keep_fields;
         let s = solve_line(&case, &p);
         let o = s.outputs;
-        // Only a converged solve is a number to compare with; a failure is still reported.
-        if o.status == crate::solver::Status::Converged {
-            films.insert(
-                0,
-                ("ehlmap (numerical)".into(), "h_min".into(), to_h(o.h_min)),
-            );
-            films.insert(0, ("ehlmap (numerical)".into(), "h_c".into(), to_h(o.h_c)));
-            p_max = Some(o.p_max * p_h);
-        }
+        p_max = add_numerical(&mut films, &o, to_h, p_h);
         fields = s.profile.map(CaseFields::Line);
         numerical = Some(o);
     }

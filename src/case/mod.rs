@@ -278,6 +278,25 @@ pub fn read_case(path: &std::path::Path) -> Result<CaseSpec, String> {
     })
 }
 
+/// Put a converged numerical answer at the head of the film comparison (a failure is still
+/// reported, but is no number to compare with); returns its p_max in Pa.
+fn add_numerical(
+    films: &mut Vec<(String, String, f64)>,
+    o: &crate::solution::Outputs,
+    to_h: impl Fn(f64) -> f64,
+    p_h: f64,
+) -> Option<f64> {
+    if o.status != crate::solver::Status::Converged {
+        return None;
+    }
+    films.insert(
+        0,
+        ("ehlmap (numerical)".into(), "h_min".into(), to_h(o.h_min)),
+    );
+    films.insert(0, ("ehlmap (numerical)".into(), "h_c".into(), to_h(o.h_c)));
+    Some(o.p_max * p_h)
+}
+
 /// Fills the film parameter and its reading from the first `h_min` of the films.
 pub(crate) fn film_parameter(spec: &CaseSpec, r: &mut CaseReport) {
     let h_min = r.films.iter().find(|f| f.1 == "h_min").map(|f| f.2);

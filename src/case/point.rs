@@ -11,7 +11,7 @@
 //! with: NVM 1994 central film, Hamrock-Dowson 1977 central and minimum films, the textbook
 //! elliptic regime formula (g-parameters).
 
-use super::{check, e_reduced, film_parameter, CaseFields, CaseReport, CaseSpec};
+use super::{add_numerical, check, e_reduced, film_parameter, CaseFields, CaseReport, CaseSpec};
 use crate::formulas::{
     elliptic_g_params, elliptic_regime_hmin, hamrock_dowson_hc, hamrock_dowson_hmin, nvm_point_hc,
     HdGroups,
@@ -120,14 +120,7 @@ pub(super) fn run(
         p.keep_fields = keep_fields;
         let s = solve_point(&case, &p);
         let o = s.outputs;
-        if o.status == crate::solver::Status::Converged {
-            films.insert(
-                0,
-                ("ehlmap (numerical)".into(), "h_min".into(), to_h(o.h_min)),
-            );
-            films.insert(0, ("ehlmap (numerical)".into(), "h_c".into(), to_h(o.h_c)));
-            p_max = Some(o.p_max * p_h);
-        }
+        p_max = add_numerical(&mut films, &o, to_h, p_h);
         fields = s.fields.map(CaseFields::Point);
         numerical = Some(o);
     }

@@ -5,6 +5,7 @@
 //! Grids ([`refine_to_accuracy`]): solve on grids refined by 2 until a Richardson estimate of the
 //! relative error of H_c and H_min meets a target.
 
+use crate::accuracy::relative_error;
 use crate::solution::Outputs;
 use crate::solver::{SolveInfo, Status};
 
@@ -100,9 +101,7 @@ pub fn refine_to_accuracy<S: Attempt>(
         let converged = si.status == Status::Converged;
         let est = prev.as_mut().filter(|_| converged).map(|c| {
             let (_, co) = c.parts();
-            let factor = 1.0 / (2f64.powf(order) - 1.0);
-            let rel = |coarse: f64, fine: f64| factor * ((fine - coarse) / fine).abs();
-            rel(co.h_c, so.h_c).max(rel(co.h_min, so.h_min))
+            relative_error(co.h_c, so.h_c, order).max(relative_error(co.h_min, so.h_min, order))
         });
         if est.is_some_and(|e| e <= target) || last {
             so.error_estimate = est;

@@ -3,7 +3,8 @@
 //! spec asks for it, and copy every output into a [`CaseRow`]. Non-finite outputs become nulls
 //! with `valid = false`; a panicking solve becomes a row with status `panic`.
 
-use crate::io::results::{finite, CaseRow};
+use crate::accuracy::relative_error;
+use crate::io::results::{finite, larger_error, CaseRow};
 use crate::lubricant::{Density, Viscosity};
 use crate::params::ParamError;
 use crate::select::{solve_line_selected, solve_point_selected, ModelChoice};
@@ -134,9 +135,8 @@ fn half_grid_errors(fine: &Outputs, coarse: &Outputs) -> (Option<f64>, Option<f6
     if fine.status != Status::Converged || coarse.status != Status::Converged {
         return (None, None);
     }
-    let factor = 1.0 / (2f64.powf(ESTIMATE_ORDER) - 1.0);
     let est = |a: f64, b: f64| {
-        let e = factor * ((b - a) / b).abs();
+        let e = relative_error(a, b, ESTIMATE_ORDER);
         e.is_finite().then_some(e)
     };
     (est(coarse.h_c, fine.h_c), est(coarse.h_min, fine.h_min))
@@ -216,10 +216,7 @@ fn build_row(
     }
     row.work_units = finite(wu, &mut valid);
     row.wall_s = finite(wall, &mut valid);
-    row.error_estimate = match (row.h_c_err, row.h_min_err) {
-        (Some(a), Some(b)) => Some(a.max(b)),
-        (a, b) => a.or(b),
-    };
+    row.error_estimate = larger_error(row.h_c_err, row.h_min_err);
     row.valid = valid;
     row
 }

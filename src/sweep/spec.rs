@@ -48,6 +48,7 @@ use std::ops::Range;
 use std::path::{Path, PathBuf};
 use toml::de::DeTable;
 
+mod contacts;
 mod ctx;
 mod numerics;
 #[cfg(test)]
@@ -228,40 +229,6 @@ impl SweepSpec {
     }
 }
 
-/// `contact = "line"`, `"point"` or a list of both (a mixed spec).
-fn parse_contacts(cx: &Ctx, v: &ctx::Value) -> Result<Vec<Contact>, SpecError> {
-    let one = |v: &ctx::Value| -> Result<Contact, SpecError> {
-        Ok(match cx.choice(v, "contact", &["line", "point"])? {
-            "line" => Contact::Line,
-            _ => Contact::Point,
-        })
-    };
-    let items = match v.get_ref().as_array() {
-        None => return Ok(vec![one(v)?]),
-        Some(a) => a,
-    };
-    let mut out = vec![];
-    for item in items.iter() {
-        let c = one(item)?;
-        if out.contains(&c) {
-            return Err(cx.err(
-                &item.span(),
-                "contact",
-                format!("\"{}\" is listed twice", c.as_str()),
-            ));
-        }
-        out.push(c);
-    }
-    if out.is_empty() {
-        return Err(cx.err(
-            &v.span(),
-            "contact",
-            "the list is empty: give \"line\", \"point\" or [\"line\", \"point\"]",
-        ));
-    }
-    Ok(out)
-}
-
 /// Read and validate a spec file.
 pub fn load(path: &Path) -> Result<SweepSpec, SpecError> {
     let file = path.display().to_string();
@@ -367,7 +334,7 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
             "missing: give contact = \"line\" or \"point\"",
         )
     })?;
-    let contacts = parse_contacts(&cx, contact_v)?;
+    let contacts = contacts::parse_contacts(&cx, contact_v)?;
     let description = match root.get("description") {
         Some(v) => Some(cx.string(v, "description")?.to_string()),
         None => None,
@@ -389,36 +356,9 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
         })
     };
     let (mv, lv) = (need("M")?, need("L")?);
-    let m_ok = |x: f64| (x <= 0.0).then_some("the load parameter must be > 0");
-    let l_ok = |x: f64| (x < 0.0).then_some("the lubricant parameter must be >= 0");
-    let m = cx.axis(mv, "axes.M", &m_ok)?;
-    let l = cx.axis(lv, "axes.L", &l_ok)?;
-    // [axes.line] / [axes.point]: M and L of one contact of a mixed spec.
-    let mut own_axes = BTreeMap::new();
-    for c in [Contact::Line, Contact::Point] {
-        let Some(v) = axes.get(c.as_str()) else {
-            continue;
-        };
-        let key = format!("axes.{}", c.as_str());
-        if !contacts.contains(&c) {
-            return Err(cx.err(
-                &v.span(),
-                &key,
-                format!("the spec has no {} contacts", c.as_str()),
-            ));
-        }
-        let t = cx.table(v, &key)?;
-        cx.keys(t, &key, &["M", "L"])?;
-        let cm = match t.get("M") {
-            Some(v) => cx.axis(v, &format!("{key}.M"), &m_ok)?,
-            None => m.clone(),
-        };
-        let cl = match t.get("L") {
-            Some(v) => cx.axis(v, &format!("{key}.L"), &l_ok)?,
-            None => l.clone(),
-        };
-        own_axes.insert(c.as_str(), (cm, cl));
-    }
+    let m = cx.axis(mv, "axes.M", &contacts::m_ok)?;
+    let l = cx.axis(lv, "axes.L", &contacts::l_ok)?;
+    let axes_of = contacts::contact_axes(&mut cx, axes, &contacts, &m, &l)?;
     let d = match axes.get("D") {
         Some(dv) => Some(cx.axis(dv, "axes.D", &|x| {
             (!(x > 0.0 && x <= 1.0)).then_some("the ellipticity must be in (0, 1]")
@@ -532,7 +472,7 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
     }
 
     // numerics, per contact
-    let contacts_numerics = numerics::parse(&mut cx, root, &contacts)?;
+    let contacts_numerics = numerics::parse(&mut cx, root, axes_of)?;
 
     // output
     let mut output = OutputSpec {
@@ -567,16 +507,6 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
     }
 
     let n_d = d.as_ref().map_or(1, |d| d.len());
-    let mut contacts_numerics = contacts_numerics;
-    for cs in &mut contacts_numerics {
-        if let Some((cm, cl)) = own_axes.get(cs.contact.as_str()) {
-            cs.m = cm.clone();
-            cs.l = cl.clone();
-        } else {
-            cs.m = m.clone();
-            cs.l = l.clone();
-        }
-    }
     let n_cases: usize = contacts_numerics
         .iter()
         .map(|c| c.m.len() * c.l.len() * if c.contact == Contact::Point { n_d } else { 1 })

@@ -148,6 +148,14 @@ pub fn columns() -> Vec<(&'static str, DataType, bool)> {
     ]
 }
 
+/// The `error_estimate` column from the two error columns: the larger, or the one given.
+pub fn larger_error(h_c_err: Option<f64>, h_min_err: Option<f64>) -> Option<f64> {
+    match (h_c_err, h_min_err) {
+        (Some(a), Some(b)) => Some(a.max(b)),
+        (a, b) => a.or(b),
+    }
+}
+
 /// `Some(v)` for a finite `v`, else `None`; clears `valid` when a value had to be dropped.
 pub fn finite(v: f64, valid: &mut bool) -> Option<f64> {
     if v.is_finite() {

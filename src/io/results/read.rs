@@ -3,7 +3,7 @@
 //! `error_estimate` and `accuracy`; their boolean `error_estimate` is today's
 //! `half_grid_estimate`) are read too, with `model_used = "full"`.
 
-use super::{part_files, CaseRow};
+use super::{larger_error, part_files, CaseRow};
 use arrow_array::{Array, BooleanArray, Float64Array, Int64Array, RecordBatch, StringArray};
 use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
 use std::collections::{BTreeMap, HashSet};
@@ -123,10 +123,7 @@ pub fn read_part(path: &Path) -> Result<Part, String> {
                 level: level.and_then(|a| oi(a, j)),
                 error_estimate: match error_estimate {
                     Some(a) => of(a, j),
-                    None => match (of(h_c_err, j), of(h_min_err, j)) {
-                        (Some(a), Some(b)) => Some(a.max(b)),
-                        (a, b) => a.or(b),
-                    },
+                    None => larger_error(of(h_c_err, j), of(h_min_err, j)),
                 },
                 warm_start: warm_start
                     .and_then(|a| (!a.is_null(j)).then(|| a.value(j).to_string())),

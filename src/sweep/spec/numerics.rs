@@ -2,9 +2,9 @@
 //! from [`Numerics::for_contact`]); a mixed spec (`contact = ["line", "point"]`) overrides them
 //! for one contact in `[numerics.line]` or `[numerics.point]`, e.g. 2049 line points but 65^2
 //! point nodes. Every value is checked against the contact it applies to (the grid range, the
-//! half grid of `error_estimate`), and errors name the key that set it. The M and L axes of
-//! each contact are filled in by the caller.
+//! half grid of `error_estimate`), and errors name the key that set it.
 
+use super::contacts::ContactAxes;
 use super::ctx::{join, Ctx, Table};
 use super::{Contact, ContactSpec, Numerics, SpecError};
 use crate::solver::multigrid::CycleType;
@@ -22,12 +22,13 @@ const KEYS: [&str; 8] = [
     "accuracy",
 ];
 
-/// The numerics of each contact of the spec, in the order given.
+/// Each contact of the spec (with its M and L axes, in the order given) and its numerics.
 pub(super) fn parse(
     cx: &mut Ctx,
     root: &Table,
-    contacts: &[Contact],
+    axes: Vec<ContactAxes>,
 ) -> Result<Vec<ContactSpec>, SpecError> {
+    let contacts: Vec<Contact> = axes.iter().map(|a| a.0).collect();
     let table = match root.get("numerics") {
         Some(v) => Some((cx.table(v, "numerics")?, v.span())),
         None => None,
@@ -50,8 +51,8 @@ pub(super) fn parse(
             }
         }
     }
-    let mut out = Vec::with_capacity(contacts.len());
-    for &contact in contacts {
+    let mut out = Vec::with_capacity(axes.len());
+    for (contact, m, l) in axes {
         let mut n = Numerics::for_contact(contact);
         // The key that switched the error estimate on, for the half-grid check below.
         let mut estimate_key: Option<(Range<usize>, String)> = None;
@@ -81,8 +82,8 @@ pub(super) fn parse(
         }
         out.push(ContactSpec {
             contact,
-            m: vec![],
-            l: vec![],
+            m,
+            l,
             numerics: n,
         });
     }
