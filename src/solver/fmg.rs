@@ -64,6 +64,12 @@ pub trait Fas {
     /// Right-hand side of level l's load equation.
     fn load_target(&self, l: usize) -> f64;
     fn trace(&self) -> bool;
+    /// Install a warm-start guess (pressure and H0 from a solved neighbour) on level `l`, the
+    /// finest; true when there was one. The FMG ascent is then skipped: the coarse start only
+    /// supplies the load slope, and the finest-level cycles start from the guess.
+    fn install_guess(&mut self, _l: usize) -> bool {
+        false
+    }
     fn finish(
         &self,
         start: Instant,
@@ -109,13 +115,16 @@ pub fn fmg_solve<S: Fas>(s: &mut S) -> SolveInfo {
     // H0 at the end of each level: it converges at second order in h, so the next level's
     // H0 is predicted by extrapolating the last change by 1/4 (Richardson).
     let mut h0_end = vec![s.h0()];
-    for l in 1..=top {
-        if let [.., a, b] = h0_end[..] {
-            if l >= 3 {
-                s.set_h0(l, b + 0.25 * (b - a));
+    let warm = s.install_guess(top);
+    for l in (if warm { top } else { 1 })..=top {
+        if !warm {
+            if let [.., a, b] = h0_end[..] {
+                if l >= 3 {
+                    s.set_h0(l, b + 0.25 * (b - a));
+                }
             }
+            s.fmg_interpolate(l);
         }
-        s.fmg_interpolate(l);
         lb.reset();
         let final_level = l == top;
         let (tol_e, max) = if final_level {

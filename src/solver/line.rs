@@ -12,10 +12,11 @@
 //!
 //! The best failed attempt (lowest final residual) is returned with its status if none converges.
 
+use crate::formulas::moes_line_hc;
 use crate::params::LineCase;
 use crate::solution::{line_outputs, Outputs, Profile};
 use crate::solver::ladder::{refine_to_accuracy, run_ladder, Attempt, COARSE_LADDER_CYCLES};
-use crate::solver::multigrid::{CycleType, LineMgParams, LineMultigrid};
+use crate::solver::multigrid::{CycleType, LineMgParams, LineMultigrid, WarmGuess};
 use crate::solver::single_grid::solve_relax;
 use crate::solver::SolveInfo;
 
@@ -89,8 +90,16 @@ fn attempts(p: &LineMgParams) -> Vec<LineMgParams> {
     vec![*p, damped, a2, a3]
 }
 
-fn run(case: &LineCase, p: &LineMgParams, keep_profile: bool) -> LineSolution {
+fn run(
+    case: &LineCase,
+    p: &LineMgParams,
+    keep_profile: bool,
+    guess: Option<&WarmGuess>,
+) -> LineSolution {
     let mut mg = LineMultigrid::new(case, p);
+    if let Some(g) = guess {
+        mg.set_guess(g.clone());
+    }
     let info = mg.solve();
     package(case, &mg, info, keep_profile)
 }
@@ -128,12 +137,36 @@ fn single_level(p: &LineMgParams) -> LineMgParams {
 
 /// Solve a line contact. Never panics on a valid case; numerical failure is a status.
 pub fn solve_line(case: &LineCase, params: &LineSolveParams) -> LineSolution {
+    solve_line_from(case, params, None)
+}
+
+/// The warm-start guess for `case` from a solved neighbour (same models, another M or L;
+/// its solution must carry its profile): the neighbour's P(X), and a central film scaled from
+/// the neighbour's by the ratio of Moes' formula at the two cases.
+pub fn warm_guess(case: &LineCase, neighbour: &LineCase, from: &LineSolution) -> Option<WarmGuess> {
+    let prof = from.profile.as_ref()?;
+    let ratio = moes_line_hc(case.m, case.l) / moes_line_hc(neighbour.m, neighbour.l);
+    let centre_film = from.outputs.h_c * ratio / (8.0 * case.m / std::f64::consts::PI);
+    (centre_film.is_finite() && centre_film > 0.0).then(|| WarmGuess {
+        x: prof.x.clone(),
+        p: prof.p.clone(),
+        centre_film,
+    })
+}
+
+/// [`solve_line`], every multigrid attempt starting its finest-level cycles from `guess` when
+/// one is given (see [`warm_guess`]) instead of the FMG ascent.
+pub fn solve_line_from(
+    case: &LineCase,
+    params: &LineSolveParams,
+    guess: Option<&WarmGuess>,
+) -> LineSolution {
     match params.method {
         Method::Multigrid => {}
         Method::Newton => {
             let mut p = single_level(&params.mg);
             p.newton_max_iter = p.newton_max_iter.max(200);
-            return run(case, &p, params.keep_profile);
+            return run(case, &p, params.keep_profile, None);
         }
         Method::Relax => {
             let mut mg = LineMultigrid::new(case, &single_level(&params.mg));
@@ -147,7 +180,7 @@ pub fn solve_line(case: &LineCase, params: &LineSolveParams) -> LineSolution {
         vec![params.mg]
     };
     let names = &ATTEMPT_NAMES[..list.len()];
-    run_ladder(names, |k| run(case, &list[k], params.keep_profile))
+    run_ladder(names, |k| run(case, &list[k], params.keep_profile, guess))
 }
 
 /// What each attempt of the ladder changes.

@@ -118,6 +118,30 @@ pub struct LineMultigrid {
     /// Print every cycle to stderr (`EHLMAP_TRACE` set when the solver was built).
     trace: bool,
     fine_intervals: usize,
+    /// A warm-start guess for the finest level ([`LineMultigrid::set_guess`]).
+    guess: Option<WarmGuess>,
+}
+
+/// A solved neighbour's pressure profile (Hertzian X, P) and the central film (Hertzian units)
+/// this case is expected to have, to start the finest-level cycles from.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WarmGuess {
+    pub x: Vec<f64>,
+    pub p: Vec<f64>,
+    pub centre_film: f64,
+}
+
+impl WarmGuess {
+    /// P at `x`, linear between the samples, zero outside them.
+    fn p_at(&self, x: f64) -> f64 {
+        let (xs, ps) = (&self.x, &self.p);
+        if xs.len() < 2 || x <= xs[0] || x >= xs[xs.len() - 1] {
+            return 0.0;
+        }
+        let j = xs.partition_point(|&v| v <= x).clamp(1, xs.len() - 1);
+        let t = (x - xs[j - 1]) / (xs[j] - xs[j - 1]);
+        ((1.0 - t) * ps[j - 1] + t * ps[j]).max(0.0)
+    }
 }
 
 impl LineMultigrid {
@@ -163,7 +187,38 @@ impl LineMultigrid {
             scratch: LineScratch::default(),
             trace: std::env::var_os("EHLMAP_TRACE").is_some(),
             fine_intervals: fine,
+            guess: None,
         }
+    }
+
+    /// Start the next [`LineMultigrid::solve`] from `guess` on the finest level instead of
+    /// the FMG ascent.
+    pub fn set_guess(&mut self, guess: WarmGuess) {
+        self.guess = Some(guess);
+    }
+
+    /// Put the guess on level `l`: P interpolated onto its grid, H0 so that the central film is
+    /// the guess's.
+    fn install_guess(&mut self, l: usize) -> bool {
+        let Some(g) = self.guess.take() else {
+            return false;
+        };
+        let lv = &mut self.levels[l];
+        let n = lv.len();
+        for i in 0..n {
+            lv.p[i] = if i == 0 || i + 1 == n {
+                0.0
+            } else {
+                g.p_at(lv.x[i])
+            };
+        }
+        lv.f.fill(0.0);
+        lv.frozen.fill(false);
+        lv.g = PI / 2.0;
+        lv.update_film(&self.phys, 0.0);
+        self.h0 = g.centre_film - lv.film[self.domain.centre_index(n - 1)];
+        lv.update_film(&self.phys, self.h0);
+        true
     }
 
     /// Start on the coarsest level: the Hertz pressure for elastic surfaces; for rigid ones a
@@ -458,6 +513,9 @@ impl Fas for LineMultigrid {
     }
     fn trace(&self) -> bool {
         self.trace
+    }
+    fn install_guess(&mut self, l: usize) -> bool {
+        LineMultigrid::install_guess(self, l)
     }
     fn finish(
         &self,

@@ -13,7 +13,9 @@
 //!   `--resume`) solves only what is missing.
 //! * **Deterministic results** ([`run`]): each case is one single-threaded solve, independent of
 //!   the others, so every column except `wall_s` is identical whatever `--threads` or `--shard`.
-//!   Work is taken largest estimated cost first. Cases are not warm-started.
+//!   Work is taken largest estimated cost first. A line case that fails cold is warm-started
+//!   ([`warm`]) from its own chain of lower-M neighbours, solved within the same task, so warm
+//!   starts do not break this either; `warm_start` records the neighbour's case id.
 //! * **Shards**: `--shard i/n` (or `SLURM_ARRAY_TASK_ID`/`SLURM_ARRAY_TASK_COUNT`) keeps the cases
 //!   whose mixed id is `i - 1 (mod n)`; the union of shards 1..n is the whole sweep.
 //! * **Storage** ([`crate::io::results`]): `<out>/<name>/part-<i>of<n>-<run>.parquet`, one file
@@ -29,3 +31,4 @@ pub mod plan;
 pub mod row;
 pub mod run;
 pub mod spec;
+pub mod warm;

@@ -93,6 +93,14 @@ impl Case {
         id_hex(self.id)
     }
 
+    /// The same case at another M, with its own id (a warm-start neighbour).
+    pub fn with_m(&self, m: f64) -> Case {
+        let mut c = self.clone();
+        c.m = m;
+        c.id = fnv1a64(c.canonical().as_bytes());
+        c
+    }
+
     /// The line case to hand to the solver.
     pub fn line_case(&self) -> Result<LineCase, ParamError> {
         LineCase::with_models(self.m, self.l, self.models)
@@ -315,6 +323,18 @@ mod tests {
         a.sort();
         b.sort();
         assert_eq!(a, b);
+        // A warm-start neighbour is the planned case at that M: same id as the plan gives it.
+        let c10 = cases.iter().find(|c| c.m == 10.0 && c.l == 5.0).unwrap();
+        let c1 = cases.iter().find(|c| c.m == 1.0 && c.l == 5.0).unwrap();
+        assert_eq!(c10.with_m(1.0).id, c1.id);
+        assert_eq!(
+            c10.with_m(1.0),
+            Case {
+                cost: c10.cost,
+                ..c1.clone()
+            }
+        );
+        assert_eq!(c10.with_m(10.0).id, c10.id);
         // Pinned: a change here silently re-solves every stored dataset.
         let c = cases.iter().find(|c| c.m == 1.0 && c.l == 0.0).unwrap();
         assert_eq!(

@@ -15,6 +15,7 @@ use crate::solver::point::{solve_point, PointSolveParams};
 use crate::solver::Status;
 use crate::sweep::plan::Case;
 use crate::sweep::spec::Contact;
+use crate::sweep::warm::warm_start_line;
 
 /// The input columns of a case; outputs empty, status "not-run".
 pub fn input_row(case: &Case, sweep: &str) -> CaseRow {
@@ -181,13 +182,29 @@ fn solve_line_row(case: &Case, sweep: &str) -> CaseRow {
         Err(e) => return invalid_row(case, sweep, e),
     };
     let params = solve_params(case, case.numerics.grid);
-    let s = match case.numerics.accuracy {
+    let mut s = match case.numerics.accuracy {
         Some(target) => solve_line_selected(&lc, &params, target, case.numerics.grid).0,
         None => solve_line(&lc, &params),
     };
-    build_row(case, sweep, &s.outputs, s.attempt, |g| {
+    let mut warm = None;
+    if case.numerics.fallback
+        && case.numerics.accuracy.is_none()
+        && s.info.status != Status::Converged
+    {
+        let mut spent = (0.0, 0.0);
+        let (wu, wall) = (s.outputs.work_units, s.outputs.wall_s);
+        if let Some(w) = warm_start_line(case, &params, &mut spent) {
+            s = w.solution;
+            warm = Some(w.neighbour);
+        }
+        s.outputs.work_units = wu + spent.0;
+        s.outputs.wall_s = wall + spent.1;
+    }
+    let mut row = build_row(case, sweep, &s.outputs, s.attempt, |g| {
         solve_line(&lc, &solve_params(case, g)).outputs
-    })
+    });
+    row.warm_start = warm;
+    row
 }
 
 /// The row of a finished solve: its outputs, the error columns (the accuracy target's estimate,
