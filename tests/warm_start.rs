@@ -52,3 +52,59 @@ fn warm_start_from_lower_m_reaches_the_cold_solution() {
         let _ = solve_line_from(&case, &p, Some(&guess)).info.status;
     }
 }
+
+/// The sweep's row for a case that fails cold: the warm-start chain runs (its cost is counted),
+/// and when it does not converge either the cold result stands with `warm_start` null. A case
+/// that converges cold is not warm-started and costs one solve.
+#[test]
+fn sweep_rows_count_the_warm_start_chain() {
+    use ehlmap::sweep::{plan::plan, row::solve_case, spec::parse};
+    let spec = |cycles: usize| {
+        let text = format!(
+            "contact = \"line\"\n[axes]\nM = [20]\nL = [5]\n[numerics]\ngrid = 257\nmax_cycles = {cycles}\n"
+        );
+        plan(&parse("w.toml", &text, "w").unwrap())
+            .unwrap()
+            .remove(0)
+    };
+    let cold = |c: &ehlmap::sweep::plan::Case| {
+        let mut p = LineSolveParams::default();
+        p.mg.grid = 257;
+        p.mg.max_cycles = c.numerics.max_cycles;
+        p.mg.tol_load = c.numerics.tol_load;
+        p.mg.tol_h = c.numerics.tol_h;
+        p.mg.cycle = c.numerics.cycle;
+        solve_line(&c.line_case().unwrap(), &p)
+    };
+    let failing = spec(1);
+    let c = cold(&failing);
+    assert_ne!(
+        c.info.status,
+        Status::Converged,
+        "one cycle should not converge"
+    );
+    let row = solve_case(&failing, "w");
+    assert_eq!(row.status, c.info.status.as_str());
+    assert_eq!(row.warm_start, None);
+    // The cost is the cold ladder's plus the whole chain's (recomputed here: deterministic).
+    let mut spent = (0.0, 0.0);
+    let mut p = LineSolveParams::default();
+    p.mg.grid = 257;
+    p.mg.max_cycles = 1;
+    p.mg.tol_load = failing.numerics.tol_load;
+    p.mg.tol_h = failing.numerics.tol_h;
+    assert!(ehlmap::sweep::warm::warm_start_line(&failing, &p, &mut spent).is_none());
+    assert!(spent.0 > 0.5 * c.info.work_units, "{spent:?}");
+    let expect = c.info.work_units + spent.0;
+    let got = row.work_units.unwrap();
+    assert!((got - expect).abs() < 1e-9 * expect, "{got} {expect}");
+    assert_eq!(row.h_c, Some(c.outputs.h_c));
+
+    let fine = spec(60);
+    let c = cold(&fine);
+    let row = solve_case(&fine, "w");
+    assert_eq!(row.status, "converged");
+    assert_eq!(row.warm_start, None);
+    assert_eq!(row.work_units, Some(c.info.work_units));
+    assert_eq!(row.h_c, Some(c.outputs.h_c));
+}
