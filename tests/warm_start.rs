@@ -58,7 +58,11 @@ fn warm_start_from_lower_m_reaches_the_cold_solution() {
 /// that converges cold is not warm-started and costs one solve.
 #[test]
 fn sweep_rows_count_the_warm_start_chain() {
-    use ehlmap::sweep::{plan::plan, row::solve_case, spec::parse};
+    use ehlmap::sweep::{
+        plan::plan,
+        row::{solve_case, solve_params},
+        spec::parse,
+    };
     let spec = |cycles: usize| {
         let text = format!(
             "contact = \"line\"\n[axes]\nM = [20]\nL = [5]\n[numerics]\ngrid = 257\nmax_cycles = {cycles}\n"
@@ -67,15 +71,8 @@ fn sweep_rows_count_the_warm_start_chain() {
             .unwrap()
             .remove(0)
     };
-    let cold = |c: &ehlmap::sweep::plan::Case| {
-        let mut p = LineSolveParams::default();
-        p.mg.grid = 257;
-        p.mg.max_cycles = c.numerics.max_cycles;
-        p.mg.tol_load = c.numerics.tol_load;
-        p.mg.tol_h = c.numerics.tol_h;
-        p.mg.cycle = c.numerics.cycle;
-        solve_line(&c.line_case().unwrap(), &p)
-    };
+    let cold =
+        |c: &ehlmap::sweep::plan::Case| solve_line(&c.line_case().unwrap(), &solve_params(c, 257));
     let failing = spec(1);
     let c = cold(&failing);
     assert_ne!(
@@ -88,11 +85,7 @@ fn sweep_rows_count_the_warm_start_chain() {
     assert_eq!(row.warm_start, None);
     // The cost is the cold ladder's plus the whole chain's (recomputed here: deterministic).
     let mut spent = (0.0, 0.0);
-    let mut p = LineSolveParams::default();
-    p.mg.grid = 257;
-    p.mg.max_cycles = 1;
-    p.mg.tol_load = failing.numerics.tol_load;
-    p.mg.tol_h = failing.numerics.tol_h;
+    let p = solve_params(&failing, 257);
     assert!(ehlmap::sweep::warm::warm_start_line(&failing, &p, &mut spent).is_none());
     assert!(spent.0 > 0.5 * c.info.work_units, "{spent:?}");
     let expect = c.info.work_units + spent.0;

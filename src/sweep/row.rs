@@ -83,7 +83,8 @@ pub fn input_row(case: &Case, sweep: &str) -> CaseRow {
     }
 }
 
-fn solve_params(case: &Case, grid: usize) -> LineSolveParams {
+/// The line-solve parameters of a planned case on `grid` (its numerics over the defaults).
+pub fn solve_params(case: &Case, grid: usize) -> LineSolveParams {
     let n = &case.numerics;
     let mut p = LineSolveParams::default();
     p.mg.grid = grid;

@@ -34,11 +34,8 @@ pub fn warm_start_line(
 ) -> Option<WarmStart> {
     let mut keep = *params;
     keep.keep_profile = true;
-    let at = |k: u32| -> Option<(Case, LineCase)> {
-        let c = case.with_m(case.m / 2f64.powi(k as i32));
-        let lc = c.line_case().ok()?;
-        Some((c, lc))
-    };
+    let at =
+        |k: u32| -> Option<LineCase> { case.with_m(case.m / 2f64.powi(k as i32)).line_case().ok() };
     let count = |s: &LineSolution, spent: &mut (f64, f64)| {
         spent.0 += s.info.work_units;
         spent.1 += s.info.wall_s;
@@ -46,7 +43,7 @@ pub fn warm_start_line(
     // The first neighbour down the chain that converges cold.
     let mut found = None;
     for k in 1..=WARM_DEPTH {
-        let (_, lc) = at(k)?;
+        let lc = at(k)?;
         let s = solve_line(&lc, &keep);
         count(&s, spent);
         if s.info.status == Status::Converged {
@@ -56,7 +53,7 @@ pub fn warm_start_line(
     }
     let (k0, mut prev_case, mut prev) = found?;
     for k in (0..k0).rev() {
-        let (_, lc) = at(k)?;
+        let lc = at(k)?;
         let guess = warm_guess(&lc, &prev_case, &prev)?;
         let mut s = solve_line_from(&lc, if k == 0 { params } else { &keep }, Some(&guess));
         count(&s, spent);
@@ -70,10 +67,9 @@ pub fn warm_start_line(
             );
             s.info.reason.push_str(&note);
             s.outputs.reason.push_str(&note);
-            let neighbour = at(1)?.0.id_hex();
             return Some(WarmStart {
                 solution: s,
-                neighbour,
+                neighbour: case.with_m(case.m / 2.0).id_hex(),
             });
         }
         (prev_case, prev) = (lc, s);
