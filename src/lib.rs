@@ -2,7 +2,7 @@
 //!
 //! The module tree follows the data flow: parameters and lubricant models ([`params`],
 //! [`lubricant`]) -> the discretised problem ([`problem`]) -> solvers ([`solver`]) -> what a solve
-//! reports ([`solution`]); [`select`] picks the cheapest adequate model -> storage ([`io`]); [`formulas`] holds the published film formulas the
+//! reports ([`solution`]); [`select`] picks the cheapest adequate model ([`slender`]: a line contact for slender ellipses) -> storage ([`io`]); [`formulas`] holds the published film formulas the
 //! results are compared with.
 
 // Stencil and kernel loops index several arrays by node number; iterator chains would hide that.
@@ -23,6 +23,7 @@ pub mod pictures;
 pub mod problem;
 pub mod regimes;
 pub mod select;
+pub mod slender;
 pub mod solution;
 pub mod solver;
 pub mod sweep;

@@ -24,17 +24,22 @@
 //!   flux thickness H(p_max) = 3/M; no solve at all.
 //! - `rigid-isoviscous`, `rigid`: no deformation integral (H = H0 + X^2/2 ...);
 //! - `isoviscous`: the case solved at L = 0 with Barus (viscosity 1 everywhere);
+//! - `slender-line` (point contacts, small D): the line contact with the same Hertz half-width
+//!   (`crate::slender`); not verified per case, since a point check precise enough to see its
+//!   1-2 % gap costs more than the point solve it would save: its neglected effect is the gap
+//!   bound of `crate::slender`, validated on a separate set in `tests/slender.rs`, and it is
+//!   tried first, whenever that bound is below `CHECK_FRACTION` times the target;
 //! - `full`: everything.
 //!
 //! The reported `error_estimate` of a simplified answer is the discretisation estimate plus the
 //! neglected effect. A simplified solve that fails is retried with the full model (and says so).
-//! Every simplification is checked against the full model in `tests/selection.rs`. Not
-//! selected (yet): a line-contact solve for slender elliptic contacts (small D), whose
-//! centre-line film has no exact mapping to a line case.
+//! Every simplification is checked against the full model in `tests/selection.rs` and
+//! `tests/slender.rs`.
 
 use crate::formulas::{moes_line_asymptotes, moes_line_hc, nvm_point_asymptotes, nvm_point_hc};
 use crate::lubricant::{Density, Viscosity};
 use crate::params::{Elasticity, LineCase, Models, PointCase};
+use crate::slender;
 use crate::solution::Outputs;
 use crate::solver::ladder::Attempt;
 use crate::solver::line::{solve_line, solve_line_to_accuracy, LineSolution, LineSolveParams};
@@ -65,6 +70,7 @@ pub enum ModelChoice {
     RigidIsoviscous,
     Rigid,
     Isoviscous,
+    SlenderLine,
     Full,
 }
 
@@ -75,6 +81,7 @@ impl ModelChoice {
             ModelChoice::RigidIsoviscous => "rigid-isoviscous",
             ModelChoice::Rigid => "rigid",
             ModelChoice::Isoviscous => "isoviscous",
+            ModelChoice::SlenderLine => "slender-line",
             ModelChoice::Full => "full",
         }
     }
@@ -182,7 +189,9 @@ fn annotate(o: &mut Outputs, info: &mut SolveInfo, sel: &Selection) {
         return;
     }
     o.error_estimate = o.error_estimate.map(|e| e + sel.neglected);
-    let how = if sel.measured.is_some() {
+    let how = if sel.model == ModelChoice::SlenderLine {
+        "the slender-contact gap bound"
+    } else if sel.measured.is_some() {
         "measured on the check grid"
     } else {
         "screened x 10: the full check did not converge"
@@ -368,13 +377,28 @@ pub fn solve_point_selected(
     max_grid: usize,
 ) -> (PointSolution, Selection) {
     let screened = select(case.m, case.l, Some(case.d), &case.models, target);
+    let full = |p: &PointSolveParams| solve_point_to_accuracy(case, p, target, max_grid);
+    if let Some(bound) = slender::gap_bound(case).filter(|b| *b < CHECK_FRACTION * target) {
+        let sel = Selection {
+            model: ModelChoice::SlenderLine,
+            neglected: bound,
+            measured: None,
+            ..screened
+        };
+        let lp = LineSolveParams {
+            fallback: params.fallback,
+            ..Default::default()
+        };
+        let line = solve_line_to_accuracy(&slender::equivalent_line(case), &lp, target, 4097);
+        let s = slender::point_solution(case, line);
+        return finish(s, sel, || full(params), (0.0, 0.0));
+    }
     let mut cp = *params;
     cp.mg.grid = CHECK_GRID_POINT;
     cp.keep_fields = false;
     let (sel, wu, wall) = verify(screened, target, |model| {
         solve_point_model(case, &cp, model)
     });
-    let full = |p: &PointSolveParams| solve_point_to_accuracy(case, p, target, max_grid);
     let s = match sel.model {
         ModelChoice::Full => full(params),
         model => {
@@ -407,6 +431,10 @@ pub fn solve_point_model(
     params: &PointSolveParams,
     model: ModelChoice,
 ) -> Outputs {
+    if model == ModelChoice::SlenderLine {
+        let lc = slender::equivalent_line(case);
+        return slender::point_outputs(case, &solve_line(&lc, &LineSolveParams::default()).outputs);
+    }
     let (l, models) = simplified(model, case.l, &case.models);
     match PointCase::with_models(case.m, l, case.d, models) {
         Ok(c) => solve_point(&c, params).outputs,
