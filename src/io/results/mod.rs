@@ -61,7 +61,7 @@ pub struct CaseRow {
     /// The spec's target relative accuracy of H_c and H_min, when it gave one.
     pub accuracy: Option<f64>,
     /// The model that answered the case (see `crate::select`): "full", "rigid", "isoviscous",
-    /// "rigid-isoviscous" or "closed-form".
+    /// "rigid-isoviscous", "closed-form" or "slender-line".
     pub model_used: String,
     /// Refinement level of the finest grid: log2 of its intervals over the first grid of the
     /// accuracy ladder (256 line intervals, 32 point intervals per direction); null without a
