@@ -505,7 +505,7 @@ fn point_summary(case: &PointCase, o: &crate::solution::Outputs) -> String {
          H0             {:.6}\n\
          f Rx/b         {:.6e}\n\
          load error     {:.2e}\n\
-         grid           {} x {} points, {} levels, {:.1} work units, {:.3} s\n",
+         grid           {}, {} levels, {:.1} work units, {:.3} s\n",
         case.m,
         case.l,
         case.d,
@@ -525,8 +525,11 @@ fn point_summary(case: &PointCase, o: &crate::solution::Outputs) -> String {
         o.h0,
         o.f,
         o.load_error,
-        o.grid,
-        o.grid,
+        if o.model_used == crate::select::ModelChoice::SlenderLine.as_str() {
+            format!("{} points (line solve)", o.grid)
+        } else {
+            format!("{} x {} points", o.grid, o.grid)
+        },
         o.levels,
         o.work_units,
         o.wall_s

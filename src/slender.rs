@@ -73,7 +73,8 @@ pub fn gap_bound(case: &PointCase) -> Option<f64> {
 }
 
 /// The point outputs of a line solve of [`equivalent_line`]: films as they are (Moes units),
-/// pressures converted to the ellipse's p_h, `Y_min` = 0 (the centre line), `D` and `k` set.
+/// pressures converted to the ellipse's p_h, `Y_min` = 0 (the centre line), `D` and `k` set;
+/// `H0` and `f` are NaN (the line's film constant and traction are not the ellipse's).
 pub fn point_outputs(case: &PointCase, line: &Outputs) -> Outputs {
     let el = case.ellipse();
     let p = el.e / (1.0 + case.d);
@@ -83,6 +84,8 @@ pub fn point_outputs(case: &PointCase, line: &Outputs) -> Outputs {
         k: Some(el.k),
         p_max: line.p_max * p,
         spike: line.spike.map(|s| Spike { x: s.x, p: s.p * p }),
+        h0: f64::NAN,
+        f: f64::NAN,
         ..line.clone()
     }
 }
@@ -140,5 +143,6 @@ mod tests {
         assert_eq!(o.h_c, line.h_c);
         assert_eq!(o.k, Some(el.k));
         assert_eq!(o.y_min, Some(0.0));
+        assert!(o.h0.is_nan() && o.f.is_nan());
     }
 }

@@ -88,3 +88,44 @@ fn selection_uses_the_line_model_only_inside_its_gate() {
         assert_ne!(s.outputs.model_used, "slender-line");
     }
 }
+
+#[test]
+fn sweep_rows_of_the_line_model_are_valid_and_say_so() {
+    let dir = std::env::temp_dir().join(format!("ehlmap-slender-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let spec = dir.join("sl.toml");
+    std::fs::write(
+        &spec,
+        "name = \"sl\"\ncontact = \"point\"\n[axes]\nM = [1000]\nL = [0]\nD = [0.02, 0.5]\n\
+         [numerics]\ngrid = 65\naccuracy = 0.05\n",
+    )
+    .unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_ehlmap"))
+        .args(["sweep", spec.to_str().unwrap(), "--out"])
+        .arg(&dir)
+        .args(["--progress", "none"])
+        .output()
+        .unwrap();
+    let log = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{log}");
+    assert!(log.contains("slender-line 1"), "{log}");
+    let rows = ehlmap::io::results::read_dataset(&dir.join("sl")).unwrap();
+    assert_eq!(rows.len(), 2);
+    for r in &rows {
+        assert_eq!(r.status, "converged", "{}", r.reason);
+        assert!(r.valid, "{}", r.reason);
+        if r.d == Some(0.02) {
+            // Bound 1.3 % < half the target; H0 and f have no point meaning: null, still valid.
+            assert_eq!(r.model_used, "slender-line");
+            assert!(r.h0.is_none() && r.f.is_none() && r.p_max.is_some());
+            assert!(
+                r.h_c.unwrap() > 0.0 && r.grid.unwrap() >= 257,
+                "{:?}",
+                r.grid
+            );
+        } else {
+            assert_ne!(r.model_used, "slender-line");
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

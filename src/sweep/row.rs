@@ -148,10 +148,12 @@ fn half_grid_errors(fine: &Outputs, coarse: &Outputs) -> (Option<f64>, Option<f6
 fn fill_outputs(row: &mut CaseRow, o: &Outputs, attempt: usize, valid: &mut bool) {
     row.model_used = o.model_used.clone();
     row.level = o.level.map(|l| l as i64);
-    // A closed-form answer has no grid, pressure maximum or traction: null, not invalid.
-    let closed = o.model_used == ModelChoice::ClosedForm.as_str();
+    // A closed-form answer has no grid, pressure maximum or traction, a slender-line one no
+    // point film constant or traction: null, not invalid.
+    let partial = o.model_used == ModelChoice::ClosedForm.as_str()
+        || o.model_used == ModelChoice::SlenderLine.as_str();
     let opt = |v: f64, valid: &mut bool| {
-        if closed && v.is_nan() {
+        if partial && v.is_nan() {
             None
         } else {
             finite(v, valid)
@@ -169,7 +171,7 @@ fn fill_outputs(row: &mut CaseRow, o: &Outputs, attempt: usize, valid: &mut bool
         row.spike_x = finite(sp.x, valid);
         row.spike_p = finite(sp.p, valid);
     }
-    row.h0 = finite(o.h0, valid);
+    row.h0 = opt(o.h0, valid);
     row.f = opt(o.f, valid);
     row.load_error = finite(o.load_error, valid);
     row.status = o.status.as_str().to_string();
