@@ -3,26 +3,15 @@
 //! 257^2 nodes extrapolated (Richardson, order 2), and the selection picks the line model only
 //! inside its gate, with an answer within the target of the point reference.
 
+mod common;
+
+use common::point_reference;
 use ehlmap::params::PointCase;
 use ehlmap::select::{solve_point_selected, ModelChoice};
 use ehlmap::slender::{equivalent_line, gap_bound, point_outputs};
 use ehlmap::solver::line::{solve_line, LineSolveParams};
-use ehlmap::solver::point::{solve_point, PointSolveParams};
+use ehlmap::solver::point::PointSolveParams;
 use ehlmap::solver::Status;
-
-/// Point H_c, H_min extrapolated from 129^2 and 257^2, and the change between the two grids.
-fn point_reference(c: &PointCase) -> ((f64, f64), f64) {
-    let solve = |g: usize| {
-        let mut p = PointSolveParams::default();
-        p.mg.grid = g;
-        let o = solve_point(c, &p).outputs;
-        assert_eq!(o.status, Status::Converged, "reference: {}", o.reason);
-        (o.h_c, o.h_min)
-    };
-    let (a, b) = (solve(129), solve(257));
-    let ext = (b.0 + (b.0 - a.0) / 3.0, b.1 + (b.1 - a.1) / 3.0);
-    (ext, (b.0 / a.0 - 1.0).abs().max((b.1 / a.1 - 1.0).abs()))
-}
 
 fn gap(got: (f64, f64), reference: (f64, f64)) -> f64 {
     (got.0 / reference.0 - 1.0)
@@ -41,7 +30,7 @@ fn gap_bound_holds_on_the_validation_set() {
         let line = solve_line(&equivalent_line(&pc), &lp).outputs;
         assert_eq!(line.status, Status::Converged, "{}", line.reason);
         let o = point_outputs(&pc, &line);
-        let (reference, change) = point_reference(&pc);
+        let (reference, change) = point_reference(&pc, 257);
         let g = gap((o.h_c, o.h_min), reference);
         println!("M={m} L={l} D={d}: gap {g:.4}, bound {bound:.4}, point 129->257 {change:.4}");
         assert!(
@@ -74,7 +63,7 @@ fn selection_uses_the_line_model_only_inside_its_gate() {
         o.reason
     );
     assert_eq!((o.d, o.y_min), (Some(0.02), Some(0.0)));
-    let (reference, _) = point_reference(&pc);
+    let (reference, _) = point_reference(&pc, 257);
     let err = gap((o.h_c, o.h_min), reference);
     let est = o.error_estimate.unwrap();
     println!("slender-line: error {err:.4}, estimate {est:.4}");

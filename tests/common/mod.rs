@@ -1,0 +1,20 @@
+//! Helpers shared by the integration tests.
+
+use ehlmap::params::PointCase;
+use ehlmap::solver::point::{solve_point, PointSolveParams};
+use ehlmap::solver::Status;
+
+/// Full-model point H_c and H_min extrapolated (Richardson, order 2) from `grid` and its half
+/// grid, and the larger relative change of the two between those grids.
+pub fn point_reference(c: &PointCase, grid: usize) -> ((f64, f64), f64) {
+    let solve = |g: usize| {
+        let mut p = PointSolveParams::default();
+        p.mg.grid = g;
+        let o = solve_point(c, &p).outputs;
+        assert_eq!(o.status, Status::Converged, "reference: {}", o.reason);
+        (o.h_c, o.h_min)
+    };
+    let (a, b) = (solve((grid - 1) / 2 + 1), solve(grid));
+    let ext = (b.0 + (b.0 - a.0) / 3.0, b.1 + (b.1 - a.1) / 3.0);
+    (ext, (b.0 / a.0 - 1.0).abs().max((b.1 / a.1 - 1.0).abs()))
+}
