@@ -85,7 +85,8 @@ fn mixed_sweep_with_targets_records_model_level_and_estimate() {
         .unwrap();
     let log = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{log}");
-    assert!(log.contains("models used: closed-form 1, full 2"), "{log}");
+    assert!(log.contains("models used: closed-form 1 ("), "{log}");
+    assert!(log.contains("), full 2 ("), "{log}");
     let rows = read_dataset(&dir.join("sel")).unwrap();
     assert_eq!(rows.len(), 3);
     for r in &rows {

@@ -174,8 +174,14 @@ pub fn run_sweep(args: &SweepArgs) -> Result<i32, InputError> {
                 spec.name, r.already_stored, r.solved, r.failed, r.wall_s, file
             );
             if r.models.keys().any(|m| m != "full") {
-                let counts: Vec<String> =
-                    r.models.iter().map(|(m, n)| format!("{m} {n}")).collect();
+                let counts: Vec<String> = r
+                    .models
+                    .iter()
+                    .map(|(m, n)| {
+                        let t = r.model_seconds.get(m).copied().unwrap_or(0.0);
+                        format!("{m} {n} ({t:.1} s)")
+                    })
+                    .collect();
                 eprintln!(
                     "sweep {}: models used: {} (ehlmap bench --selection SPEC measures the saving)",
                     spec.name,

@@ -53,6 +53,8 @@ pub struct RunReport {
     pub failed: usize,
     /// Cases solved by this run per `model_used` (see `crate::select`).
     pub models: std::collections::BTreeMap<String, usize>,
+    /// Their summed solve time (s) per `model_used`, check solves included.
+    pub model_seconds: std::collections::BTreeMap<String, f64>,
     /// The part file this run wrote (none when there was nothing to do).
     pub file: Option<PathBuf>,
     pub wall_s: f64,
@@ -348,6 +350,10 @@ pub fn execute(spec: &SweepSpec, cases: &[Case], opts: &RunOptions) -> Result<Ru
                     report.solved += 1;
                     report.failed += is_failure(&row) as usize;
                     *report.models.entry(row.model_used.clone()).or_default() += 1;
+                    *report
+                        .model_seconds
+                        .entry(row.model_used.clone())
+                        .or_default() += row.wall_s.unwrap_or(0.0);
                     rows.push(row);
                     pending += 1;
                     reporter.update(report.solved, report.failed);
