@@ -1,7 +1,8 @@
 //! The point-contact fit on a small dataset made by ehlmap itself (`tests/data/smoke-point`,
 //! from `tests/data/smoke-point.toml`: M in {1, 3, 10, 30, 100, 300} x L in {0, 5, 10} x
 //! D in {0.25, 0.5, 1}, 129^2 points, 54 cases of which 19 have an error estimate above 2 % and
-//! are left out), and a mixed line + point input: each contact is fitted on its own; a contact
+//! 23 a domain-truncation bias above 2 % (rigid-like, M <= 10) and are left out), and a mixed line
+//! + point input: each contact is fitted on its own; a contact
 //! with too few cases is reported as skipped while the other is still fitted.
 
 use ehlmap::fit::dataset::load_fit_input;
@@ -22,8 +23,10 @@ fn param(q: &ehlmap::fit::report::QuantityFit, name: &str) -> f64 {
 #[test]
 fn point_fit_beats_nvm_and_checks_its_asymptotes() {
     let input = load_fit_input(&[dir("smoke-point")]).unwrap();
-    assert_eq!(input.point.len(), 35);
-    assert_eq!(input.excluded.len(), 19);
+    assert_eq!(input.point.len(), 12);
+    assert_eq!(input.excluded.len(), 42);
+    let biased = input.excluded.iter().filter(|e| e.contains("domain bias"));
+    assert_eq!(biased.count(), 23);
     assert!(input.line.is_empty());
     let r = fit_report(&input, true).unwrap().point;
     let h_c = r.h_c.as_ref().unwrap();
@@ -37,20 +40,24 @@ fn point_fit_beats_nvm_and_checks_its_asymptotes() {
         "fit H_c max {:+.3} rms {:.3}; NVM max {:+.3} rms {:.3}",
         h_c.overall.max, h_c.overall.rms, nvm.max, nvm.rms
     );
-    // Measured: fit max 27.6 %, RMS 8.7 %; NVM 1994 max 72.6 %, RMS 50.5 % (its rigid-isoviscous
-    // constant 41.3 is far above the solver's 24.6, see PHYSICS.md section 5).
+    // Measured: fit max 2.2 %, RMS 1.1 %; NVM 1994 max 6.2 %, RMS 3.3 % on the same 12 cases
+    // (with the domain-biased rigid-like rows in, NVM was 72.6 % off: the solver, not NVM).
+    assert!(h_c.overall.max.abs() < 0.03, "{}", h_c.overall.max);
     assert!(h_c.overall.max.abs() < nvm.max.abs());
     assert!(h_c.overall.rms < 0.5 * nvm.rms);
-    // Physical: the rigid-isoviscous constant near the numerical estimate 23 (PHYSICS.md 5),
-    // not NVM's 41.3; the piezoviscous L exponent near the theoretical 2/3.
+    // Physical: the rigid-isoviscous constant (PHYSICS.md 5 asks the project to settle it:
+    // NVM 41.3, truncated-domain numerics 23) near the solver's domain-extrapolated rigid value
+    // 34 (M = 1, D = 1, rigid: 32.1 and 33.0 with 4x and 8x the inlet and side extents on 513^2,
+    // extrapolated as 1/extent; src/problem/point_domain.rs), although only cases with M >= 10
+    // are fitted; the piezoviscous L exponent near the theoretical 2/3.
     let c_ri = param(h_c, "ln_c_RI").exp();
-    assert!((c_ri / 23.0 - 1.0).abs() < 0.1, "c_RI {c_ri}");
+    assert!((c_ri / 34.0 - 1.0).abs() < 0.15, "c_RI {c_ri}");
     let beta = param(h_c, "beta_RP");
     assert!((beta - 2.0 / 3.0).abs() < 0.1, "beta_RP {beta}");
     assert!(param(h_c, "alpha_EI") < 0.0);
     assert!(h_c.params.iter().all(|p| p.sigma.is_finite()));
-    // Four asymptote rows; the rigid solve (129^2) and the fitted H_RI agree within 10 %
-    // (measured 5.5 %).
+    // Four asymptote rows. The rigid limit solve (129^2, default domain) is biased low by the
+    // truncated domain (24.6 against the extrapolated 34): ratio about 0.7, and said so.
     let names: Vec<_> = r.asymptotes.iter().map(|a| a.asymptote.as_str()).collect();
     assert_eq!(
         names,
@@ -62,13 +69,18 @@ fn point_fit_beats_nvm_and_checks_its_asymptotes() {
         ]
     );
     let ri = r.asymptotes[0].ratio.unwrap();
-    assert!((ri - 1.0).abs() < 0.1, "RI ratio {ri}");
+    assert!(ri > 0.6 && ri < 0.8, "RI ratio {ri}");
+    assert!(
+        r.asymptotes[0].note.contains("biased low"),
+        "{}",
+        r.asymptotes[0].note
+    );
 }
 
 #[test]
 fn mixed_input_fits_each_contact_and_skips_a_thin_one() {
     let mut input = load_fit_input(&[dir("smoke-line"), dir("smoke-point")]).unwrap();
-    assert_eq!((input.line.len(), input.point.len()), (32, 35));
+    assert_eq!((input.line.len(), input.point.len()), (32, 12));
     let r = fit_report(&input, false).unwrap();
     assert!(r.line.h_c.is_some() && r.point.h_c.is_some());
     // 7 free point parameters (12 asymptote parameters less the 5 held at NVM's) + 5 spare.
@@ -107,7 +119,7 @@ fn fit_command_on_a_mixed_dataset_writes_both_sections() {
     );
     let v: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
     assert_eq!(v["line"]["converged_cases"], 32);
-    assert_eq!(v["point"]["converged_cases"], 35);
+    assert_eq!(v["point"]["converged_cases"], 12);
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(md.contains("## line contact") && md.contains("## point contact"));
     assert!(md.contains("NVM 1994") && md.contains("Moes 1992"));

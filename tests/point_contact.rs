@@ -229,3 +229,44 @@ fn newton_relaxation_and_multigrid_solve_the_same_discrete_problem() {
         mg.h_c
     );
 }
+
+/// The domain-truncation bias law (`PointDomain::bias` = 0.25 w): doubling the inlet and side
+/// extents raises H_c or H_min by about that much in rigid-like cases, and by almost nothing
+/// in an elastic one.
+#[test]
+fn domain_bias_estimate_matches_a_doubled_domain() {
+    use ehlmap::problem::point_domain::PointDomain;
+    for (m, d) in [(5.0, 1.0), (20.0, 0.25), (30.0, 1.0)] {
+        let case = PointCase::new(m, 0.0, d).unwrap();
+        let bias = PointDomain::of_case(&case).bias();
+        let solve = |f: f64| {
+            let mut p = PointSolveParams::default();
+            p.mg.grid = 129;
+            let dom = &mut p.mg.domain;
+            dom.inlet_lh *= f;
+            dom.inlet_elastic *= f;
+            dom.side *= f;
+            dom.side_lh *= f;
+            let o = solve_point(&case, &p).outputs;
+            assert_eq!(o.status, Status::Converged, "{}", o.reason);
+            o
+        };
+        let (a, b) = (solve(1.0), solve(2.0));
+        let rise = (b.h_c / a.h_c - 1.0).max(b.h_min / a.h_min - 1.0);
+        println!("M={m} D={d}: rise {rise:.4}, bias estimate {bias:.4}");
+        if bias >= 0.01 {
+            assert!(
+                rise > 0.6 * bias && rise < 1.2 * bias,
+                "rise {rise}, bias {bias}"
+            );
+            assert!(
+                a.reason.contains("caution: rigid-like case"),
+                "{}",
+                a.reason
+            );
+        } else {
+            assert!(rise < 0.005, "M={m}: rise {rise}");
+            assert!(!a.reason.contains("caution"), "{}", a.reason);
+        }
+    }
+}

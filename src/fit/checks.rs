@@ -176,7 +176,8 @@ pub fn point_checks(fit: &PointModel, pts: &[FitPoint]) -> Vec<AsymptoteCheck> {
         el: Elasticity::Rigid,
         solver: rigid.as_ref().map(|o| o.0.h_c),
         fitted: a(1.0, 0.0)[0],
-        note: "rigid solve, L = 0 (H M^2 is exact for any M)",
+        note: "rigid solve, L = 0 (H M^2 is exact for any M); default domain, biased low by its \
+               truncation (about 34 extrapolated, src/problem/point_domain.rs)",
     })];
     out.push(row(Row {
         name: "elastic-isoviscous",

@@ -3,11 +3,15 @@
 //! (line / point; a mixed dataset gives both); failed rows and duplicates are counted for the
 //! report. Converged rows whose Richardson error estimate of H_c or H_min exceeds
 //! [`MAX_ERROR_ESTIMATE`] are left out as grid-unconverged (a fit to 2 % cannot use data that are
-//! themselves uncertain by more), each listed with its estimate in the report. The datasets carry no G column, so `FitPoint::g` is None (formulas that need G are
-//! skipped by the report).
+//! themselves uncertain by more), each listed with its estimate in the report; so are point rows
+//! whose domain-truncation bias estimate (`PointDomain::bias`, rigid-like cases at small M)
+//! exceeds the same limit. The datasets carry no G column, so `FitPoint::g` is None (formulas
+//! that need G are skipped by the report).
 
 use crate::fit::report::{FitInput, FitPoint};
-use crate::io::results::read_dataset;
+use crate::io::results::{read_dataset, CaseRow};
+use crate::params::{Elasticity, PointCase};
+use crate::problem::point_domain::PointDomain;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
@@ -49,6 +53,19 @@ pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, String> {
             _ => None,
         };
         let est = row.h_c_err.unwrap_or(0.0).max(row.h_min_err.unwrap_or(0.0));
+        let bias = domain_bias(row);
+        if point.is_some() && bias > MAX_ERROR_ESTIMATE {
+            input.excluded.push(format!(
+                "point M = {:.4}, L = {}, D = {}: domain bias about {:.0} % > {:.0} % \
+                 (rigid-like case, see src/problem/point_domain.rs)",
+                row.m,
+                row.l,
+                row.d.unwrap_or(f64::NAN),
+                100.0 * bias,
+                100.0 * MAX_ERROR_ESTIMATE
+            ));
+            continue;
+        }
         if point.is_some() && est > MAX_ERROR_ESTIMATE {
             input.excluded.push(format!(
                 "{} M = {:.4}, L = {}{}: error estimate {:.1} % > {:.0} %",
@@ -69,4 +86,19 @@ pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, String> {
         }
     }
     Ok(input)
+}
+
+/// The domain-truncation bias estimate of a point row solved on a point grid (0 otherwise).
+fn domain_bias(row: &CaseRow) -> f64 {
+    let Some(d) = row.d else { return 0.0 };
+    if row.contact != "point" || row.model_used == "slender-line" {
+        return 0.0;
+    }
+    let Ok(mut case) = PointCase::new(row.m, row.l, d) else {
+        return 0.0;
+    };
+    if row.elasticity == "rigid" {
+        case.models.elasticity = Elasticity::Rigid;
+    }
+    PointDomain::of_case(&case).bias()
 }

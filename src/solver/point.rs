@@ -197,6 +197,15 @@ pub fn point_outputs(mg: &PointMultigrid, info: &SolveInfo) -> Outputs {
     out.d = Some(mg.phys.d);
     out.level = Some(grid_level(info.grid, 16));
     out.k = Some(mg.phys.k);
+    let bias = mg.domain.bias();
+    if bias >= 0.01 {
+        out.reason.push_str(&format!(
+            "; caution: rigid-like case (w = {:.2}), H is biased low by the truncated domain \
+             (doubling it raises H by about {:.0} %)",
+            mg.domain.rigid_weight,
+            100.0 * bias
+        ));
+    }
     out
 }
 
