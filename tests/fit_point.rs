@@ -1,8 +1,8 @@
 //! The point-contact fit on a small dataset made by ehlmap itself (`tests/data/smoke-point`,
 //! from `tests/data/smoke-point.toml`: M in {1, 3, 10, 30, 100, 300} x L in {0, 5, 10} x
 //! D in {0.25, 0.5, 1}, 129^2 points, 54 cases of which 19 have an error estimate above 2 % and
-//! 23 a domain-truncation bias above 2 % (rigid-like, M <= 10) and are left out), and a mixed line
-//! + point input: each contact is fitted on its own; a contact
+//! 23 a domain-truncation bias above 2 % (rigid-like, M <= 10) and are left out), and a mixed
+//! line and point input: each contact is fitted on its own; a contact
 //! with too few cases is reported as skipped while the other is still fitted.
 
 use ehlmap::fit::dataset::load_fit_input;
