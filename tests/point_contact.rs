@@ -238,7 +238,7 @@ fn domain_bias_estimate_matches_a_doubled_domain() {
     use ehlmap::problem::point_domain::PointDomain;
     for (m, d) in [(5.0, 1.0), (20.0, 0.25), (30.0, 1.0)] {
         let case = PointCase::new(m, 0.0, d).unwrap();
-        let bias = PointDomain::of_case(&case).bias();
+        let bias = PointDomain::of_case(&case, &Default::default()).bias();
         let solve = |f: f64| {
             let mut p = PointSolveParams::default();
             p.mg.grid = 129;
@@ -269,4 +269,27 @@ fn domain_bias_estimate_matches_a_doubled_domain() {
             assert!(!a.reason.contains("caution"), "{}", a.reason);
         }
     }
+}
+
+/// An accuracy-target solve of a rigid-like case adds the domain-truncation estimate to its
+/// error estimate and says the target is not met when that breaks it.
+#[test]
+fn accuracy_target_counts_the_domain_truncation() {
+    use ehlmap::problem::point_domain::PointDomain;
+    use ehlmap::solver::point::solve_point_to_accuracy;
+    let case = PointCase::new(5.0, 0.0, 1.0).unwrap();
+    let t = PointDomain::of_case(&case, &Default::default()).truncation_error();
+    assert!(t > 0.2 && t < 0.3, "{t}");
+    let o = solve_point_to_accuracy(&case, &PointSolveParams::default(), 0.05, 65).outputs;
+    assert_eq!(o.status, Status::Converged, "{}", o.reason);
+    assert!(o.error_estimate.unwrap() >= t);
+    assert_eq!(o.accuracy_met, Some(false), "{}", o.reason);
+    assert!(
+        o.reason.contains("domain-truncation estimate"),
+        "{}",
+        o.reason
+    );
+    // An elastic case keeps its target: the truncation estimate is below 1e-3 there.
+    let case = PointCase::new(30.0, 5.0, 1.0).unwrap();
+    assert!(PointDomain::of_case(&case, &Default::default()).truncation_error() < 1e-3);
 }

@@ -100,5 +100,5 @@ fn domain_bias(row: &CaseRow) -> f64 {
     if row.elasticity == "rigid" {
         case.models.elasticity = Elasticity::Rigid;
     }
-    PointDomain::of_case(&case).bias()
+    PointDomain::of_case(&case, &Default::default()).bias()
 }

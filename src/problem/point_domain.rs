@@ -43,6 +43,11 @@ use crate::formulas::{nvm_point_asymptotes, nvm_point_hc};
 /// module doc): the domain-sensitivity estimate [`PointDomain::bias`].
 pub const DOMAIN_BIAS_PER_W: f64 = 0.25;
 
+/// The truncation error of the default domain over its doubling change [`PointDomain::bias`]:
+/// the change shrank by a factor of 1.65 per doubling at (M, L, D) = (3, 0, 1) and 2.3 at the
+/// rigid M = 1, so the sum of all further doublings is 1.75-2.5 times the first.
+pub const TRUNCATION_OVER_BIAS: f64 = 2.5;
+
 /// Tunable constants of the domain rule.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PointDomainParams {
@@ -142,19 +147,17 @@ impl PointDomain {
         DOMAIN_BIAS_PER_W * self.rigid_weight
     }
 
-    /// The domain of a point case with the default domain constants.
-    pub fn of_case(case: &crate::params::PointCase) -> Self {
+    /// Estimated relative error of H_c and H_min from the truncation of the domain (H is low by
+    /// about this much): `TRUNCATION_OVER_BIAS` times [`PointDomain::bias`].
+    pub fn truncation_error(&self) -> f64 {
+        TRUNCATION_OVER_BIAS * self.bias()
+    }
+
+    /// The domain of a point case with the domain constants `p`.
+    pub fn of_case(case: &crate::params::PointCase, p: &PointDomainParams) -> Self {
         let v = case.venner();
         let rigid = case.models.elasticity == crate::params::Elasticity::Rigid;
-        Self::for_case(
-            case.m,
-            case.l,
-            case.d,
-            v.k,
-            v.h_scale,
-            rigid,
-            &PointDomainParams::default(),
-        )
+        Self::for_case(case.m, case.l, case.d, v.k, v.h_scale, rigid, p)
     }
 
     /// Index (i, j) of X = Y = 0 on a grid with n intervals per direction (a multiple of n0).
