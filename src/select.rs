@@ -389,7 +389,8 @@ pub fn solve_point_selected(
             fallback: params.fallback,
             ..Default::default()
         };
-        let line = solve_line_to_accuracy(&slender::equivalent_line(case), &lp, target, 4097);
+        let lc = slender::equivalent_line(case);
+        let line = solve_line_to_accuracy(&lc, &lp, target, slender::LINE_MAX_GRID);
         let s = slender::point_solution(case, line);
         return finish(s, sel, || full(params), (0.0, 0.0));
     }

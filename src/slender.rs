@@ -51,6 +51,8 @@ pub const D_MAX: f64 = 0.1;
 pub const M_LINE_MIN: f64 = 2.5;
 /// The largest L measured.
 pub const L_MAX: f64 = 20.0;
+/// The finest line grid of an accuracy-target solve of the equivalent line case.
+pub const LINE_MAX_GRID: usize = 4097;
 
 /// The line case with the same Hertz half-width b, radius Rx and Hertzian film scale.
 pub fn equivalent_line(case: &PointCase) -> LineCase {

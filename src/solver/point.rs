@@ -12,8 +12,7 @@
 //! status if none converges.
 
 use crate::params::PointCase;
-use crate::problem::point_domain::PointDomain;
-use crate::problem::point_domain::PointDomainParams;
+use crate::problem::point_domain::{PointDomain, PointDomainParams};
 use crate::solution::grid_level;
 use crate::solution::{line_outputs, parabola_vertex, Outputs};
 use crate::solver::fmg::fmg_solve;
