@@ -12,6 +12,7 @@ use crate::fit::report::{FitInput, FitPoint};
 use crate::io::results::{read_dataset, CaseRow};
 use crate::params::{Elasticity, PointCase};
 use crate::problem::point_domain::PointDomain;
+use crate::select::ModelChoice;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
@@ -91,13 +92,13 @@ pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, String> {
 /// The domain-truncation bias estimate of a point row solved on a point grid (0 otherwise).
 fn domain_bias(row: &CaseRow) -> f64 {
     let Some(d) = row.d else { return 0.0 };
-    if row.contact != "point" || row.model_used == "slender-line" {
+    if row.contact != "point" || row.model_used == ModelChoice::SlenderLine.as_str() {
         return 0.0;
     }
     let Ok(mut case) = PointCase::new(row.m, row.l, d) else {
         return 0.0;
     };
-    if row.elasticity == "rigid" {
+    if row.elasticity == Elasticity::Rigid.to_string() {
         case.models.elasticity = Elasticity::Rigid;
     }
     PointDomain::of_case(&case, &Default::default()).bias()

@@ -43,6 +43,9 @@ use crate::formulas::{nvm_point_asymptotes, nvm_point_hc};
 /// module doc): the domain-sensitivity estimate [`PointDomain::bias`].
 pub const DOMAIN_BIAS_PER_W: f64 = 0.25;
 
+/// [`PointDomain::bias`] from which a point solve's reason carries a caution.
+pub const BIAS_CAUTION: f64 = 0.01;
+
 /// The truncation error of the default domain over its doubling change [`PointDomain::bias`]:
 /// the change shrank by a factor of 1.65 per doubling at (M, L, D) = (3, 0, 1) and 2.3 at the
 /// rigid M = 1, so the sum of all further doublings is 1.75-2.5 times the first.

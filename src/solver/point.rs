@@ -12,7 +12,7 @@
 //! status if none converges.
 
 use crate::params::PointCase;
-use crate::problem::point_domain::{PointDomain, PointDomainParams};
+use crate::problem::point_domain::{PointDomain, PointDomainParams, BIAS_CAUTION};
 use crate::solution::grid_level;
 use crate::solution::{line_outputs, parabola_vertex, Outputs};
 use crate::solver::fmg::fmg_solve;
@@ -198,7 +198,7 @@ pub fn point_outputs(mg: &PointMultigrid, info: &SolveInfo) -> Outputs {
     out.level = Some(grid_level(info.grid, 16));
     out.k = Some(mg.phys.k);
     let bias = mg.domain.bias();
-    if bias >= 0.01 {
+    if bias >= BIAS_CAUTION {
         out.reason.push_str(&format!(
             "; caution: rigid-like case (w = {:.2}), H is biased low by the truncated domain \
              (doubling it raises H by about {:.0} %)",
