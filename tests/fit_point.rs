@@ -32,8 +32,9 @@ fn point_fit_beats_nvm_and_checks_its_asymptotes() {
     let h_c = r.h_c.as_ref().unwrap();
     let nvm = r.published[0].overall.as_ref().unwrap();
     assert_eq!(r.published[0].name, "NVM 1994");
+    assert_eq!(r.published[1].against, "H_pm");
     assert_eq!(
-        r.published[1].skipped.as_deref(),
+        r.published[2].skipped.as_deref(),
         Some("skipped: dataset has no G")
     );
     println!(
@@ -58,7 +59,17 @@ fn point_fit_beats_nvm_and_checks_its_asymptotes() {
     assert!(h_c.params.iter().all(|p| p.sigma.is_finite()));
     // Four asymptote rows. The rigid limit solve (129^2, default domain) is biased low by the
     // truncated domain (24.6 against the extrapolated 34): ratio about 0.7, and said so.
-    let names: Vec<_> = r.asymptotes.iter().map(|a| a.asymptote.as_str()).collect();
+    assert_eq!(
+        r.asymptotes.len(),
+        12,
+        "four asymptotes for each of three films"
+    );
+    let names: Vec<_> = r
+        .asymptotes
+        .iter()
+        .filter(|a| a.quantity == "H_c")
+        .map(|a| a.asymptote.as_str())
+        .collect();
     assert_eq!(
         names,
         [

@@ -1,4 +1,6 @@
-//! Fitted asymptotes against the solver's own limit solves.
+//! Fitted asymptotes against the solver's own limit solves. The solves are shared by the films
+//! fitted (H_c, H_pm, H_min: [`Film`]); each film's law is compared with the same film of the
+//! solve.
 //!
 //! * RI: rigid, L = 0 solve (line 4097 points, point 129 x 129); H_RI M (line) or H_RI M^2 (point)
 //!   is exact for any M, so one solve at M = 1 gives the constant.
@@ -14,7 +16,7 @@
 
 use crate::fit::model::LineModel;
 use crate::fit::point_model::PointModel;
-use crate::fit::report::{FitPoint, C_RI_CENTRAL};
+use crate::fit::report::{Film, FitPoint};
 use crate::params::{Elasticity, LineCase, Models, PointCase};
 use crate::solution::Outputs;
 use crate::solver::line::{solve_line, LineSolveParams};
@@ -25,12 +27,16 @@ use serde::{Deserialize, Serialize};
 /// One asymptote compared with a limit solve of the solver.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct AsymptoteCheck {
+    /// The film (H_c, H_pm, H_min).
+    #[serde(default)]
+    pub quantity: String,
     pub asymptote: String,
     pub law: String,
     pub m: f64,
     pub l: f64,
     pub d: Option<f64>,
     pub elasticity: String,
+    /// The solver's value of the film (named for H_c, the first film checked).
     pub solver_h_c: Option<f64>,
     pub fitted: f64,
     /// solver / fitted asymptote (1 in the limit); None if the limit solve failed.
@@ -69,9 +75,10 @@ fn point_solve(m: f64, l: f64, d: f64, el: Elasticity) -> Option<(Outputs, f64)>
     (s.outputs.status == Status::Converged).then_some((s.outputs, ab1))
 }
 
-/// H_RP at `l` from a rigid isoviscous solve: (c L)^(2/3), c = alpha_bar(L=1) P_max H_c^(3/2).
-fn rp_from_rigid(o: &Outputs, alpha_bar_1: f64, l: f64) -> f64 {
-    let c = alpha_bar_1 * o.p_max * o.h_c.powf(1.5);
+/// H_RP at `l` from a rigid isoviscous solve: (c L)^(2/3), c = alpha_bar(L=1) P_max H^(3/2)
+/// with H the film checked (the rigid-piezoviscous film has the rigid-isoviscous shape).
+fn rp_from_rigid(o: &Outputs, alpha_bar_1: f64, l: f64, film: Film) -> f64 {
+    let c = alpha_bar_1 * o.p_max * film.of_outputs(o).powf(1.5);
     (c * l).powf(2.0 / 3.0)
 }
 
@@ -87,8 +94,9 @@ struct Row<'a> {
     note: &'a str,
 }
 
-fn row(r: Row) -> AsymptoteCheck {
+fn row(film: Film, r: Row) -> AsymptoteCheck {
     AsymptoteCheck {
+        quantity: film.name().to_string(),
         asymptote: r.name.to_string(),
         law: r.law,
         m: r.m,
@@ -106,119 +114,195 @@ fn max_of(pts: &[FitPoint], f: fn(&FitPoint) -> f64) -> f64 {
     pts.iter().map(f).fold(0.0, f64::max)
 }
 
-/// The line checks (five solves at 4097 points, a few seconds).
-pub fn line_checks(fit: &LineModel, pts: &[FitPoint]) -> Vec<AsymptoteCheck> {
-    let (m_max, l_max) = (max_of(pts, |p| p.m), max_of(pts, |p| p.l));
-    let x = &fit.x;
-    let a = |m, l| fit.asymptotes(m, l);
-    let rigid = line_solve(1.0, 0.0, Elasticity::Rigid);
-    let mut out = vec![row(Row {
-        name: "rigid-isoviscous",
-        law: format!("{C_RI_CENTRAL} M^-1 (exact, fixed)"),
-        m: 1.0,
-        l: 0.0,
-        d: None,
-        el: Elasticity::Rigid,
-        solver: rigid.as_ref().map(|o| o.0.h_c),
-        fitted: a(1.0, 0.0)[0],
-        note: "rigid solve, L = 0",
-    })];
-    out.push(row(Row {
-        name: "elastic-isoviscous",
-        law: format!("{:.4} M^{:.4}", x[0].exp(), x[1]),
-        m: m_max,
-        l: 0.0,
-        d: None,
-        el: Elasticity::Elastic,
-        solver: line_solve(m_max, 0.0, Elasticity::Elastic).map(|o| o.0.h_c),
-        fitted: a(m_max, 0.0)[1],
-        note: "largest M of the data, L = 0",
-    }));
-    if l_max > 0.0 {
-        out.push(row(Row {
-            name: "rigid-piezoviscous",
-            law: format!("{:.4} L^{:.4}", x[2].exp(), x[3]),
-            m: f64::INFINITY,
-            l: l_max,
-            d: None,
-            el: Elasticity::Rigid,
-            solver: rigid.as_ref().map(|(o, ab)| rp_from_rigid(o, *ab, l_max)),
-            fitted: a(1.0, l_max)[2],
-            note: "limit alpha q_max = 1 from the rigid L = 0 solve (direct Barus solves diverge)",
-        }));
-        out.push(row(Row {
-            name: "elastic-piezoviscous",
-            law: format!("{:.4} M^{:.4} L^{:.4}", x[4].exp(), x[5], x[6]),
-            m: m_max,
-            l: l_max,
-            d: None,
-            el: Elasticity::Elastic,
-            solver: line_solve(m_max, l_max, Elasticity::Elastic).map(|o| o.0.h_c),
-            fitted: a(m_max, l_max)[3],
-            note: "largest M and L of the data (the RP and EI laws still contribute there)",
-        }));
+/// The limit solves of one contact: rigid L = 0 at M = 1, elastic at the largest M (L = 0) and at
+/// the largest M and L.
+struct LimitSolves {
+    m_max: f64,
+    l_max: f64,
+    rigid: Option<(Outputs, f64)>,
+    ei: Option<Outputs>,
+    ep: Option<Outputs>,
+}
+
+impl LimitSolves {
+    fn new(
+        pts: &[FitPoint],
+        solve: impl Fn(f64, f64, Elasticity) -> Option<(Outputs, f64)>,
+    ) -> Self {
+        let (m_max, l_max) = (max_of(pts, |p| p.m), max_of(pts, |p| p.l));
+        LimitSolves {
+            m_max,
+            l_max,
+            rigid: solve(1.0, 0.0, Elasticity::Rigid),
+            ei: solve(m_max, 0.0, Elasticity::Elastic).map(|o| o.0),
+            ep: (l_max > 0.0)
+                .then(|| solve(m_max, l_max, Elasticity::Elastic).map(|o| o.0))
+                .flatten(),
+        }
+    }
+
+    fn film(&self, o: &Option<Outputs>, film: Film) -> Option<f64> {
+        o.as_ref().map(|o| film.of_outputs(o))
+    }
+
+    fn rigid_film(&self, film: Film) -> Option<f64> {
+        self.rigid.as_ref().map(|(o, _)| film.of_outputs(o))
+    }
+
+    fn rp(&self, film: Film) -> Option<f64> {
+        self.rigid
+            .as_ref()
+            .map(|(o, ab)| rp_from_rigid(o, *ab, self.l_max, film))
+    }
+}
+
+/// The line checks (five solves at 4097 points, a few seconds) of each fitted film.
+pub fn line_checks(fits: &[(Film, LineModel)], pts: &[FitPoint]) -> Vec<AsymptoteCheck> {
+    let s = LimitSolves::new(pts, line_solve);
+    let (m_max, l_max) = (s.m_max, s.l_max);
+    let mut out = vec![];
+    for (film, fit) in fits {
+        let film = *film;
+        let x = &fit.x;
+        let a = |m, l| fit.asymptotes(m, l);
+        out.push(row(
+            film,
+            Row {
+                name: "rigid-isoviscous",
+                law: format!("{} M^-1 (exact, fixed)", fit.c_ri),
+                m: 1.0,
+                l: 0.0,
+                d: None,
+                el: Elasticity::Rigid,
+                solver: s.rigid_film(film),
+                fitted: a(1.0, 0.0)[0],
+                note: "rigid solve, L = 0",
+            },
+        ));
+        out.push(row(
+            film,
+            Row {
+                name: "elastic-isoviscous",
+                law: format!("{:.4} M^{:.4}", x[0].exp(), x[1]),
+                m: m_max,
+                l: 0.0,
+                d: None,
+                el: Elasticity::Elastic,
+                solver: s.film(&s.ei, film),
+                fitted: a(m_max, 0.0)[1],
+                note: "largest M of the data, L = 0",
+            },
+        ));
+        if l_max > 0.0 {
+            out.push(row(
+                film,
+                Row {
+                    name: "rigid-piezoviscous",
+                    law: format!("{:.4} L^{:.4}", x[2].exp(), x[3]),
+                    m: f64::INFINITY,
+                    l: l_max,
+                    d: None,
+                    el: Elasticity::Rigid,
+                    solver: s.rp(film),
+                    fitted: a(1.0, l_max)[2],
+                    note: "limit alpha q_max = 1 from the rigid L = 0 solve (direct Barus solves \
+                           diverge)",
+                },
+            ));
+            out.push(row(
+                film,
+                Row {
+                    name: "elastic-piezoviscous",
+                    law: format!("{:.4} M^{:.4} L^{:.4}", x[4].exp(), x[5], x[6]),
+                    m: m_max,
+                    l: l_max,
+                    d: None,
+                    el: Elasticity::Elastic,
+                    solver: s.film(&s.ep, film),
+                    fitted: a(m_max, l_max)[3],
+                    note: "largest M and L of the data (the RP and EI laws still contribute \
+                           there)",
+                },
+            ));
+        }
     }
     out
 }
 
-/// The point checks at D = 1 (four solves at 129 x 129 points).
-pub fn point_checks(fit: &PointModel, pts: &[FitPoint]) -> Vec<AsymptoteCheck> {
-    let (m_max, l_max) = (max_of(pts, |p| p.m), max_of(pts, |p| p.l));
-    let x = &fit.x;
-    let a = |m, l| fit.asymptotes(m, l, 1.0);
-    let rigid = point_solve(1.0, 0.0, 1.0, Elasticity::Rigid);
-    let mut out = vec![row(Row {
-        name: "rigid-isoviscous",
-        law: format!("{:.3} f_RI(D) D^{:.3} M^-2", x[0].exp(), x[1]),
-        m: 1.0,
-        l: 0.0,
-        d: Some(1.0),
-        el: Elasticity::Rigid,
-        solver: rigid.as_ref().map(|o| o.0.h_c),
-        fitted: a(1.0, 0.0)[0],
-        note: "rigid solve, L = 0 (H M^2 is exact for any M); default domain, biased low by its \
-               truncation (about 34 extrapolated, src/problem/point_domain.rs)",
-    })];
-    out.push(row(Row {
-        name: "elastic-isoviscous",
-        law: format!("{:.4} f_EI(D) D^{:.3} M^{:.4}", x[2].exp(), x[4], x[3]),
-        m: m_max,
-        l: 0.0,
-        d: Some(1.0),
-        el: Elasticity::Elastic,
-        solver: point_solve(m_max, 0.0, 1.0, Elasticity::Elastic).map(|o| o.0.h_c),
-        fitted: a(m_max, 0.0)[1],
-        note: "largest M of the data, L = 0",
-    }));
-    if l_max > 0.0 {
-        out.push(row(Row {
-            name: "rigid-piezoviscous",
-            law: format!("{:.4} f_RP(D) D^{:.3} L^{:.4}", x[5].exp(), x[7], x[6]),
-            m: f64::INFINITY,
-            l: l_max,
-            d: Some(1.0),
-            el: Elasticity::Rigid,
-            solver: rigid.as_ref().map(|(o, ab)| rp_from_rigid(o, *ab, l_max)),
-            fitted: a(1.0, l_max)[2],
-            note: "limit alpha q_max = 1 from the rigid L = 0 solve",
-        }));
-        out.push(row(Row {
-            name: "elastic-piezoviscous",
-            law: format!(
-                "{:.4} f_EP(D) D^{:.3} M^{:.4} L^{:.4}",
-                x[8].exp(),
-                x[11],
-                x[9],
-                x[10]
-            ),
-            m: m_max,
-            l: l_max,
-            d: Some(1.0),
-            el: Elasticity::Elastic,
-            solver: point_solve(m_max, l_max, 1.0, Elasticity::Elastic).map(|o| o.0.h_c),
-            fitted: a(m_max, l_max)[3],
-            note: "largest M and L of the data (the other laws still contribute there)",
-        }));
+/// The point checks at D = 1 (four solves at 129 x 129 points) of each fitted film.
+pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<AsymptoteCheck> {
+    let s = LimitSolves::new(pts, |m, l, el| point_solve(m, l, 1.0, el));
+    let (m_max, l_max) = (s.m_max, s.l_max);
+    let mut out = vec![];
+    for (film, fit) in fits {
+        let film = *film;
+        let x = &fit.x;
+        let a = |m, l| fit.asymptotes(m, l, 1.0);
+        out.push(row(
+            film,
+            Row {
+                name: "rigid-isoviscous",
+                law: format!("{:.3} f_RI(D) D^{:.3} M^-2", x[0].exp(), x[1]),
+                m: 1.0,
+                l: 0.0,
+                d: Some(1.0),
+                el: Elasticity::Rigid,
+                solver: s.rigid_film(film),
+                fitted: a(1.0, 0.0)[0],
+                note: "rigid solve, L = 0 (H M^2 is exact for any M); default domain, biased low \
+                       by its truncation (H_c about 34 extrapolated, src/problem/point_domain.rs)",
+            },
+        ));
+        out.push(row(
+            film,
+            Row {
+                name: "elastic-isoviscous",
+                law: format!("{:.4} f_EI(D) D^{:.3} M^{:.4}", x[2].exp(), x[4], x[3]),
+                m: m_max,
+                l: 0.0,
+                d: Some(1.0),
+                el: Elasticity::Elastic,
+                solver: s.film(&s.ei, film),
+                fitted: a(m_max, 0.0)[1],
+                note: "largest M of the data, L = 0",
+            },
+        ));
+        if l_max > 0.0 {
+            out.push(row(
+                film,
+                Row {
+                    name: "rigid-piezoviscous",
+                    law: format!("{:.4} f_RP(D) D^{:.3} L^{:.4}", x[5].exp(), x[7], x[6]),
+                    m: f64::INFINITY,
+                    l: l_max,
+                    d: Some(1.0),
+                    el: Elasticity::Rigid,
+                    solver: s.rp(film),
+                    fitted: a(1.0, l_max)[2],
+                    note: "limit alpha q_max = 1 from the rigid L = 0 solve",
+                },
+            ));
+            out.push(row(
+                film,
+                Row {
+                    name: "elastic-piezoviscous",
+                    law: format!(
+                        "{:.4} f_EP(D) D^{:.3} M^{:.4} L^{:.4}",
+                        x[8].exp(),
+                        x[11],
+                        x[9],
+                        x[10]
+                    ),
+                    m: m_max,
+                    l: l_max,
+                    d: Some(1.0),
+                    el: Elasticity::Elastic,
+                    solver: s.film(&s.ep, film),
+                    fitted: a(m_max, l_max)[3],
+                    note: "largest M and L of the data (the other laws still contribute there)",
+                },
+            ));
+        }
     }
     out
 }

@@ -50,6 +50,7 @@ pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, String> {
                 h_c,
                 h_min,
                 g: None,
+                h_pm: row.h_c_pmax.filter(|v| v.is_finite() && *v > 0.0),
             }),
             _ => None,
         };

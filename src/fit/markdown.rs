@@ -40,7 +40,9 @@ s = s0 + s1 exp(-s2 H_EI/H_RI), p = p0 + p1 exp(-s2 H_EI/H_RI), H_RI = 2.4475/M 
 H_RP = b L^beta (starting from its rigid limit 1.0496 L^(2/3), see the asymptote table), \
 H_EP = d M^gamma L^delta. The EI, RP and EP laws are fitted; p, q, the s-law and p1 \
 start from Moes' (7/3, 7/2, 7/5 + 8/5 exp(-2 H_EI/H_RI), 0) and are fitted too with 60 or more \
-converged cases (a 1 sigma of 0 marks a parameter held fixed).";
+converged cases (a 1 sigma of 0 marks a parameter held fixed). H_pm, the film at the pressure \
+maximum (Moes' central film), is fitted with the same form and its own exact H_RI = 3/M (the \
+flux thickness); H_min with H_RI = 2.4475/M.";
 
 const POINT_FORM: &str = "Formula (Moes point units, NVM 1994 form): H = { [H_RI^(3/2) + \
 (H_EI^-4 + H_00^-4)^(-3/8)]^(2s/3) + (H_RP^-8 + H_EP^-8)^(-s/8) }^(1/s), s = s0 (1 + exp(-s1 \
@@ -49,7 +51,9 @@ D^e_RP L^beta, H_EP = d f_EP(D) D^e_EP M^gamma L^delta, H_00 = c_00/D, with f_* 
 normalised to 1 at D = 1 and e_* free corrections (0 = NVM; held at 0 when the data have one D). \
 The asymptotes are fitted with alpha_EI and the whole H_EP law first held at NVM's (the \
 converged point data hardly reach the elastic regimes), then all of them and s0, s1 too (kept only \
-if physical and better) with 60 or more converged cases; c_00 = 1.8 fixed.";
+if physical and better) with 60 or more converged cases; c_00 = 1.8 fixed. H_c is the film at \
+the centre, H_pm the film at the pressure maximum on the centre line, H_min the minimum film: \
+each has its own fit.";
 
 fn quantity(md: &mut String, q: &QuantityFit) {
     let _ = writeln!(
@@ -86,11 +90,11 @@ fn contact(md: &mut String, c: &ContactReport) {
         POINT_FORM
     };
     let _ = writeln!(md, "{form}\n");
-    for q in [&c.h_c, &c.h_min].into_iter().flatten() {
+    for q in [&c.h_c, &c.h_pm, &c.h_min].into_iter().flatten() {
         quantity(md, q);
     }
     for p in &c.published {
-        let _ = writeln!(md, "### {} on the same cases (H_c)\n", p.name);
+        let _ = writeln!(md, "### {} on the same cases ({})\n", p.name, p.against);
         match (&p.overall, &p.skipped) {
             (Some(all), _) => table(md, all, &p.regions),
             (None, Some(why)) => {
@@ -102,17 +106,18 @@ fn contact(md: &mut String, c: &ContactReport) {
     if !c.asymptotes.is_empty() {
         let _ = writeln!(
             md,
-            "### Asymptotes (H_c) against the solver's limit solves\n"
+            "### Asymptotes against the solver's limit solves (the same film of the solve)\n"
         );
         let _ = writeln!(
             md,
-            "| asymptote | fitted law | at | solver H_c | asymptote | ratio | note |\n|---|---|---|---|---|---|---|"
+            "| film | asymptote | fitted law | at | solver | asymptote | ratio | note |\n|---|---|---|---|---|---|---|---|"
         );
         for a in &c.asymptotes {
             let d = a.d.map_or(String::new(), |d| format!(", D = {d}"));
             let _ = writeln!(
                 md,
-                "| {} | {} | M = {}, L = {}{d} ({}) | {} | {:.5} | {} | {} |",
+                "| {} | {} | {} | M = {}, L = {}{d} ({}) | {} | {:.5} | {} | {} |",
+                a.quantity,
                 a.asymptote,
                 a.law,
                 a.m,

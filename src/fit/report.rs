@@ -1,7 +1,13 @@
-//! The fit report: for each contact present in the data (line, point) fits H_c and H_min, compares
-//! them and the published formulas with the data, and checks each fitted asymptote against the
-//! solver's own limit solves ([`crate::fit::checks`]). Markdown rendering is in
-//! [`crate::fit::markdown`].
+//! The fit report: for each contact present in the data (line, point) fits three films ([`Film`]:
+//! H_c at X = 0, H_pm at the pressure maximum, H_min), compares them and the published formulas
+//! with the data, and checks each fitted asymptote against the solver's own limit solves
+//! ([`crate::fit::checks`]). Markdown rendering is in [`crate::fit::markdown`].
+//!
+//! Why two central films: Moes' H_RI = 3/M is the rigid-isoviscous flux thickness, the film at
+//! the pressure maximum; the film at X = 0 tends to 2.4475/M instead. Where the pressure peak
+//! moves upstream (line, M < 3 with L > 0) the film at X = 0 is not monotone in M (L = 12: 6.14,
+//! 7.24, 7.08 at M = 1, 1.7, 2.9) while the film at the pressure maximum is (7.35, 7.32, 7.08), so
+//! the Moes form follows H_pm to 1.5 % on the nightly line sweep and H_c only to 4.6 %.
 //!
 //! A contact with fewer converged cases than its model needs (free parameters + 5) is reported as
 //! "skipped: N cases, need at least K"; the report fails only when no contact could be fitted.
@@ -14,6 +20,8 @@ use crate::fit::stats::{d_table, err_stats, region_table, ErrStats, RegionStats}
 use crate::formulas::{
     dowson_toyoda_line_hc_moes, hamrock_dowson_hc_moes, moes_line_hc, nvm_point_hc,
 };
+use crate::select::MARTIN_FLUX;
+use crate::solution::Outputs;
 use serde::{Deserialize, Serialize};
 
 /// The exact rigid-isoviscous constant of the line film at X = 0 (Martin, Reynolds exit condition).
@@ -32,7 +40,7 @@ pub const FULL_FIT_MIN_POINTS: usize = 60;
 pub const SPARE_CASES: usize = 5;
 
 /// One converged case of a dataset (`d` is None for line contacts, `g` = alpha E' when the
-/// dataset carries it).
+/// dataset carries it, `h_pm` the film at the pressure maximum when it does).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FitPoint {
     pub m: f64,
@@ -41,6 +49,51 @@ pub struct FitPoint {
     pub h_c: f64,
     pub h_min: f64,
     pub g: Option<f64>,
+    #[serde(default)]
+    pub h_pm: Option<f64>,
+}
+
+/// The film a fit describes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Film {
+    /// H_c: the film at X = 0 (Y = 0).
+    Centre,
+    /// H_pm: the film at the pressure maximum on the centre line, Moes' central film (its
+    /// rigid-isoviscous line limit is the flux thickness 3/M).
+    PressureMax,
+    /// H_min: the minimum film.
+    Minimum,
+}
+
+impl Film {
+    pub const ALL: [Film; 3] = [Film::Centre, Film::PressureMax, Film::Minimum];
+
+    /// The name used in reports and `fit.json` (H_c, H_pm, H_min).
+    pub fn name(self) -> &'static str {
+        match self {
+            Film::Centre => "H_c",
+            Film::PressureMax => "H_pm",
+            Film::Minimum => "H_min",
+        }
+    }
+
+    /// This film of a dataset case (None when the dataset does not carry it).
+    pub fn of_point(self, p: &FitPoint) -> Option<f64> {
+        match self {
+            Film::Centre => Some(p.h_c),
+            Film::PressureMax => p.h_pm,
+            Film::Minimum => Some(p.h_min),
+        }
+    }
+
+    /// This film of a solve.
+    pub fn of_outputs(self, o: &Outputs) -> f64 {
+        match self {
+            Film::Centre => o.h_c,
+            Film::PressureMax => o.h_c_pmax,
+            Film::Minimum => o.h_min,
+        }
+    }
 }
 
 impl FitPoint {
@@ -101,10 +154,12 @@ pub struct QuantityFit {
     pub per_d: Vec<RegionStats>,
 }
 
-/// A published formula on the same cases (H_c), or why it was skipped.
+/// A published formula on the same cases, against one film (`against`: H_c or H_pm), or why it
+/// was skipped.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Published {
     pub name: String,
+    pub against: String,
     pub overall: Option<ErrStats>,
     pub regions: Vec<RegionStats>,
     pub skipped: Option<String>,
@@ -119,6 +174,9 @@ pub struct ContactReport {
     /// Why this contact was not fitted (None when fitted).
     pub skipped: Option<String>,
     pub h_c: Option<QuantityFit>,
+    /// The film at the pressure maximum (None when the dataset does not carry it).
+    #[serde(default)]
+    pub h_pm: Option<QuantityFit>,
     pub h_min: Option<QuantityFit>,
     pub published: Vec<Published>,
     pub asymptotes: Vec<AsymptoteCheck>,
@@ -134,13 +192,16 @@ pub struct FitReport {
     pub point: ContactReport,
 }
 
-fn samples(pts: &[FitPoint], pick: fn(&FitPoint) -> f64) -> Vec<Sample> {
+/// The samples of `film`, or None when a case lacks it.
+fn samples(pts: &[FitPoint], film: Film) -> Option<Vec<Sample>> {
     pts.iter()
-        .map(|p| Sample {
-            m: p.m,
-            l: p.l,
-            d: p.dd(),
-            h: pick(p),
+        .map(|p| {
+            film.of_point(p).map(|h| Sample {
+                m: p.m,
+                l: p.l,
+                d: p.dd(),
+                h,
+            })
         })
         .collect()
 }
@@ -166,28 +227,27 @@ fn staged<Mo: FilmModel>(
 }
 
 fn quantity<Mo: FilmModel>(
-    name: &str,
+    film: Film,
     pts: &[FitPoint],
     f: LsqFit<Mo>,
     names: &[&str],
     wrap: fn(Mo) -> FittedModel,
 ) -> QuantityFit {
-    let pick: fn(&FitPoint) -> f64 = if name == "H_c" {
-        |p| p.h_c
-    } else {
-        |p| p.h_min
-    };
     let model = wrap(f.model.clone());
-    let tuples: Vec<_> = pts
+    let data: Vec<_> = pts
         .iter()
-        .map(|p| (p.m, p.l, model.eval(p.m, p.l, p.dd()), pick(p)))
+        .filter_map(|p| film.of_point(p).map(|h| (p, h)))
         .collect();
-    let dts: Vec<_> = pts
+    let tuples: Vec<_> = data
         .iter()
-        .filter_map(|p| p.d.map(|d| (d, model.eval(p.m, p.l, d), pick(p))))
+        .map(|(p, h)| (p.m, p.l, model.eval(p.m, p.l, p.dd()), *h))
+        .collect();
+    let dts: Vec<_> = data
+        .iter()
+        .filter_map(|(p, h)| p.d.map(|d| (d, model.eval(p.m, p.l, d), *h)))
         .collect();
     QuantityFit {
-        quantity: name.to_string(),
+        quantity: film.name().to_string(),
         params: names
             .iter()
             .zip(f.model.x().iter().zip(&f.sigma))
@@ -206,26 +266,38 @@ fn quantity<Mo: FilmModel>(
     }
 }
 
-fn published(name: &str, pts: &[FitPoint], f: impl Fn(&FitPoint) -> f64) -> Published {
-    let t: Vec<_> = pts.iter().map(|p| (p.m, p.l, f(p), p.h_c)).collect();
-    Published {
-        name: name.to_string(),
-        overall: err_stats(&t),
-        regions: region_table(&t),
-        skipped: None,
-    }
+/// A published formula against H_c and, when the data carry it, H_pm.
+fn published(name: &str, pts: &[FitPoint], f: impl Fn(&FitPoint) -> f64) -> Vec<Published> {
+    [Film::Centre, Film::PressureMax]
+        .into_iter()
+        .filter(|film| pts.iter().all(|p| film.of_point(p).is_some()))
+        .map(|film| {
+            let t: Vec<_> = pts
+                .iter()
+                .filter_map(|p| film.of_point(p).map(|h| (p.m, p.l, f(p), h)))
+                .collect();
+            Published {
+                name: name.to_string(),
+                against: film.name().to_string(),
+                overall: err_stats(&t),
+                regions: region_table(&t),
+                skipped: None,
+            }
+        })
+        .collect()
 }
 
-fn needs_g(name: &str, pts: &[FitPoint], f: impl Fn(&FitPoint, f64) -> f64) -> Published {
+fn needs_g(name: &str, pts: &[FitPoint], f: impl Fn(&FitPoint, f64) -> f64) -> Vec<Published> {
     if pts.iter().all(|p| p.g.is_some()) {
         published(name, pts, |p| f(p, p.g.expect("checked")))
     } else {
-        Published {
+        vec![Published {
             name: name.to_string(),
+            against: Film::Centre.name().to_string(),
             overall: None,
             regions: vec![],
             skipped: Some("skipped: dataset has no G".to_string()),
-        }
+        }]
     }
 }
 
@@ -239,6 +311,25 @@ fn skipped(contact: &str, n: usize, failed: usize, need: usize) -> ContactReport
     }
 }
 
+/// The three fits in [`Film::ALL`] order (None where the data lack the film).
+struct Fits([Option<QuantityFit>; 3]);
+
+impl Fits {
+    fn into_report(self, contact: &str, pts: &[FitPoint], failed: usize) -> ContactReport {
+        let [h_c, h_pm, h_min] = self.0;
+        ContactReport {
+            contact: contact.into(),
+            converged_cases: pts.len(),
+            failed_cases: failed,
+            skipped: None,
+            h_c,
+            h_pm,
+            h_min,
+            ..ContactReport::default()
+        }
+    }
+}
+
 /// The line free sets: stage 1 the EI, RP, EP asymptotes (RI is fixed by theory, see
 /// [`C_RI_CENTRAL`]; RP starts from its rigid limit [`B_RP_CENTRAL`] L^(2/3)); stage 2 also the
 /// blending powers and the s-law.
@@ -248,13 +339,21 @@ const LINE_STAGE1: [usize; 7] = [0, 1, 2, 3, 4, 5, 6];
 // checked against the limit instead.)
 const LINE_STAGE2: [usize; 13] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12];
 
-fn line_start(scale: f64) -> LineModel {
+/// The start of a line fit of `film`: Moes' laws, with H_RI at its exact constant (2.4475 at
+/// X = 0 and for H_min, 3 at the pressure maximum) and H_RP at its rigid limit scaled the same
+/// way (the rigid-piezoviscous film has the rigid-isoviscous shape).
+fn line_start(film: Film) -> LineModel {
+    let (c_ri, scale) = match film {
+        Film::Centre => (C_RI_CENTRAL, 1.0),
+        Film::PressureMax => (MARTIN_FLUX, 1.0),
+        Film::Minimum => (C_RI_CENTRAL, 0.75),
+    };
     let mut m = LineModel::moes();
-    m.c_ri = C_RI_CENTRAL;
-    m.x[2] = B_RP_CENTRAL.ln();
+    m.c_ri = c_ri;
+    m.x[2] = (B_RP_CENTRAL * c_ri / C_RI_CENTRAL).ln();
     m.x[3] = 2.0 / 3.0;
     for k in [0, 4] {
-        m.x[k] += scale.ln();
+        m.x[k] += f64::ln(scale);
     }
     m
 }
@@ -278,46 +377,34 @@ fn line_report(
     if pts.len() < need {
         return Ok(skipped("line", pts.len(), failed, need));
     }
-    let mut fits = vec![];
-    for (name, pick, scale) in [
-        ("H_c", (|p: &FitPoint| p.h_c) as fn(&FitPoint) -> f64, 1.0),
-        ("H_min", |p: &FitPoint| p.h_min, 0.75),
-    ] {
-        let data = samples(pts, pick);
+    let mut fits = Fits([None, None, None]);
+    let mut models = vec![];
+    for (k, film) in Film::ALL.into_iter().enumerate() {
+        let Some(data) = samples(pts, film) else {
+            continue;
+        };
         let f = staged(
             &data,
-            &line_start(scale),
+            &line_start(film),
             &LINE_STAGE1,
             &LINE_STAGE2,
             line_physical,
         )
-        .map_err(|e| format!("line {name}: {e}"))?;
-        fits.push(quantity(name, pts, f, &PARAM_NAMES, FittedModel::Line));
+        .map_err(|e| format!("line {}: {e}", film.name()))?;
+        models.push((film, f.model.clone()));
+        fits.0[k] = Some(quantity(film, pts, f, &PARAM_NAMES, FittedModel::Line));
     }
-    let h_min = fits.pop();
-    let h_c = fits.pop().expect("two fits");
-    let FittedModel::Line(model) = &h_c.model else {
-        unreachable!("line fit")
-    };
-    Ok(ContactReport {
-        contact: "line".into(),
-        converged_cases: pts.len(),
-        failed_cases: failed,
-        skipped: None,
-        asymptotes: if limit_solves {
-            line_checks(model, pts)
-        } else {
-            vec![]
-        },
-        published: vec![
-            published("Moes 1992", pts, |p| moes_line_hc(p.m, p.l)),
-            needs_g("Dowson-Toyoda 1979", pts, |p, g| {
-                dowson_toyoda_line_hc_moes(p.m, p.l, g)
-            }),
-        ],
-        h_c: Some(h_c),
-        h_min,
-    })
+    let mut report = fits.into_report("line", pts, failed);
+    if limit_solves {
+        report.asymptotes = line_checks(&models, pts);
+    }
+    report.published = published("Moes 1992", pts, |p| moes_line_hc(p.m, p.l));
+    report
+        .published
+        .extend(needs_g("Dowson-Toyoda 1979", pts, |p, g| {
+            dowson_toyoda_line_hc_moes(p.m, p.l, g)
+        }));
+    Ok(report)
 }
 
 /// Free point parameters for the data: the D corrections only with two or more D values, the
@@ -357,50 +444,39 @@ fn point_report(
     }
     let mut all = all_free.clone();
     all.extend([12, 13]);
-    let mut fits = vec![];
-    for (name, pick, scale) in [
-        ("H_c", (|p: &FitPoint| p.h_c) as fn(&FitPoint) -> f64, 1.0),
-        ("H_min", |p: &FitPoint| p.h_min, 0.6),
-    ] {
-        let data = samples(pts, pick);
+    let mut fits = Fits([None, None, None]);
+    let mut models = vec![];
+    for (k, film) in Film::ALL.into_iter().enumerate() {
+        let Some(data) = samples(pts, film) else {
+            continue;
+        };
+        let scale: f64 = if film == Film::Minimum { 0.6 } else { 1.0 };
         let mut start = PointModel::nvm();
         for k in [2, 8] {
-            start.x[k] += f64::ln(scale);
+            start.x[k] += scale.ln();
         }
         let f = staged(&data, &start, &free, &all, PointModel::physical)
-            .map_err(|e| format!("point {name}: {e}"))?;
-        fits.push(quantity(
-            name,
+            .map_err(|e| format!("point {}: {e}", film.name()))?;
+        models.push((film, f.model.clone()));
+        fits.0[k] = Some(quantity(
+            film,
             pts,
             f,
             &POINT_PARAM_NAMES,
             FittedModel::Point,
         ));
     }
-    let h_min = fits.pop();
-    let h_c = fits.pop().expect("two fits");
-    let FittedModel::Point(model) = &h_c.model else {
-        unreachable!("point fit")
-    };
-    Ok(ContactReport {
-        contact: "point".into(),
-        converged_cases: pts.len(),
-        failed_cases: failed,
-        skipped: None,
-        asymptotes: if limit_solves {
-            point_checks(model, pts)
-        } else {
-            vec![]
-        },
-        published: vec![
-            published("NVM 1994", pts, |p| nvm_point_hc(p.m, p.l, p.dd())),
-            needs_g("Hamrock-Dowson 1977", pts, |p, g| {
-                hamrock_dowson_hc_moes(p.m, p.l, g, p.dd())
-            }),
-        ],
-        h_c: Some(h_c),
-        h_min,
-    })
+    let mut report = fits.into_report("point", pts, failed);
+    if limit_solves {
+        report.asymptotes = point_checks(&models, pts);
+    }
+    report.published = published("NVM 1994", pts, |p| nvm_point_hc(p.m, p.l, p.dd()));
+    report
+        .published
+        .extend(needs_g("Hamrock-Dowson 1977", pts, |p, g| {
+            hamrock_dowson_hc_moes(p.m, p.l, g, p.dd())
+        }));
+    Ok(report)
 }
 
 /// Fit, compare and check each contact present. `limit_solves` runs the solver's limit cases.
