@@ -82,34 +82,6 @@ fn rp_from_rigid(o: &Outputs, alpha_bar_1: f64, l: f64, film: Film) -> f64 {
     (c * l).powf(2.0 / 3.0)
 }
 
-struct Row<'a> {
-    name: &'a str,
-    law: String,
-    m: f64,
-    l: f64,
-    d: Option<f64>,
-    el: Elasticity,
-    solver: Option<f64>,
-    fitted: f64,
-    note: &'a str,
-}
-
-fn row(film: Film, r: Row) -> AsymptoteCheck {
-    AsymptoteCheck {
-        quantity: film.name().to_string(),
-        asymptote: r.name.to_string(),
-        law: r.law,
-        m: r.m,
-        l: r.l,
-        d: r.d,
-        elasticity: r.el.to_string(),
-        solver_h_c: r.solver,
-        fitted: r.fitted,
-        ratio: r.solver.map(|s| s / r.fitted),
-        note: r.note.to_string(),
-    }
-}
-
 fn max_of(pts: &[FitPoint], f: fn(&FitPoint) -> f64) -> f64 {
     pts.iter().map(f).fold(0.0, f64::max)
 }
@@ -156,75 +128,96 @@ impl LimitSolves {
     }
 }
 
+/// The fitted laws of one film: their text and the four asymptotes [RI, EI, RP, EP] at (M, L).
+struct Laws<'a> {
+    text: [String; 4],
+    notes: [&'a str; 4],
+    at: &'a dyn Fn(f64, f64) -> [f64; 4],
+}
+
+/// The four checks of one film (RP and EP only when the data have L > 0).
+fn film_checks(film: Film, s: &LimitSolves, d: Option<f64>, laws: Laws) -> Vec<AsymptoteCheck> {
+    let rows = [
+        (
+            "rigid-isoviscous",
+            1.0,
+            0.0,
+            Elasticity::Rigid,
+            s.rigid_film(film),
+        ),
+        (
+            "elastic-isoviscous",
+            s.m_max,
+            0.0,
+            Elasticity::Elastic,
+            s.film(&s.ei, film),
+        ),
+        (
+            "rigid-piezoviscous",
+            f64::INFINITY,
+            s.l_max,
+            Elasticity::Rigid,
+            s.rp(film),
+        ),
+        (
+            "elastic-piezoviscous",
+            s.m_max,
+            s.l_max,
+            Elasticity::Elastic,
+            s.film(&s.ep, film),
+        ),
+    ];
+    let n = if s.l_max > 0.0 { 4 } else { 2 };
+    rows.into_iter()
+        .zip(laws.text)
+        .zip(laws.notes)
+        .enumerate()
+        .take(n)
+        .map(|(k, (((name, m, l, el, solver), law), note))| {
+            // The rigid-piezoviscous law is evaluated at any finite M (it does not depend on M).
+            let fitted = (laws.at)(if m.is_finite() { m } else { 1.0 }, l)[k];
+            AsymptoteCheck {
+                quantity: film.name().to_string(),
+                asymptote: name.to_string(),
+                law,
+                m,
+                l,
+                d,
+                elasticity: el.to_string(),
+                solver_h_c: solver,
+                fitted,
+                ratio: solver.map(|v| v / fitted),
+                note: note.to_string(),
+            }
+        })
+        .collect()
+}
+
+const RP_NOTE: &str =
+    "limit alpha q_max = 1 from the rigid L = 0 solve (direct Barus solves diverge)";
+
 /// The line checks (five solves at 4097 points, a few seconds) of each fitted film.
 pub fn line_checks(fits: &[(Film, LineModel)], pts: &[FitPoint]) -> Vec<AsymptoteCheck> {
     let s = LimitSolves::new(pts, line_solve);
-    let (m_max, l_max) = (s.m_max, s.l_max);
     let mut out = vec![];
     for (film, fit) in fits {
-        let film = *film;
         let x = &fit.x;
-        let a = |m, l| fit.asymptotes(m, l);
-        out.push(row(
-            film,
-            Row {
-                name: "rigid-isoviscous",
-                law: format!("{} M^-1 (exact, fixed)", fit.c_ri),
-                m: 1.0,
-                l: 0.0,
-                d: None,
-                el: Elasticity::Rigid,
-                solver: s.rigid_film(film),
-                fitted: a(1.0, 0.0)[0],
-                note: "rigid solve, L = 0",
-            },
-        ));
-        out.push(row(
-            film,
-            Row {
-                name: "elastic-isoviscous",
-                law: format!("{:.4} M^{:.4}", x[0].exp(), x[1]),
-                m: m_max,
-                l: 0.0,
-                d: None,
-                el: Elasticity::Elastic,
-                solver: s.film(&s.ei, film),
-                fitted: a(m_max, 0.0)[1],
-                note: "largest M of the data, L = 0",
-            },
-        ));
-        if l_max > 0.0 {
-            out.push(row(
-                film,
-                Row {
-                    name: "rigid-piezoviscous",
-                    law: format!("{:.4} L^{:.4}", x[2].exp(), x[3]),
-                    m: f64::INFINITY,
-                    l: l_max,
-                    d: None,
-                    el: Elasticity::Rigid,
-                    solver: s.rp(film),
-                    fitted: a(1.0, l_max)[2],
-                    note: "limit alpha q_max = 1 from the rigid L = 0 solve (direct Barus solves \
-                           diverge)",
-                },
-            ));
-            out.push(row(
-                film,
-                Row {
-                    name: "elastic-piezoviscous",
-                    law: format!("{:.4} M^{:.4} L^{:.4}", x[4].exp(), x[5], x[6]),
-                    m: m_max,
-                    l: l_max,
-                    d: None,
-                    el: Elasticity::Elastic,
-                    solver: s.film(&s.ep, film),
-                    fitted: a(m_max, l_max)[3],
-                    note: "largest M and L of the data (the RP and EI laws still contribute \
-                           there)",
-                },
-            ));
-        }
+        let laws = Laws {
+            text: [
+                format!("{} M^-1 (exact, fixed)", fit.c_ri),
+                format!("{:.4} M^{:.4}", x[0].exp(), x[1]),
+                format!("{:.4} L^{:.4}", x[2].exp(), x[3]),
+                format!("{:.4} M^{:.4} L^{:.4}", x[4].exp(), x[5], x[6]),
+            ],
+            notes: [
+                "rigid solve, L = 0",
+                "largest M of the data, L = 0",
+                RP_NOTE,
+                "largest M and L of the data (the RP and EI laws still contribute there)",
+            ],
+            at: &|m, l| fit.asymptotes(m, l),
+        };
+        out.extend(film_checks(*film, &s, None, laws));
     }
     out
 }
@@ -232,77 +225,32 @@ pub fn line_checks(fits: &[(Film, LineModel)], pts: &[FitPoint]) -> Vec<Asymptot
 /// The point checks at D = 1 (four solves at 129 x 129 points) of each fitted film.
 pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<AsymptoteCheck> {
     let s = LimitSolves::new(pts, |m, l, el| point_solve(m, l, 1.0, el));
-    let (m_max, l_max) = (s.m_max, s.l_max);
     let mut out = vec![];
     for (film, fit) in fits {
-        let film = *film;
         let x = &fit.x;
-        let a = |m, l| fit.asymptotes(m, l, 1.0);
-        out.push(row(
-            film,
-            Row {
-                name: "rigid-isoviscous",
-                law: format!("{:.3} f_RI(D) D^{:.3} M^-2", x[0].exp(), x[1]),
-                m: 1.0,
-                l: 0.0,
-                d: Some(1.0),
-                el: Elasticity::Rigid,
-                solver: s.rigid_film(film),
-                fitted: a(1.0, 0.0)[0],
-                note: "rigid solve, L = 0 (H M^2 is exact for any M); default domain, biased low \
-                       by its truncation (H_c about 34 extrapolated, src/problem/point_domain.rs)",
-            },
-        ));
-        out.push(row(
-            film,
-            Row {
-                name: "elastic-isoviscous",
-                law: format!("{:.4} f_EI(D) D^{:.3} M^{:.4}", x[2].exp(), x[4], x[3]),
-                m: m_max,
-                l: 0.0,
-                d: Some(1.0),
-                el: Elasticity::Elastic,
-                solver: s.film(&s.ei, film),
-                fitted: a(m_max, 0.0)[1],
-                note: "largest M of the data, L = 0",
-            },
-        ));
-        if l_max > 0.0 {
-            out.push(row(
-                film,
-                Row {
-                    name: "rigid-piezoviscous",
-                    law: format!("{:.4} f_RP(D) D^{:.3} L^{:.4}", x[5].exp(), x[7], x[6]),
-                    m: f64::INFINITY,
-                    l: l_max,
-                    d: Some(1.0),
-                    el: Elasticity::Rigid,
-                    solver: s.rp(film),
-                    fitted: a(1.0, l_max)[2],
-                    note: "limit alpha q_max = 1 from the rigid L = 0 solve",
-                },
-            ));
-            out.push(row(
-                film,
-                Row {
-                    name: "elastic-piezoviscous",
-                    law: format!(
-                        "{:.4} f_EP(D) D^{:.3} M^{:.4} L^{:.4}",
-                        x[8].exp(),
-                        x[11],
-                        x[9],
-                        x[10]
-                    ),
-                    m: m_max,
-                    l: l_max,
-                    d: Some(1.0),
-                    el: Elasticity::Elastic,
-                    solver: s.film(&s.ep, film),
-                    fitted: a(m_max, l_max)[3],
-                    note: "largest M and L of the data (the other laws still contribute there)",
-                },
-            ));
-        }
+        let laws = Laws {
+            text: [
+                format!("{:.3} f_RI(D) D^{:.3} M^-2", x[0].exp(), x[1]),
+                format!("{:.4} f_EI(D) D^{:.3} M^{:.4}", x[2].exp(), x[4], x[3]),
+                format!("{:.4} f_RP(D) D^{:.3} L^{:.4}", x[5].exp(), x[7], x[6]),
+                format!(
+                    "{:.4} f_EP(D) D^{:.3} M^{:.4} L^{:.4}",
+                    x[8].exp(),
+                    x[11],
+                    x[9],
+                    x[10]
+                ),
+            ],
+            notes: [
+                "rigid solve, L = 0 (H M^2 is exact for any M); default domain, biased low by its \
+                 truncation (H_c about 34 extrapolated, src/problem/point_domain.rs)",
+                "largest M of the data, L = 0",
+                RP_NOTE,
+                "largest M and L of the data (the other laws still contribute there)",
+            ],
+            at: &|m, l| fit.asymptotes(m, l, 1.0),
+        };
+        out.extend(film_checks(*film, &s, Some(1.0), laws));
     }
     out
 }
