@@ -95,6 +95,13 @@ fn line_asymptotes_agree_with_the_limit_solves() {
         let ei = check(film, "elastic-isoviscous").ratio.unwrap();
         assert!((ei - 1.0).abs() < 0.03, "{film} EI ratio {ei}");
     }
+    // The elastic rows are also solved at 1/10 and 1/sqrt(10) of the largest M (the trend).
+    for name in ["elastic-isoviscous", "elastic-piezoviscous"] {
+        let t = &check("H_pm", name).trend;
+        assert_eq!(t.len(), 3, "{name} trend {t:?}");
+        assert!((t[0].0 * 10.0 / t[2].0 - 1.0).abs() < 1e-9);
+        assert!(t.iter().all(|(_, r)| (r - 1.0).abs() < 0.1), "{name} trend {t:?}");
+    }
     let rp = check("H_pm", "rigid-piezoviscous").ratio.unwrap();
     assert!((rp - 1.0).abs() < 0.05, "H_pm RP ratio {rp}");
 }

@@ -4,7 +4,9 @@
 //!
 //! * RI: rigid, L = 0 solve (line 4097 points, point 129 x 129); H_RI M (line) or H_RI M^2 (point)
 //!   is exact for any M, so one solve at M = 1 gives the constant.
-//! * EI: elastic, L = 0, at the largest M of the data; EP: elastic at the largest M and L.
+//! * EI: elastic, L = 0, at the largest M of the data; EP: elastic at the largest M and L. Both
+//!   are also solved at 1/10 and 1/sqrt(10) of that M: the ratio's trend shows how far the data's
+//!   extreme still is from the limit.
 //! * RP: a rigid Barus solve converges only while the Barus pressure stays finite; the reduced
 //!   pressure q = (1 - exp(-alpha p))/alpha obeys the isoviscous Reynolds equation, so the rigid
 //!   Barus film is the rigid isoviscous film whose peak alpha q_max is below 1, and the
@@ -42,7 +44,15 @@ pub struct AsymptoteCheck {
     /// solver / fitted asymptote (1 in the limit); None if the limit solve failed.
     pub ratio: Option<f64>,
     pub note: String,
+    /// (M, solver / fitted asymptote) as M grows to the largest M of the data (elastic rows):
+    /// how the ratio approaches its limit.
+    #[serde(default)]
+    pub trend: Vec<(f64, f64)>,
 }
+
+/// The elastic checks are solved at these fractions of the largest M of the data, to show the
+/// ratio approaching its limit.
+pub const TREND_FRACTIONS: [f64; 3] = [0.1, 0.316_227_766_016_837_94, 1.0];
 
 fn models(elasticity: Elasticity) -> Models {
     Models {
@@ -51,16 +61,22 @@ fn models(elasticity: Elasticity) -> Models {
     }
 }
 
+/// Line limit grids: 4097 points, else 2049 (at L = 20 the line smoother stalls on 4097 points
+/// at some M, e.g. 103 and 326, where 2049 converges; its discretisation error is ~1e-4).
+const LINE_CHECK_GRIDS: [usize; 2] = [4097, 2049];
+
 fn line_solve(m: f64, l: f64, el: Elasticity) -> Option<(Outputs, f64)> {
     let case = LineCase::with_models(m, l, models(el)).ok()?;
-    let mut p = LineSolveParams::default();
-    p.mg.grid = 4097;
-    let s = solve_line(&case, &p);
     let ab1 = LineCase::with_models(m, 1.0, models(el))
         .ok()?
         .venner()
         .alpha_bar;
-    (s.outputs.status == Status::Converged).then_some((s.outputs, ab1))
+    LINE_CHECK_GRIDS.iter().find_map(|&grid| {
+        let mut p = LineSolveParams::default();
+        p.mg.grid = grid;
+        let s = solve_line(&case, &p);
+        (s.outputs.status == Status::Converged).then_some((s.outputs, ab1))
+    })
 }
 
 fn point_solve(m: f64, l: f64, d: f64, el: Elasticity) -> Option<(Outputs, f64)> {
@@ -92,8 +108,9 @@ struct LimitSolves {
     m_max: f64,
     l_max: f64,
     rigid: Option<(Outputs, f64)>,
-    ei: Option<Outputs>,
-    ep: Option<Outputs>,
+    /// (M, solve) at [`TREND_FRACTIONS`] of the largest M, L = 0 and at the largest L.
+    ei: Vec<(f64, Option<Outputs>)>,
+    ep: Vec<(f64, Option<Outputs>)>,
 }
 
 impl LimitSolves {
@@ -102,19 +119,29 @@ impl LimitSolves {
         solve: impl Fn(f64, f64, Elasticity) -> Option<(Outputs, f64)>,
     ) -> Self {
         let (m_max, l_max) = (max_of(pts, |p| p.m), max_of(pts, |p| p.l));
+        let trend = |l: f64| -> Vec<(f64, Option<Outputs>)> {
+            TREND_FRACTIONS
+                .iter()
+                .map(|f| {
+                    let m = f * m_max;
+                    (m, solve(m, l, Elasticity::Elastic).map(|o| o.0))
+                })
+                .collect()
+        };
         LimitSolves {
             m_max,
             l_max,
             rigid: solve(1.0, 0.0, Elasticity::Rigid),
-            ei: solve(m_max, 0.0, Elasticity::Elastic).map(|o| o.0),
-            ep: (l_max > 0.0)
-                .then(|| solve(m_max, l_max, Elasticity::Elastic).map(|o| o.0))
-                .flatten(),
+            ei: trend(0.0),
+            ep: if l_max > 0.0 { trend(l_max) } else { vec![] },
         }
     }
 
-    fn film(&self, o: &Option<Outputs>, film: Film) -> Option<f64> {
-        o.as_ref().map(|o| film.of_outputs(o))
+    /// The film of the solve at the largest M.
+    fn film(&self, solves: &[(f64, Option<Outputs>)], film: Film) -> Option<f64> {
+        solves
+            .last()
+            .and_then(|(_, o)| o.as_ref().map(|o| film.of_outputs(o)))
     }
 
     fn rigid_film(&self, film: Film) -> Option<f64> {
@@ -176,6 +203,18 @@ fn film_checks(film: Film, s: &LimitSolves, d: Option<f64>, laws: Laws) -> Vec<A
         .map(|(k, (((name, m, l, el, solver), law), note))| {
             // The rigid-piezoviscous law is evaluated at any finite M (it does not depend on M).
             let fitted = (laws.at)(if m.is_finite() { m } else { 1.0 }, l)[k];
+            let solves: &[(f64, Option<Outputs>)] = match k {
+                1 => &s.ei,
+                3 => &s.ep,
+                _ => &[],
+            };
+            let trend = solves
+                .iter()
+                .filter_map(|(m, o)| {
+                    o.as_ref()
+                        .map(|o| (*m, film.of_outputs(o) / (laws.at)(*m, l)[k]))
+                })
+                .collect();
             AsymptoteCheck {
                 quantity: film.name().to_string(),
                 asymptote: name.to_string(),
@@ -188,6 +227,7 @@ fn film_checks(film: Film, s: &LimitSolves, d: Option<f64>, laws: Laws) -> Vec<A
                 fitted,
                 ratio: solver.map(|v| v / fitted),
                 note: note.to_string(),
+                trend,
             }
         })
         .collect()

@@ -110,13 +110,18 @@ fn contact(md: &mut String, c: &ContactReport) {
         );
         let _ = writeln!(
             md,
-            "| film | asymptote | fitted law | at | solver | asymptote | ratio | note |\n|---|---|---|---|---|---|---|---|"
+            "| film | asymptote | fitted law | at | solver | asymptote | ratio | ratio as M grows | note |\n|---|---|---|---|---|---|---|---|---|"
         );
         for a in &c.asymptotes {
             let d = a.d.map_or(String::new(), |d| format!(", D = {d}"));
+            let trend: Vec<String> = a
+                .trend
+                .iter()
+                .map(|(m, r)| format!("{m:.3}: {r:.4}"))
+                .collect();
             let _ = writeln!(
                 md,
-                "| {} | {} | {} | M = {}, L = {}{d} ({}) | {} | {:.5} | {} | {} |",
+                "| {} | {} | {} | M = {}, L = {}{d} ({}) | {} | {:.5} | {} | {} | {} |",
                 a.quantity,
                 a.asymptote,
                 a.law,
@@ -126,6 +131,7 @@ fn contact(md: &mut String, c: &ContactReport) {
                 a.solver_h_c.map_or("failed".into(), |v| format!("{v:.5}")),
                 a.fitted,
                 a.ratio.map_or("-".into(), |v| format!("{v:.4}")),
+                trend.join(", "),
                 a.note
             );
         }
