@@ -100,7 +100,10 @@ fn line_asymptotes_agree_with_the_limit_solves() {
         let t = &check("H_pm", name).trend;
         assert_eq!(t.len(), 3, "{name} trend {t:?}");
         assert!((t[0].0 * 10.0 / t[2].0 - 1.0).abs() < 1e-9);
-        assert!(t.iter().all(|(_, r)| (r - 1.0).abs() < 0.1), "{name} trend {t:?}");
+        assert!(
+            t.iter().all(|(_, r)| (r - 1.0).abs() < 0.1),
+            "{name} trend {t:?}"
+        );
     }
     let rp = check("H_pm", "rigid-piezoviscous").ratio.unwrap();
     assert!((rp - 1.0).abs() < 0.05, "H_pm RP ratio {rp}");

@@ -1,9 +1,9 @@
-//! The point-contact fit on a small dataset made by ehlmap itself (`tests/data/smoke-point`,
-//! from `tests/data/smoke-point.toml`: M in {1, 3, 10, 30, 100, 300} x L in {0, 5, 10} x
-//! D in {0.25, 0.5, 1}, 129^2 points, 54 cases of which 19 have an error estimate above 2 % and
-//! 23 a domain-truncation bias above 2 % (rigid-like, M <= 10) and are left out), and a mixed
-//! line and point input: each contact is fitted on its own; a contact
-//! with too few cases is reported as skipped while the other is still fitted.
+//! The point-contact fit on a dataset made by ehlmap itself (`tests/data/point-257`, from
+//! `tests/data/point-257.toml`: the nightly point sweep's axes from M = 7.2 up at 257^2 points,
+//! 96 cases of which 28 have an error estimate above 2 % (M >= 139) and 22 a domain-truncation
+//! error above 2 % (rigid-like, M <= 19) and are left out), and a mixed line and point input:
+//! each contact is fitted on its own; a contact with too few cases is reported as skipped while
+//! the other is still fitted.
 
 use ehlmap::fit::dataset::load_fit_input;
 use ehlmap::fit::report::{fit_report, FitInput};
@@ -16,23 +16,28 @@ fn dir(name: &str) -> PathBuf {
         .join(name)
 }
 
-fn param(q: &ehlmap::fit::report::QuantityFit, name: &str) -> f64 {
-    q.params.iter().find(|p| p.name == name).unwrap().value
+fn param(q: &ehlmap::fit::report::QuantityFit, name: &str) -> (f64, f64) {
+    let p = q.params.iter().find(|p| p.name == name).unwrap();
+    (p.value, p.sigma)
 }
 
 #[test]
 fn point_fit_beats_nvm_and_checks_its_asymptotes() {
-    let input = load_fit_input(&[dir("smoke-point")]).unwrap();
-    assert_eq!(input.point.len(), 12);
-    assert_eq!(input.excluded.len(), 42);
-    let biased = input.excluded.iter().filter(|e| e.contains("domain bias"));
-    assert_eq!(biased.count(), 23);
+    let input = load_fit_input(&[dir("point-257")]).unwrap();
+    assert_eq!(input.point.len(), 46);
+    assert_eq!(input.excluded.len(), 50, "{:?}", input.excluded);
+    let truncated = input
+        .excluded
+        .iter()
+        .filter(|e| e.contains("domain truncation"));
+    assert_eq!(truncated.count(), 22);
     assert!(input.line.is_empty());
     let r = fit_report(&input, true).unwrap().point;
     let h_c = r.h_c.as_ref().unwrap();
     let nvm = r.published[0].overall.as_ref().unwrap();
     assert_eq!(r.published[0].name, "NVM 1994");
     assert_eq!(r.published[1].against, "H_pm");
+    let nvm_pm = r.published[1].overall.as_ref().unwrap();
     assert_eq!(
         r.published[2].skipped.as_deref(),
         Some("skipped: dataset has no G")
@@ -41,24 +46,34 @@ fn point_fit_beats_nvm_and_checks_its_asymptotes() {
         "fit H_c max {:+.3} rms {:.3}; NVM max {:+.3} rms {:.3}",
         h_c.overall.max, h_c.overall.rms, nvm.max, nvm.rms
     );
-    // Measured: fit max 2.2 %, RMS 1.1 %; NVM 1994 max 6.2 %, RMS 3.3 % on the same 12 cases
-    // (with the domain-biased rigid-like rows in, NVM was 72.6 % off: the solver, not NVM).
-    assert!(h_c.overall.max.abs() < 0.03, "{}", h_c.overall.max);
-    assert!(h_c.overall.max.abs() < nvm.max.abs());
+    // Measured: fit max 1.84 %, RMS 0.68 % (all parameters free: 46 cases >= 40); NVM 1994 max
+    // 5.47 %, RMS 2.40 % on the same 46 cases. The target is 2 %.
+    assert!(h_c.overall.max.abs() < 0.02, "{}", h_c.overall.max);
+    assert!(h_c.overall.max.abs() < 0.5 * nvm.max.abs());
     assert!(h_c.overall.rms < 0.5 * nvm.rms);
+    // The film at the pressure maximum: 2.96 % against NVM's 5.85 %.
+    let h_pm = r.h_pm.as_ref().unwrap();
+    assert!(h_pm.overall.max.abs() < nvm_pm.max.abs());
     // Physical: the rigid-isoviscous constant (PHYSICS.md 5 asks the project to settle it:
-    // NVM 41.3, truncated-domain numerics 23) near the solver's domain-extrapolated rigid value
-    // 34 (M = 1, D = 1, rigid: 32.1 and 33.0 with 4x and 8x the inlet and side extents on 513^2,
-    // extrapolated as 1/extent; src/problem/point_domain.rs), although only cases with M >= 10
-    // are fitted; the piezoviscous L exponent near the theoretical 2/3.
-    let c_ri = param(h_c, "ln_c_RI").exp();
-    assert!((c_ri / 34.0 - 1.0).abs() < 0.15, "c_RI {c_ri}");
-    let beta = param(h_c, "beta_RP");
-    assert!((beta - 2.0 / 3.0).abs() < 0.1, "beta_RP {beta}");
-    assert!(param(h_c, "alpha_EI") < 0.0);
+    // NVM 41.3, truncated-domain numerics 23) within two sigma of the solver's
+    // domain-extrapolated rigid value 34 (M = 1, D = 1, rigid: 32.1 and 33.0 with 4x and 8x the
+    // inlet and side extents on 513^2; src/problem/point_domain.rs), although only cases with
+    // M >= 7 are fitted (measured 40.2, sigma of ln c_RI 0.19); the piezoviscous L exponent
+    // near the theoretical 2/3 (0.659) and the elastic M exponent near NVM's -2/15 (-0.154).
+    let (ln_c_ri, sigma) = param(h_c, "ln_c_RI");
+    assert!(
+        (ln_c_ri - 34f64.ln()).abs() < 2.0 * sigma,
+        "c_RI {}",
+        ln_c_ri.exp()
+    );
+    assert!(sigma < 0.3, "sigma {sigma}");
+    let beta = param(h_c, "beta_RP").0;
+    assert!((beta - 2.0 / 3.0).abs() < 0.05, "beta_RP {beta}");
+    let alpha = param(h_c, "alpha_EI").0;
+    assert!((alpha + 2.0 / 15.0).abs() < 0.04, "alpha_EI {alpha}");
     assert!(h_c.params.iter().all(|p| p.sigma.is_finite()));
-    // Four asymptote rows. The rigid limit solve (129^2, default domain) is biased low by the
-    // truncated domain (24.6 against the extrapolated 34): ratio about 0.7, and said so.
+    // Four asymptote rows per film. The rigid limit solve (default domain) is biased low by the
+    // truncated domain (24.8 against the extrapolated 34): ratio about 0.6, and said so.
     assert_eq!(
         r.asymptotes.len(),
         12,
@@ -86,12 +101,24 @@ fn point_fit_beats_nvm_and_checks_its_asymptotes() {
         "{}",
         r.asymptotes[0].note
     );
+    // The data stop at M = 139 for D = 1, short of the elastic limits: the solver / law ratio
+    // still rises toward 1 along M = 13.9, 43.9, 139 (measured 0.900, 0.912, 0.941 for EI,
+    // 0.79, 0.86, 0.91 for EP).
+    for k in [1, 3] {
+        let t = &r.asymptotes[k].trend;
+        assert_eq!(t.len(), 3);
+        assert!(
+            t[0].1 < t[1].1 && t[1].1 < t[2].1 && t[2].1 < 1.01,
+            "{} trend {t:?}",
+            r.asymptotes[k].asymptote
+        );
+    }
 }
 
 #[test]
 fn mixed_input_fits_each_contact_and_skips_a_thin_one() {
-    let mut input = load_fit_input(&[dir("smoke-line"), dir("smoke-point")]).unwrap();
-    assert_eq!((input.line.len(), input.point.len()), (32, 12));
+    let mut input = load_fit_input(&[dir("smoke-line"), dir("point-257")]).unwrap();
+    assert_eq!((input.line.len(), input.point.len()), (32, 46));
     let r = fit_report(&input, false).unwrap();
     assert!(r.line.h_c.is_some() && r.point.h_c.is_some());
     // 7 free point parameters (12 asymptote parameters less the 5 held at NVM's) + 5 spare.
@@ -118,7 +145,7 @@ fn fit_command_on_a_mixed_dataset_writes_both_sections() {
     let out = std::env::temp_dir().join(format!("ehlmap-fit-point-{}", std::process::id()));
     let run = Command::new(env!("CARGO_BIN_EXE_ehlmap"))
         .args(["fit", dir("smoke-line").to_str().unwrap()])
-        .arg(dir("smoke-point"))
+        .arg(dir("point-257"))
         .args(["--no-limit-solves", "--json", "--out"])
         .arg(&out)
         .output()
@@ -130,7 +157,7 @@ fn fit_command_on_a_mixed_dataset_writes_both_sections() {
     );
     let v: serde_json::Value = serde_json::from_slice(&run.stdout).unwrap();
     assert_eq!(v["line"]["converged_cases"], 32);
-    assert_eq!(v["point"]["converged_cases"], 12);
+    assert_eq!(v["point"]["converged_cases"], 46);
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(md.contains("## line contact") && md.contains("## point contact"));
     assert!(md.contains("NVM 1994") && md.contains("Moes 1992"));

@@ -2,7 +2,7 @@
 //! fitted (H_c, H_pm, H_min: [`Film`]); each film's law is compared with the same film of the
 //! solve.
 //!
-//! * RI: rigid, L = 0 solve (line 4097 points, point 129 x 129); H_RI M (line) or H_RI M^2 (point)
+//! * RI: rigid, L = 0 solve (line 4097 points, point 257 x 257); H_RI M (line) or H_RI M^2 (point)
 //!   is exact for any M, so one solve at M = 1 gives the constant.
 //! * EI: elastic, L = 0, at the largest M of the data; EP: elastic at the largest M and L. Both
 //!   are also solved at 1/10 and 1/sqrt(10) of that M: the ratio's trend shows how far the data's
@@ -79,10 +79,14 @@ fn line_solve(m: f64, l: f64, el: Elasticity) -> Option<(Outputs, f64)> {
     })
 }
 
+/// Point limit grid. (129^2 under-resolves the elastic solves at the largest M of a 257^2
+/// sweep: at M = 1000, D = 1 its H_min came out negative.)
+const POINT_CHECK_GRID: usize = 257;
+
 fn point_solve(m: f64, l: f64, d: f64, el: Elasticity) -> Option<(Outputs, f64)> {
     let case = PointCase::with_models(m, l, d, models(el)).ok()?;
     let mut p = PointSolveParams::default();
-    p.mg.grid = 129;
+    p.mg.grid = POINT_CHECK_GRID;
     let s = solve_point(&case, &p);
     let ab1 = PointCase::with_models(m, 1.0, d, models(el))
         .ok()?
@@ -262,9 +266,17 @@ pub fn line_checks(fits: &[(Film, LineModel)], pts: &[FitPoint]) -> Vec<Asymptot
     out
 }
 
-/// The point checks at D = 1 (four solves at 129 x 129 points) of each fitted film.
+/// The point checks (seven solves at 257 x 257 points) of each fitted film, at D = 1.
 pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<AsymptoteCheck> {
-    let s = LimitSolves::new(pts, |m, l, el| point_solve(m, l, 1.0, el));
+    // At D = 1 when the data have it (else their largest D), up to that D's largest M and L.
+    let ds = pts.iter().filter_map(|p| p.d);
+    let d = if ds.clone().any(|d| d == 1.0) {
+        1.0
+    } else {
+        ds.fold(0.0, f64::max)
+    };
+    let at_d: Vec<FitPoint> = pts.iter().filter(|p| p.d == Some(d)).copied().collect();
+    let s = LimitSolves::new(&at_d, |m, l, el| point_solve(m, l, d, el));
     let mut out = vec![];
     for (film, fit) in fits {
         let x = &fit.x;
@@ -288,9 +300,9 @@ pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<Asympt
                 RP_NOTE,
                 "largest M and L of the data (the other laws still contribute there)",
             ],
-            at: &|m, l| fit.asymptotes(m, l, 1.0),
+            at: &|m, l| fit.asymptotes(m, l, d),
         };
-        out.extend(film_checks(*film, &s, Some(1.0), laws));
+        out.extend(film_checks(*film, &s, Some(d), laws));
     }
     out
 }

@@ -4,8 +4,11 @@
 //! report. Converged rows whose Richardson error estimate of H_c or H_min exceeds
 //! [`MAX_ERROR_ESTIMATE`] are left out as grid-unconverged (a fit to 2 % cannot use data that are
 //! themselves uncertain by more), each listed with its estimate in the report; so are point rows
-//! whose domain-truncation bias estimate (`PointDomain::bias`, rigid-like cases at small M)
-//! exceeds the same limit. The datasets carry no G column, so `FitPoint::g` is None (formulas
+//! whose domain-truncation error estimate (`PointDomain::truncation_error`, 2.5 times the change
+//! a doubled domain makes; rigid-like cases at small M) exceeds the same limit. (Filtering on the
+//! doubling change alone, `PointDomain::bias`, kept rows that are some 4 % low: on the nightly
+//! point sweep at 257^2 the fit's max error was then 3.8 %, at M = 7.2, L = 5, D = 1, with the
+//! fit above the data; with this filter 1.8 %.) The datasets carry no G column, so `FitPoint::g` is None (formulas
 //! that need G are skipped by the report).
 
 use crate::fit::report::{FitInput, FitPoint};
@@ -55,15 +58,15 @@ pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, String> {
             _ => None,
         };
         let est = row.h_c_err.unwrap_or(0.0).max(row.h_min_err.unwrap_or(0.0));
-        let bias = domain_bias(row);
-        if point.is_some() && bias > MAX_ERROR_ESTIMATE {
+        let truncation = domain_truncation(row);
+        if point.is_some() && truncation > MAX_ERROR_ESTIMATE {
             input.excluded.push(format!(
-                "point M = {:.4}, L = {}, D = {}: domain bias about {:.0} % > {:.0} % \
+                "point M = {:.4}, L = {}, D = {}: domain truncation error about {:.0} % > {:.0} % \
                  (rigid-like case, see src/problem/point_domain.rs)",
                 row.m,
                 row.l,
                 row.d.unwrap_or(f64::NAN),
-                100.0 * bias,
+                100.0 * truncation,
                 100.0 * MAX_ERROR_ESTIMATE
             ));
             continue;
@@ -90,8 +93,8 @@ pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, String> {
     Ok(input)
 }
 
-/// The domain-truncation bias estimate of a point row solved on a point grid (0 otherwise).
-fn domain_bias(row: &CaseRow) -> f64 {
+/// The domain-truncation error estimate of a point row solved on a point grid (0 otherwise).
+fn domain_truncation(row: &CaseRow) -> f64 {
     let Some(d) = row.d else { return 0.0 };
     if row.contact != "point" || row.model_used == ModelChoice::SlenderLine.as_str() {
         return 0.0;
@@ -102,5 +105,5 @@ fn domain_bias(row: &CaseRow) -> f64 {
     if row.elasticity == Elasticity::Rigid.to_string() {
         case.models.elasticity = Elasticity::Rigid;
     }
-    PointDomain::of_case(&case, &Default::default()).bias()
+    PointDomain::of_case(&case, &Default::default()).truncation_error()
 }

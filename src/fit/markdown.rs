@@ -39,7 +39,7 @@ const LINE_FORM: &str =
 s = s0 + s1 exp(-s2 H_EI/H_RI), p = p0 + p1 exp(-s2 H_EI/H_RI), H_RI = 2.4475/M (exact, fixed), H_EI = a M^alpha, \
 H_RP = b L^beta (starting from its rigid limit 1.0496 L^(2/3), see the asymptote table), \
 H_EP = d M^gamma L^delta. The EI, RP and EP laws are fitted; p, q, the s-law and p1 \
-start from Moes' (7/3, 7/2, 7/5 + 8/5 exp(-2 H_EI/H_RI), 0) and are fitted too with 60 or more \
+start from Moes' (7/3, 7/2, 7/5 + 8/5 exp(-2 H_EI/H_RI), 0) and are fitted too with 40 or more \
 converged cases (a 1 sigma of 0 marks a parameter held fixed). H_pm, the film at the pressure \
 maximum (Moes' central film), is fitted with the same form and its own exact H_RI = 3/M (the \
 flux thickness); H_min with H_RI = 2.4475/M.";
@@ -51,7 +51,7 @@ D^e_RP L^beta, H_EP = d f_EP(D) D^e_EP M^gamma L^delta, H_00 = c_00/D, with f_* 
 normalised to 1 at D = 1 and e_* free corrections (0 = NVM; held at 0 when the data have one D). \
 The asymptotes are fitted with alpha_EI and the whole H_EP law first held at NVM's (the \
 converged point data hardly reach the elastic regimes), then all of them and s0, s1 too (kept only \
-if physical and better) with 60 or more converged cases; c_00 = 1.8 fixed. H_c is the film at \
+if physical and better) with 40 or more converged cases; c_00 = 1.8 fixed. H_c is the film at \
 the centre, H_pm the film at the pressure maximum on the centre line, H_min the minimum film: \
 each has its own fit.";
 
