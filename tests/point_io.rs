@@ -116,11 +116,16 @@ fn committed_point_specs_are_valid() {
     assert_eq!(smoke.contacts[0].numerics.grid, 65);
     assert_eq!(ehlmap::sweep::plan::plan(&smoke).unwrap().len(), 8);
     let nightly = spec::load(&root.join("sweeps/nightly-point.toml")).unwrap();
-    assert_eq!(nightly.contacts[0].numerics.grid, 129);
+    assert_eq!(nightly.contacts[0].numerics.grid, 257);
     assert!(nightly.contacts[0].numerics.error_estimate);
     assert_eq!(nightly.m.len(), 8);
     assert_eq!((nightly.m[0], nightly.m[7]), (1.0, 1000.0));
     assert_eq!(ehlmap::sweep::plan::plan(&nightly).unwrap().len(), 128);
+    // The fit tests' dataset is the nightly sweep from M = 7.2 up.
+    let data = spec::load(&root.join("tests/data/point-257.toml")).unwrap();
+    assert_eq!(data.contacts[0].numerics.grid, 257);
+    assert_eq!(data.m[..], nightly.m[2..]);
+    assert_eq!(ehlmap::sweep::plan::plan(&data).unwrap().len(), 96);
 }
 
 #[test]
