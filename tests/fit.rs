@@ -163,6 +163,14 @@ fn fit_command_writes_report_json_and_charts() {
             "{f} missing"
         );
     }
+    // The summary states each film's target: H_pm meets 2 % and beats Moes on this dataset,
+    // H_c (2.37 %) does not meet it.
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    assert!(
+        md.contains("- H_pm: max error 1.60 % (target 2 %: met); Moes 1992 5.86 % (fit better)."),
+        "{md}"
+    );
+    assert!(md.contains("- H_c: max error 2.37 % (target 2 %: not met)"));
     let bad = Command::new(env!("CARGO_BIN_EXE_ehlmap"))
         .args(["fit", "/nonexistent/dataset"])
         .output()

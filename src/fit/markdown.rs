@@ -73,6 +73,71 @@ fn quantity(md: &mut String, q: &QuantityFit) {
     }
 }
 
+/// The fit's targets: max error within [`MAX_ERROR_TARGET`] of the data, below the published
+/// formulas' on the same film, asymptotes within [`ASYMPTOTE_TARGET`] of the limit solves.
+pub const MAX_ERROR_TARGET: f64 = 0.02;
+pub const ASYMPTOTE_TARGET: f64 = 0.01;
+
+/// One line per film: its max error against the target and the published formulas on the same
+/// film, and how many of its asymptote checks are within their target.
+fn summary(md: &mut String, c: &ContactReport) {
+    let _ = writeln!(
+        md,
+        "### Summary
+"
+    );
+    for q in [&c.h_c, &c.h_pm, &c.h_min].into_iter().flatten() {
+        let max = q.overall.max.abs();
+        let met = if max <= MAX_ERROR_TARGET {
+            "met"
+        } else {
+            "not met"
+        };
+        let mut line = format!(
+            "- {}: max error {:.2} % (target {:.0} %: {met})",
+            q.quantity,
+            100.0 * max,
+            100.0 * MAX_ERROR_TARGET
+        );
+        for p in c.published.iter().filter(|p| p.against == q.quantity) {
+            if let Some(all) = &p.overall {
+                let cmp = if max < all.max.abs() {
+                    "fit better"
+                } else {
+                    "fit not better"
+                };
+                let _ = write!(line, "; {} {:.2} % ({cmp})", p.name, 100.0 * all.max.abs());
+            }
+        }
+        let checks: Vec<_> = c
+            .asymptotes
+            .iter()
+            .filter(|a| a.quantity == q.quantity)
+            .collect();
+        if !checks.is_empty() {
+            let within: Vec<&str> = checks
+                .iter()
+                .filter(|a| a.ratio.is_some_and(|r| (r - 1.0).abs() <= ASYMPTOTE_TARGET))
+                .map(|a| a.asymptote.as_str())
+                .collect();
+            let _ = write!(
+                line,
+                "; asymptotes within {:.0} % of the limit solves: {} of {}{}",
+                100.0 * ASYMPTOTE_TARGET,
+                within.len(),
+                checks.len(),
+                if within.is_empty() {
+                    String::new()
+                } else {
+                    format!(" ({})", within.join(", "))
+                }
+            );
+        }
+        let _ = writeln!(md, "{line}.");
+    }
+    md.push('\n');
+}
+
 fn contact(md: &mut String, c: &ContactReport) {
     let _ = writeln!(md, "## {} contact\n", c.contact);
     if let Some(why) = &c.skipped {
@@ -90,6 +155,7 @@ fn contact(md: &mut String, c: &ContactReport) {
         POINT_FORM
     };
     let _ = writeln!(md, "{form}\n");
+    summary(md, c);
     for q in [&c.h_c, &c.h_pm, &c.h_min].into_iter().flatten() {
         quantity(md, q);
     }

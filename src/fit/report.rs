@@ -62,7 +62,9 @@ pub enum Film {
     /// H_c: the film at X = 0 (Y = 0).
     Centre,
     /// H_pm: the film at the pressure maximum on the centre line, Moes' central film (its
-    /// rigid-isoviscous line limit is the flux thickness 3/M).
+    /// rigid-isoviscous line limit is the flux thickness 3/M). Where the piezoviscous spike is
+    /// the global maximum it is the film under the spike, up to 0.9 % below H_c on the nightly
+    /// line sweep (M 14-122, L 8-20).
     PressureMax,
     /// H_min: the minimum film.
     Minimum,
