@@ -5,6 +5,7 @@
 //! are left out and listed; the fit uses the other 32.
 
 use ehlmap::fit::dataset::load_fit_input;
+use ehlmap::fit::markdown::to_markdown;
 use ehlmap::fit::report::{fit_report, FitInput};
 use std::path::PathBuf;
 use std::process::Command;
@@ -71,7 +72,9 @@ fn fitted_formula_beats_moes_on_the_committed_dataset() {
 #[test]
 fn line_asymptotes_agree_with_the_limit_solves() {
     let input = load_fit_input(&[data()]).unwrap();
-    let r = fit_report(&input, true).unwrap().line;
+    let full = fit_report(&input, true).unwrap();
+    let md = to_markdown(&full);
+    let r = full.line;
     let check = |film: &str, name: &str| {
         r.asymptotes
             .iter()
@@ -84,29 +87,36 @@ fn line_asymptotes_agree_with_the_limit_solves() {
         "four asymptotes for each of three films"
     );
     let ri_c = check("H_c", "rigid-isoviscous");
-    assert!((ri_c.solver_h_c.unwrap() - 2.4475).abs() < 0.005);
+    assert!((ri_c.solver.unwrap() - 2.4475).abs() < 0.005);
     let ri_pm = check("H_pm", "rigid-isoviscous");
-    assert!((ri_pm.solver_h_c.unwrap() - 3.0).abs() < 0.006);
-    assert!((ri_pm.fitted - 3.0).abs() < 1e-12);
-    // Measured on this dataset: EI 1.5 %, RP 3.4 % (H_pm); EI 2.0 % for H_c (its RP ratio, 0.85
-    // here and 1.09 on the nightly sweep, is not checked: the film at X = 0 does not follow the
-    // rigid-piezoviscous limit).
+    assert!((ri_pm.solver.unwrap() - 3.0).abs() < 0.006);
+    assert_eq!(ri_pm.grid, Some(4097));
+    // Measured on this dataset (H_pm): EI 1.015 at M = 500 (trend 0.991, 1.000, 1.015 at
+    // M = 50, 158, 500), EP 1.050 (0.986, 1.022, 1.050), RP 1.034; EI 1.020 for H_c (its RP
+    // ratio, 0.85 here and 1.09 on the nightly sweep, is not checked: the film at X = 0 does not
+    // follow the rigid-piezoviscous limit).
     for film in ["H_c", "H_pm", "H_min"] {
         let ei = check(film, "elastic-isoviscous").ratio.unwrap();
         assert!((ei - 1.0).abs() < 0.03, "{film} EI ratio {ei}");
     }
-    // The elastic rows are also solved at 1/10 and 1/sqrt(10) of the largest M (the trend).
-    for name in ["elastic-isoviscous", "elastic-piezoviscous"] {
+    for (name, tol) in [("elastic-isoviscous", 0.03), ("elastic-piezoviscous", 0.06)] {
         let t = &check("H_pm", name).trend;
         assert_eq!(t.len(), 3, "{name} trend {t:?}");
-        assert!((t[0].0 * 10.0 / t[2].0 - 1.0).abs() < 1e-9);
         assert!(
-            t.iter().all(|(_, r)| (r - 1.0).abs() < 0.1),
+            t.iter().all(|(_, r)| (r - 1.0).abs() < tol),
             "{name} trend {t:?}"
         );
     }
     let rp = check("H_pm", "rigid-piezoviscous").ratio.unwrap();
     assert!((rp - 1.0).abs() < 0.05, "H_pm RP ratio {rp}");
+    // The summary counts the checks within 1 %.
+    assert!(
+        md.contains(
+            "- H_pm: max error 1.60 % (target 2 %: met); Moes 1992 5.86 % (fit better); \
+             asymptotes within 1 % of the limit solves: 1 of 4 (rigid-isoviscous)."
+        ),
+        "{md}"
+    );
 }
 
 #[test]
@@ -118,6 +128,23 @@ fn empty_or_tiny_datasets_are_clear_errors() {
     let e = fit_report(&input, false).unwrap_err();
     assert!(e.contains("too few"), "{e}");
     assert!(e.contains("line skipped: 5 cases, need at least 12"), "{e}");
+    // A dataset whose rows mostly lack the film at the pressure maximum (older datasets): H_c
+    // and H_min are fitted, H_pm is not, and the report says why.
+    let mut input = load_fit_input(&[data()]).unwrap();
+    for p in input.line.iter_mut().skip(5) {
+        p.h_pm = None;
+    }
+    let r = fit_report(&input, false).unwrap().line;
+    assert!(r.h_c.is_some() && r.h_min.is_some() && r.h_pm.is_none());
+    assert_eq!(
+        r.skipped_films,
+        ["H_pm: 5 of 32 cases carry it, need at least 12"]
+    );
+    assert_eq!(
+        r.published.len(),
+        3,
+        "Moes on H_c and on the 5 H_pm cases, D-T"
+    );
     assert!(load_fit_input(&[PathBuf::from("/nonexistent/dataset")]).is_err());
 }
 

@@ -72,45 +72,33 @@ fn point_fit_beats_nvm_and_checks_its_asymptotes() {
     let alpha = param(h_c, "alpha_EI").0;
     assert!((alpha + 2.0 / 15.0).abs() < 0.04, "alpha_EI {alpha}");
     assert!(h_c.params.iter().all(|p| p.sigma.is_finite()));
-    // Four asymptote rows per film. The rigid limit solve (default domain) is biased low by the
-    // truncated domain (24.8 against the extrapolated 34): ratio about 0.6, and said so.
+    // Four asymptote rows per film. The rigid limit solve (default domain) gives 24.8: about
+    // 27 % below the domain-extrapolated 34, while the fitted c_RI is 18 % above it, so the
+    // ratio is about 0.6; the note says the solve is biased low.
     assert_eq!(
         r.asymptotes.len(),
         12,
         "four asymptotes for each of three films"
     );
-    let names: Vec<_> = r
-        .asymptotes
-        .iter()
-        .filter(|a| a.quantity == "H_c")
-        .map(|a| a.asymptote.as_str())
-        .collect();
-    assert_eq!(
-        names,
-        [
-            "rigid-isoviscous",
-            "elastic-isoviscous",
-            "rigid-piezoviscous",
-            "elastic-piezoviscous"
-        ]
-    );
-    let ri = r.asymptotes[0].ratio.unwrap();
-    assert!(ri > 0.6 && ri < 0.8, "RI ratio {ri}");
-    assert!(
-        r.asymptotes[0].note.contains("biased low"),
-        "{}",
-        r.asymptotes[0].note
-    );
-    // The data stop at M = 139 for D = 1, short of the elastic limits: the solver / law ratio
-    // still rises toward 1 along M = 13.9, 43.9, 139 (measured 0.900, 0.912, 0.941 for EI,
-    // 0.79, 0.86, 0.91 for EP).
-    for k in [1, 3] {
-        let t = &r.asymptotes[k].trend;
-        assert_eq!(t.len(), 3);
+    let check = |name: &str| {
+        r.asymptotes
+            .iter()
+            .find(|a| a.quantity == "H_c" && a.asymptote == name)
+            .unwrap_or_else(|| panic!("H_c {name} missing"))
+    };
+    let ri = check("rigid-isoviscous");
+    assert!(ri.ratio.unwrap() > 0.6 && ri.ratio.unwrap() < 0.8, "{ri:?}");
+    assert!(ri.note.contains("biased low"), "{}", ri.note);
+    // The data stop at M = 52 (L = 0) and 139 (L = 20) for D = 1, short of the elastic limits:
+    // the solver / law ratio still rises toward 1 (measured EI 0.900, 0.916 at M = 16.4, 51.8,
+    // the M = 5.2 trend solve left out for its domain truncation; EP 0.79, 0.86, 0.91 at
+    // M = 13.9, 43.9, 139).
+    for (name, n) in [("elastic-isoviscous", 2), ("elastic-piezoviscous", 3)] {
+        let t = &check(name).trend;
+        assert_eq!(t.len(), n, "{name} trend {t:?}");
         assert!(
-            t[0].1 < t[1].1 && t[1].1 < t[2].1 && t[2].1 < 1.01,
-            "{} trend {t:?}",
-            r.asymptotes[k].asymptote
+            t.windows(2).all(|w| w[0].1 < w[1].1) && t[n - 1].1 < 1.01,
+            "{name} trend {t:?}"
         );
     }
 }

@@ -16,10 +16,12 @@
 //!   H_RP = (c L)^(2/3) with c = alpha_bar(L = 1) P_max H_c^(3/2) from the solver's rigid L = 0
 //!   solve; that is the "solver" value of the RP row.
 
+use crate::fit::dataset::MAX_ERROR_ESTIMATE;
 use crate::fit::model::LineModel;
 use crate::fit::point_model::PointModel;
 use crate::fit::report::{Film, FitPoint};
 use crate::params::{Elasticity, LineCase, Models, PointCase};
+use crate::problem::point_domain::PointDomain;
 use crate::solution::Outputs;
 use crate::solver::line::{solve_line, LineSolveParams};
 use crate::solver::point::{solve_point, PointSolveParams};
@@ -29,8 +31,8 @@ use serde::{Deserialize, Serialize};
 /// One asymptote compared with a limit solve of the solver.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct AsymptoteCheck {
-    /// The film (H_c, H_pm, H_min).
-    #[serde(default)]
+    /// The film (H_c, H_pm, H_min; reports before H_pm checked H_c only).
+    #[serde(default = "h_c_name")]
     pub quantity: String,
     pub asymptote: String,
     pub law: String,
@@ -38,8 +40,12 @@ pub struct AsymptoteCheck {
     pub l: f64,
     pub d: Option<f64>,
     pub elasticity: String,
-    /// The solver's value of the film (named for H_c, the first film checked).
-    pub solver_h_c: Option<f64>,
+    /// Points per direction of the limit solve (None for a failed solve).
+    #[serde(default)]
+    pub grid: Option<usize>,
+    /// The solver's value of the film.
+    #[serde(alias = "solver_h_c")]
+    pub solver: Option<f64>,
     pub fitted: f64,
     /// solver / fitted asymptote (1 in the limit); None if the limit solve failed.
     pub ratio: Option<f64>,
@@ -48,6 +54,10 @@ pub struct AsymptoteCheck {
     /// how the ratio approaches its limit.
     #[serde(default)]
     pub trend: Vec<(f64, f64)>,
+}
+
+fn h_c_name() -> String {
+    Film::Centre.name().to_string()
 }
 
 /// The elastic checks are solved at these fractions of the largest M of the data, to show the
@@ -102,19 +112,23 @@ fn rp_from_rigid(o: &Outputs, alpha_bar_1: f64, l: f64, film: Film) -> f64 {
     (c * l).powf(2.0 / 3.0)
 }
 
-fn max_of(pts: &[FitPoint], f: fn(&FitPoint) -> f64) -> f64 {
-    pts.iter().map(f).fold(0.0, f64::max)
+fn max_of<'a>(pts: impl Iterator<Item = &'a FitPoint>, f: fn(&FitPoint) -> f64) -> f64 {
+    pts.map(f).fold(0.0, f64::max)
 }
 
-/// The limit solves of one contact: rigid L = 0 at M = 1, elastic at the largest M (L = 0) and at
-/// the largest M and L.
+/// A limit solve: (M, outputs), None where it did not converge or was not trusted.
+type Solve = (f64, Option<Outputs>);
+
+/// The limit solves of one contact: rigid L = 0 at M = 1; elastic at L = 0 up to the largest M of
+/// the data's L = 0 cases, and at the largest L up to the largest M of those cases (each at
+/// [`TREND_FRACTIONS`] of that M).
 struct LimitSolves {
-    m_max: f64,
+    m_ei: f64,
+    m_ep: f64,
     l_max: f64,
     rigid: Option<(Outputs, f64)>,
-    /// (M, solve) at [`TREND_FRACTIONS`] of the largest M, L = 0 and at the largest L.
-    ei: Vec<(f64, Option<Outputs>)>,
-    ep: Vec<(f64, Option<Outputs>)>,
+    ei: Vec<Solve>,
+    ep: Vec<Solve>,
 }
 
 impl LimitSolves {
@@ -122,34 +136,42 @@ impl LimitSolves {
         pts: &[FitPoint],
         solve: impl Fn(f64, f64, Elasticity) -> Option<(Outputs, f64)>,
     ) -> Self {
-        let (m_max, l_max) = (max_of(pts, |p| p.m), max_of(pts, |p| p.l));
-        let trend = |l: f64| -> Vec<(f64, Option<Outputs>)> {
+        let l_max = max_of(pts.iter(), |p| p.l);
+        let m_at = |l: f64| {
+            let m = max_of(pts.iter().filter(|p| p.l == l), |p| p.m);
+            if m > 0.0 {
+                m
+            } else {
+                max_of(pts.iter(), |p| p.m)
+            }
+        };
+        let (m_ei, m_ep) = (m_at(0.0), m_at(l_max));
+        let trend = |m_top: f64, l: f64| -> Vec<Solve> {
             TREND_FRACTIONS
                 .iter()
                 .map(|f| {
-                    let m = f * m_max;
+                    let m = f * m_top;
                     (m, solve(m, l, Elasticity::Elastic).map(|o| o.0))
                 })
                 .collect()
         };
         LimitSolves {
-            m_max,
+            m_ei,
+            m_ep,
             l_max,
             rigid: solve(1.0, 0.0, Elasticity::Rigid),
-            ei: trend(0.0),
-            ep: if l_max > 0.0 { trend(l_max) } else { vec![] },
+            ei: trend(m_ei, 0.0),
+            ep: if l_max > 0.0 {
+                trend(m_ep, l_max)
+            } else {
+                vec![]
+            },
         }
     }
 
-    /// The film of the solve at the largest M.
-    fn film(&self, solves: &[(f64, Option<Outputs>)], film: Film) -> Option<f64> {
-        solves
-            .last()
-            .and_then(|(_, o)| o.as_ref().map(|o| film.of_outputs(o)))
-    }
-
-    fn rigid_film(&self, film: Film) -> Option<f64> {
-        self.rigid.as_ref().map(|(o, _)| film.of_outputs(o))
+    /// The solve at the largest M.
+    fn top(solves: &[Solve]) -> Option<&Outputs> {
+        solves.last().and_then(|(_, o)| o.as_ref())
     }
 
     fn rp(&self, film: Film) -> Option<f64> {
@@ -168,34 +190,45 @@ struct Laws<'a> {
 
 /// The four checks of one film (RP and EP only when the data have L > 0).
 fn film_checks(film: Film, s: &LimitSolves, d: Option<f64>, laws: Laws) -> Vec<AsymptoteCheck> {
+    let rigid = s.rigid.as_ref().map(|(o, _)| o);
+    let none: &[Solve] = &[];
+    // (name, M, L, elasticity, the solve, the trend solves, the solver's value of the film)
     let rows = [
         (
             "rigid-isoviscous",
             1.0,
             0.0,
             Elasticity::Rigid,
-            s.rigid_film(film),
+            rigid,
+            none,
+            rigid.map(|o| film.of_outputs(o)),
         ),
         (
             "elastic-isoviscous",
-            s.m_max,
+            s.m_ei,
             0.0,
             Elasticity::Elastic,
-            s.film(&s.ei, film),
+            LimitSolves::top(&s.ei),
+            &s.ei[..],
+            LimitSolves::top(&s.ei).map(|o| film.of_outputs(o)),
         ),
         (
             "rigid-piezoviscous",
             f64::INFINITY,
             s.l_max,
             Elasticity::Rigid,
+            rigid,
+            none,
             s.rp(film),
         ),
         (
             "elastic-piezoviscous",
-            s.m_max,
+            s.m_ep,
             s.l_max,
             Elasticity::Elastic,
-            s.film(&s.ep, film),
+            LimitSolves::top(&s.ep),
+            &s.ep[..],
+            LimitSolves::top(&s.ep).map(|o| film.of_outputs(o)),
         ),
     ];
     let n = if s.l_max > 0.0 { 4 } else { 2 };
@@ -204,43 +237,42 @@ fn film_checks(film: Film, s: &LimitSolves, d: Option<f64>, laws: Laws) -> Vec<A
         .zip(laws.notes)
         .enumerate()
         .take(n)
-        .map(|(k, (((name, m, l, el, solver), law), note))| {
-            // The rigid-piezoviscous law is evaluated at any finite M (it does not depend on M).
-            let fitted = (laws.at)(if m.is_finite() { m } else { 1.0 }, l)[k];
-            let solves: &[(f64, Option<Outputs>)] = match k {
-                1 => &s.ei,
-                3 => &s.ep,
-                _ => &[],
-            };
-            let trend = solves
-                .iter()
-                .filter_map(|(m, o)| {
-                    o.as_ref()
-                        .map(|o| (*m, film.of_outputs(o) / (laws.at)(*m, l)[k]))
-                })
-                .collect();
-            AsymptoteCheck {
-                quantity: film.name().to_string(),
-                asymptote: name.to_string(),
-                law,
-                m,
-                l,
-                d,
-                elasticity: el.to_string(),
-                solver_h_c: solver,
-                fitted,
-                ratio: solver.map(|v| v / fitted),
-                note: note.to_string(),
-                trend,
-            }
-        })
+        .map(
+            |(k, (((name, m, l, el, out, solves, solver), law), note))| {
+                // The rigid-piezoviscous law is evaluated at any finite M (it does not depend on M).
+                let fitted = (laws.at)(if m.is_finite() { m } else { 1.0 }, l)[k];
+                let trend = solves
+                    .iter()
+                    .filter_map(|(m, o)| {
+                        o.as_ref()
+                            .map(|o| (*m, film.of_outputs(o) / (laws.at)(*m, l)[k]))
+                    })
+                    .collect();
+                AsymptoteCheck {
+                    quantity: film.name().to_string(),
+                    asymptote: name.to_string(),
+                    law,
+                    m,
+                    l,
+                    d,
+                    elasticity: el.to_string(),
+                    grid: out.map(|o| o.grid),
+                    solver,
+                    fitted,
+                    ratio: solver.map(|v| v / fitted),
+                    note: note.to_string(),
+                    trend,
+                }
+            },
+        )
         .collect()
 }
 
 const RP_NOTE: &str =
     "limit alpha q_max = 1 from the rigid L = 0 solve (direct Barus solves diverge)";
 
-/// The line checks (five solves at 4097 points, a few seconds) of each fitted film.
+/// The line checks (seven solves at 4097 points, or 2049 where 4097 stalls; a few seconds) of
+/// each fitted film.
 pub fn line_checks(fits: &[(Film, LineModel)], pts: &[FitPoint]) -> Vec<AsymptoteCheck> {
     let s = LimitSolves::new(pts, line_solve);
     let mut out = vec![];
@@ -255,9 +287,10 @@ pub fn line_checks(fits: &[(Film, LineModel)], pts: &[FitPoint]) -> Vec<Asymptot
             ],
             notes: [
                 "rigid solve, L = 0",
-                "largest M of the data, L = 0",
+                "largest M of the data's L = 0 cases",
                 RP_NOTE,
-                "largest M and L of the data (the RP and EI laws still contribute there)",
+                "largest L of the data and the largest M there (the RP and EI laws still \
+                 contribute)",
             ],
             at: &|m, l| fit.asymptotes(m, l),
         };
@@ -266,7 +299,8 @@ pub fn line_checks(fits: &[(Film, LineModel)], pts: &[FitPoint]) -> Vec<Asymptot
     out
 }
 
-/// The point checks (seven solves at 257 x 257 points) of each fitted film, at D = 1.
+/// The point checks (seven solves at 257 x 257 points, about 30 s) of each fitted film, at D = 1
+/// (else the largest D of the data).
 pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<AsymptoteCheck> {
     // At D = 1 when the data have it (else their largest D), up to that D's largest M and L.
     let ds = pts.iter().filter_map(|p| p.d);
@@ -276,7 +310,15 @@ pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<Asympt
         ds.fold(0.0, f64::max)
     };
     let at_d: Vec<FitPoint> = pts.iter().filter(|p| p.d == Some(d)).copied().collect();
-    let s = LimitSolves::new(&at_d, |m, l, el| point_solve(m, l, d, el));
+    let s = LimitSolves::new(&at_d, |m, l, el| {
+        // An elastic trend solve in the rigid-like range is not trusted (its domain truncation).
+        let case = PointCase::with_models(m, l, d, models(el)).ok()?;
+        let truncation = PointDomain::of_case(&case, &Default::default()).truncation_error();
+        if el == Elasticity::Elastic && truncation > MAX_ERROR_ESTIMATE {
+            return None;
+        }
+        point_solve(m, l, d, el)
+    });
     let mut out = vec![];
     for (film, fit) in fits {
         let x = &fit.x;
@@ -295,10 +337,12 @@ pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<Asympt
             ],
             notes: [
                 "rigid solve, L = 0 (H M^2 is exact for any M); default domain, biased low by its \
-                 truncation (H_c about 34 extrapolated, src/problem/point_domain.rs)",
-                "largest M of the data, L = 0",
+                 truncation (about 27 % for H_c, src/problem/point_domain.rs)",
+                "largest M of the data's L = 0 cases; trend solves with a domain-truncation \
+                 error above 2 % are left out",
                 RP_NOTE,
-                "largest M and L of the data (the other laws still contribute there)",
+                "largest L of the data and the largest M there (the other laws still \
+                 contribute)",
             ],
             at: &|m, l| fit.asymptotes(m, l, d),
         };

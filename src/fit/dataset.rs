@@ -8,8 +8,10 @@
 //! a doubled domain makes; rigid-like cases at small M) exceeds the same limit. (Filtering on the
 //! doubling change alone, `PointDomain::bias`, kept rows that are some 4 % low: on the nightly
 //! point sweep at 257^2 the fit's max error was then 3.8 %, at M = 7.2, L = 5, D = 1, with the
-//! fit above the data; with this filter 1.8 %.) The datasets carry no G column, so `FitPoint::g` is None (formulas
-//! that need G are skipped by the report).
+//! fit above the data; with this filter 1.8 %.) The film at the pressure maximum (`H_c_pmax`,
+//! fitted as H_pm) has no error estimate of its own: rows are filtered on H_c's and H_min's.
+//! The datasets carry no G column, so `FitPoint::g` is None (formulas that need G are skipped by
+//! the report).
 
 use crate::fit::report::{FitInput, FitPoint};
 use crate::io::results::{read_dataset, CaseRow};

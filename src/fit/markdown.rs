@@ -37,7 +37,8 @@ fn table(md: &mut String, all: &ErrStats, rows: &[RegionStats]) {
 const LINE_FORM: &str =
     "Formula (Moes units): H = [ (H_RI^p + H_EI^p)^(s/p) + (H_RP^-q + H_EP^-q)^(-s/q) ]^(1/s), \
 s = s0 + s1 exp(-s2 H_EI/H_RI), p = p0 + p1 exp(-s2 H_EI/H_RI), H_RI = 2.4475/M (exact, fixed), H_EI = a M^alpha, \
-H_RP = b L^beta (starting from its rigid limit 1.0496 L^(2/3), see the asymptote table), \
+H_RP = b L^beta (starting from its rigid limit 1.0496 L^(2/3), times 3/2.4475 for H_pm; see the \
+asymptote table), \
 H_EP = d M^gamma L^delta. The EI, RP and EP laws are fitted; p, q, the s-law and p1 \
 start from Moes' (7/3, 7/2, 7/5 + 8/5 exp(-2 H_EI/H_RI), 0) and are fitted too with 40 or more \
 converged cases (a 1 sigma of 0 marks a parameter held fixed). H_pm, the film at the pressure \
@@ -155,6 +156,9 @@ fn contact(md: &mut String, c: &ContactReport) {
         POINT_FORM
     };
     let _ = writeln!(md, "{form}\n");
+    for why in &c.skipped_films {
+        let _ = writeln!(md, "Not fitted: {why}.\n");
+    }
     summary(md, c);
     for q in [&c.h_c, &c.h_pm, &c.h_min].into_iter().flatten() {
         quantity(md, q);
@@ -180,6 +184,7 @@ fn contact(md: &mut String, c: &ContactReport) {
         );
         for a in &c.asymptotes {
             let d = a.d.map_or(String::new(), |d| format!(", D = {d}"));
+            let grid = a.grid.map_or(String::new(), |g| format!(", {g} pts"));
             let trend: Vec<String> = a
                 .trend
                 .iter()
@@ -187,14 +192,14 @@ fn contact(md: &mut String, c: &ContactReport) {
                 .collect();
             let _ = writeln!(
                 md,
-                "| {} | {} | {} | M = {}, L = {}{d} ({}) | {} | {:.5} | {} | {} | {} |",
+                "| {} | {} | {} | M = {}, L = {}{d} ({}{grid}) | {} | {:.5} | {} | {} | {} |",
                 a.quantity,
                 a.asymptote,
                 a.law,
                 a.m,
                 a.l,
                 a.elasticity,
-                a.solver_h_c.map_or("failed".into(), |v| format!("{v:.5}")),
+                a.solver.map_or("failed".into(), |v| format!("{v:.5}")),
                 a.fitted,
                 a.ratio.map_or("-".into(), |v| format!("{v:.4}")),
                 trend.join(", "),

@@ -159,11 +159,16 @@ pub struct QuantityFit {
     pub per_d: Vec<RegionStats>,
 }
 
+fn h_c_name() -> String {
+    Film::Centre.name().to_string()
+}
+
 /// A published formula on the same cases, against one film (`against`: H_c or H_pm), or why it
 /// was skipped.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Published {
     pub name: String,
+    #[serde(default = "h_c_name")]
     pub against: String,
     pub overall: Option<ErrStats>,
     pub regions: Vec<RegionStats>,
@@ -183,6 +188,9 @@ pub struct ContactReport {
     #[serde(default)]
     pub h_pm: Option<QuantityFit>,
     pub h_min: Option<QuantityFit>,
+    /// Films not fitted because too few cases carry them (H_pm of older datasets).
+    #[serde(default)]
+    pub skipped_films: Vec<String>,
     pub published: Vec<Published>,
     pub asymptotes: Vec<AsymptoteCheck>,
 }
@@ -197,10 +205,10 @@ pub struct FitReport {
     pub point: ContactReport,
 }
 
-/// The samples of `film`, or None when a case lacks it.
-fn samples(pts: &[FitPoint], film: Film) -> Option<Vec<Sample>> {
+/// The samples of `film`: the cases that carry it.
+fn samples(pts: &[FitPoint], film: Film) -> Vec<Sample> {
     pts.iter()
-        .map(|p| {
+        .filter_map(|p| {
             film.of_point(p).map(|h| Sample {
                 m: p.m,
                 l: p.l,
@@ -275,7 +283,7 @@ fn quantity<Mo: FilmModel>(
 fn published(name: &str, pts: &[FitPoint], f: impl Fn(&FitPoint) -> f64) -> Vec<Published> {
     [Film::Centre, Film::PressureMax]
         .into_iter()
-        .filter(|film| pts.iter().all(|p| film.of_point(p).is_some()))
+        .filter(|film| pts.iter().any(|p| film.of_point(p).is_some()))
         .map(|film| {
             let t: Vec<_> = pts
                 .iter()
@@ -313,25 +321,6 @@ fn skipped(contact: &str, n: usize, failed: usize, need: usize) -> ContactReport
         failed_cases: failed,
         skipped: Some(format!("skipped: {n} cases, need at least {need}")),
         ..ContactReport::default()
-    }
-}
-
-/// The three fits in [`Film::ALL`] order (None where the data lack the film).
-struct Fits([Option<QuantityFit>; 3]);
-
-impl Fits {
-    fn into_report(self, contact: &str, pts: &[FitPoint], failed: usize) -> ContactReport {
-        let [h_c, h_pm, h_min] = self.0;
-        ContactReport {
-            contact: contact.into(),
-            converged_cases: pts.len(),
-            failed_cases: failed,
-            skipped: None,
-            h_c,
-            h_pm,
-            h_min,
-            ..ContactReport::default()
-        }
     }
 }
 
@@ -373,6 +362,58 @@ fn line_physical(m: &LineModel) -> bool {
         && x.iter().all(|v| v.abs() < 50.0)
 }
 
+/// How one contact is fitted: the start model of each film, the two free sets, the physical
+/// test, and the wrapping into [`FittedModel`].
+struct Recipe<Mo> {
+    contact: &'static str,
+    start: fn(Film) -> Mo,
+    stage1: Vec<usize>,
+    stage2: Vec<usize>,
+    physical: fn(&Mo) -> bool,
+    names: &'static [&'static str],
+    wrap: fn(Mo) -> FittedModel,
+}
+
+/// Fit each film the data carry (a film with fewer cases than the contact needs is left out and
+/// named in `skipped_films`); returns the report without checks and published formulas, and the
+/// fitted models for the checks.
+fn fit_films<Mo: FilmModel>(
+    r: &Recipe<Mo>,
+    pts: &[FitPoint],
+    failed: usize,
+) -> Result<(ContactReport, Vec<(Film, Mo)>), String> {
+    let need = r.stage1.len() + SPARE_CASES;
+    let mut report = ContactReport {
+        contact: r.contact.to_string(),
+        converged_cases: pts.len(),
+        failed_cases: failed,
+        ..ContactReport::default()
+    };
+    let mut models = vec![];
+    for film in Film::ALL {
+        let data = samples(pts, film);
+        if data.len() < need {
+            report.skipped_films.push(format!(
+                "{}: {} of {} cases carry it, need at least {need}",
+                film.name(),
+                data.len(),
+                pts.len()
+            ));
+            continue;
+        }
+        let f = staged(&data, &(r.start)(film), &r.stage1, &r.stage2, r.physical)
+            .map_err(|e| format!("{} {}: {e}", r.contact, film.name()))?;
+        models.push((film, f.model.clone()));
+        let q = Some(quantity(film, pts, f, r.names, r.wrap));
+        match film {
+            Film::Centre => report.h_c = q,
+            Film::PressureMax => report.h_pm = q,
+            Film::Minimum => report.h_min = q,
+        }
+    }
+    Ok((report, models))
+}
+
 fn line_report(
     pts: &[FitPoint],
     failed: usize,
@@ -382,24 +423,16 @@ fn line_report(
     if pts.len() < need {
         return Ok(skipped("line", pts.len(), failed, need));
     }
-    let mut fits = Fits([None, None, None]);
-    let mut models = vec![];
-    for (k, film) in Film::ALL.into_iter().enumerate() {
-        let Some(data) = samples(pts, film) else {
-            continue;
-        };
-        let f = staged(
-            &data,
-            &line_start(film),
-            &LINE_STAGE1,
-            &LINE_STAGE2,
-            line_physical,
-        )
-        .map_err(|e| format!("line {}: {e}", film.name()))?;
-        models.push((film, f.model.clone()));
-        fits.0[k] = Some(quantity(film, pts, f, &PARAM_NAMES, FittedModel::Line));
-    }
-    let mut report = fits.into_report("line", pts, failed);
+    let recipe = Recipe {
+        contact: "line",
+        start: line_start,
+        stage1: LINE_STAGE1.to_vec(),
+        stage2: LINE_STAGE2.to_vec(),
+        physical: line_physical,
+        names: &PARAM_NAMES,
+        wrap: FittedModel::Line,
+    };
+    let (mut report, models) = fit_films(&recipe, pts, failed)?;
     if limit_solves {
         report.asymptotes = line_checks(&models, pts);
     }
@@ -427,16 +460,26 @@ fn point_free(pts: &[FitPoint]) -> Vec<usize> {
         .collect()
 }
 
+/// The start of a point fit of `film`: NVM 1994, its elastic laws scaled by 0.6 for H_min.
+fn point_start(film: Film) -> PointModel {
+    let scale: f64 = if film == Film::Minimum { 0.6 } else { 1.0 };
+    let mut start = PointModel::nvm();
+    for k in [2, 8] {
+        start.x[k] += scale.ln();
+    }
+    start
+}
+
 fn point_report(
     pts: &[FitPoint],
     failed: usize,
     limit_solves: bool,
 ) -> Result<ContactReport, String> {
-    // Stage 1 holds the M exponents of H_EI (-2/15) and the whole H_EP law at NVM's: converged
-    // point data at 129^2 reach M ~ 50 only (D = 1: M ~ 20), where the RI-EI transition (near
-    // M = 3.5) and the RP law still dominate, so these are not identifiable; freed, alpha_EI turns
-    // positive and H_EP runs off to 1e3 times the film (max error unchanged, 32 %). Stage 2 frees
-    // everything and is kept only when physical and better.
+    // Stage 1 holds the M exponents of H_EI (-2/15) and the whole H_EP law at NVM's: with few
+    // elastic cases (129^2 data reached M ~ 50, D = 1: M ~ 20) they are not identifiable; freed,
+    // alpha_EI turned positive and H_EP ran off to 1e3 times the film. Stage 2 (from
+    // FULL_FIT_MIN_POINTS cases: the 257^2 nightly data reach M = 139 at D = 1 and 1000 at
+    // D = 0.1) frees everything and is kept only when physical and better.
     let all_free = point_free(pts);
     let free: Vec<usize> = all_free
         .iter()
@@ -449,29 +492,16 @@ fn point_report(
     }
     let mut all = all_free.clone();
     all.extend([12, 13]);
-    let mut fits = Fits([None, None, None]);
-    let mut models = vec![];
-    for (k, film) in Film::ALL.into_iter().enumerate() {
-        let Some(data) = samples(pts, film) else {
-            continue;
-        };
-        let scale: f64 = if film == Film::Minimum { 0.6 } else { 1.0 };
-        let mut start = PointModel::nvm();
-        for k in [2, 8] {
-            start.x[k] += scale.ln();
-        }
-        let f = staged(&data, &start, &free, &all, PointModel::physical)
-            .map_err(|e| format!("point {}: {e}", film.name()))?;
-        models.push((film, f.model.clone()));
-        fits.0[k] = Some(quantity(
-            film,
-            pts,
-            f,
-            &POINT_PARAM_NAMES,
-            FittedModel::Point,
-        ));
-    }
-    let mut report = fits.into_report("point", pts, failed);
+    let recipe = Recipe {
+        contact: "point",
+        start: point_start,
+        stage1: free,
+        stage2: all,
+        physical: PointModel::physical,
+        names: &POINT_PARAM_NAMES,
+        wrap: FittedModel::Point,
+    };
+    let (mut report, models) = fit_films(&recipe, pts, failed)?;
     if limit_solves {
         report.asymptotes = point_checks(&models, pts);
     }
