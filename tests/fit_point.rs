@@ -51,6 +51,10 @@ fn point_fit_beats_nvm_and_checks_its_asymptotes() {
     assert!(h_c.overall.max.abs() < 0.02, "{}", h_c.overall.max);
     assert!(h_c.overall.max.abs() < 0.5 * nvm.max.abs());
     assert!(h_c.overall.rms < 0.5 * nvm.rms);
+    // H_min: NVM's form follows the side-lobe minimum poorly at high L; the stage-2 fallback that
+    // holds the RP law keeps the fit to 12.7 % (18.4 % without it, its free RP law ran off).
+    let h_min = r.h_min.as_ref().unwrap();
+    assert!(h_min.overall.max.abs() < 0.15, "{:?}", h_min.overall);
     // The film at the pressure maximum: 2.96 % against NVM's 5.85 %.
     let h_pm = r.h_pm.as_ref().unwrap();
     assert!(h_pm.overall.max.abs() < nvm_pm.max.abs());
