@@ -80,21 +80,12 @@ fn selection_uses_the_line_model_only_inside_its_gate() {
 
 #[test]
 fn sweep_rows_of_the_line_model_are_valid_and_say_so() {
-    let dir = std::env::temp_dir().join(format!("ehlmap-slender-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let spec = dir.join("sl.toml");
-    std::fs::write(
-        &spec,
+    let (dir, _, out) = common::sweep_in_temp(
+        "slender",
+        "sl",
         "name = \"sl\"\ncontact = \"point\"\n[axes]\nM = [1000]\nL = [0]\nD = [0.02, 0.5]\n\
          [numerics]\ngrid = 65\naccuracy = 0.05\n",
-    )
-    .unwrap();
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_ehlmap"))
-        .args(["sweep", spec.to_str().unwrap(), "--out"])
-        .arg(&dir)
-        .args(["--progress", "none"])
-        .output()
-        .unwrap();
+    );
     let log = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{log}");
     assert!(log.contains("slender-line 1"), "{log}");

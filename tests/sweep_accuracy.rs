@@ -1,31 +1,19 @@
 //! Sweeps with an accuracy target: each case stops at the first grid whose error estimate meets
 //! the target (up to the spec's grid), and the estimate is stored in H_c_err / H_min_err.
 
+mod common;
+
 use ehlmap::io::results::read_dataset;
 use std::process::Command;
 
 #[test]
 fn sweep_accuracy_target_picks_the_grid_per_case() {
-    let dir = std::env::temp_dir().join(format!("ehlmap-acc-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let spec = dir.join("acc.toml");
-    std::fs::write(
-        &spec,
+    let (dir, spec, out) = common::sweep_in_temp(
+        "acc",
+        "acc",
         "name = \"acc\"\ncontact = \"line\"\n[axes]\nM = [20, 100]\nL = [5]\n\
          [numerics]\ngrid = 4097\naccuracy = 0.01\n",
-    )
-    .unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_ehlmap"))
-        .args([
-            "sweep",
-            spec.to_str().unwrap(),
-            "--out",
-            dir.to_str().unwrap(),
-            "--progress",
-            "none",
-        ])
-        .output()
-        .unwrap();
+    );
     assert!(
         out.status.success(),
         "{}",
@@ -62,27 +50,13 @@ fn sweep_accuracy_target_picks_the_grid_per_case() {
 
 #[test]
 fn mixed_sweep_with_targets_records_model_level_and_estimate() {
-    let dir = std::env::temp_dir().join(format!("ehlmap-sel-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let spec = dir.join("sel.toml");
-    std::fs::write(
-        &spec,
+    let (dir, _, out) = common::sweep_in_temp(
+        "sel",
+        "sel",
         "name = \"sel\"\ncontact = [\"line\", \"point\"]\n[axes]\nM = [0.05, 20]\nL = [0]\nD = [1]\n\
          [axes.point]\nM = [20]\nL = [5]\n\
          [numerics]\naccuracy = 0.02\n[numerics.line]\ngrid = 4097\n[numerics.point]\ngrid = 129\n",
-    )
-    .unwrap();
-    let out = Command::new(env!("CARGO_BIN_EXE_ehlmap"))
-        .args([
-            "sweep",
-            spec.to_str().unwrap(),
-            "--out",
-            dir.to_str().unwrap(),
-            "--progress",
-            "none",
-        ])
-        .output()
-        .unwrap();
+    );
     let log = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{log}");
     assert!(log.contains("models used: closed-form 1 ("), "{log}");

@@ -93,8 +93,14 @@ fn line_solve(m: f64, l: f64, el: Elasticity) -> Option<(Outputs, f64)> {
 /// sweep: at M = 1000, D = 1 its H_min came out negative.)
 const POINT_CHECK_GRID: usize = 257;
 
+/// A point limit solve; an elastic one in the rigid-like range (domain-truncation error above
+/// 2 %) is not trusted and not solved.
 fn point_solve(m: f64, l: f64, d: f64, el: Elasticity) -> Option<(Outputs, f64)> {
     let case = PointCase::with_models(m, l, d, models(el)).ok()?;
+    let truncation = PointDomain::of_case(&case, &Default::default()).truncation_error();
+    if el == Elasticity::Elastic && truncation > MAX_ERROR_ESTIMATE {
+        return None;
+    }
     let mut p = PointSolveParams::default();
     p.mg.grid = POINT_CHECK_GRID;
     let s = solve_point(&case, &p);
@@ -192,17 +198,9 @@ struct Laws<'a> {
 fn film_checks(film: Film, s: &LimitSolves, d: Option<f64>, laws: Laws) -> Vec<AsymptoteCheck> {
     let rigid = s.rigid.as_ref().map(|(o, _)| o);
     let none: &[Solve] = &[];
-    // (name, M, L, elasticity, the solve, the trend solves, the solver's value of the film)
+    // (name, M, L, elasticity, the solve, the trend solves)
     let rows = [
-        (
-            "rigid-isoviscous",
-            1.0,
-            0.0,
-            Elasticity::Rigid,
-            rigid,
-            none,
-            rigid.map(|o| film.of_outputs(o)),
-        ),
+        ("rigid-isoviscous", 1.0, 0.0, Elasticity::Rigid, rigid, none),
         (
             "elastic-isoviscous",
             s.m_ei,
@@ -210,7 +208,6 @@ fn film_checks(film: Film, s: &LimitSolves, d: Option<f64>, laws: Laws) -> Vec<A
             Elasticity::Elastic,
             LimitSolves::top(&s.ei),
             &s.ei[..],
-            LimitSolves::top(&s.ei).map(|o| film.of_outputs(o)),
         ),
         (
             "rigid-piezoviscous",
@@ -219,7 +216,6 @@ fn film_checks(film: Film, s: &LimitSolves, d: Option<f64>, laws: Laws) -> Vec<A
             Elasticity::Rigid,
             rigid,
             none,
-            s.rp(film),
         ),
         (
             "elastic-piezoviscous",
@@ -228,7 +224,6 @@ fn film_checks(film: Film, s: &LimitSolves, d: Option<f64>, laws: Laws) -> Vec<A
             Elasticity::Elastic,
             LimitSolves::top(&s.ep),
             &s.ep[..],
-            LimitSolves::top(&s.ep).map(|o| film.of_outputs(o)),
         ),
     ];
     let n = if s.l_max > 0.0 { 4 } else { 2 };
@@ -237,34 +232,38 @@ fn film_checks(film: Film, s: &LimitSolves, d: Option<f64>, laws: Laws) -> Vec<A
         .zip(laws.notes)
         .enumerate()
         .take(n)
-        .map(
-            |(k, (((name, m, l, el, out, solves, solver), law), note))| {
-                // The rigid-piezoviscous law is evaluated at any finite M (it does not depend on M).
-                let fitted = (laws.at)(if m.is_finite() { m } else { 1.0 }, l)[k];
-                let trend = solves
-                    .iter()
-                    .filter_map(|(m, o)| {
-                        o.as_ref()
-                            .map(|o| (*m, film.of_outputs(o) / (laws.at)(*m, l)[k]))
-                    })
-                    .collect();
-                AsymptoteCheck {
-                    quantity: film.name().to_string(),
-                    asymptote: name.to_string(),
-                    law,
-                    m,
-                    l,
-                    d,
-                    elasticity: el.to_string(),
-                    grid: out.map(|o| o.grid),
-                    solver,
-                    fitted,
-                    ratio: solver.map(|v| v / fitted),
-                    note: note.to_string(),
-                    trend,
-                }
-            },
-        )
+        .map(|(k, (((name, m, l, el, out, solves), law), note))| {
+            // The rigid-piezoviscous law is evaluated at any finite M (it does not depend on M);
+            // its solver value is the limit alpha q_max = 1 of the rigid solve, not its film.
+            let fitted = (laws.at)(if m.is_finite() { m } else { 1.0 }, l)[k];
+            let solver = if k == 2 {
+                s.rp(film)
+            } else {
+                out.map(|o| film.of_outputs(o))
+            };
+            let trend = solves
+                .iter()
+                .filter_map(|(m, o)| {
+                    o.as_ref()
+                        .map(|o| (*m, film.of_outputs(o) / (laws.at)(*m, l)[k]))
+                })
+                .collect();
+            AsymptoteCheck {
+                quantity: film.name().to_string(),
+                asymptote: name.to_string(),
+                law,
+                m,
+                l,
+                d,
+                elasticity: el.to_string(),
+                grid: out.map(|o| o.grid),
+                solver,
+                fitted,
+                ratio: solver.map(|v| v / fitted),
+                note: note.to_string(),
+                trend,
+            }
+        })
         .collect()
 }
 
@@ -310,15 +309,7 @@ pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<Asympt
         ds.fold(0.0, f64::max)
     };
     let at_d: Vec<FitPoint> = pts.iter().filter(|p| p.d == Some(d)).copied().collect();
-    let s = LimitSolves::new(&at_d, |m, l, el| {
-        // An elastic trend solve in the rigid-like range is not trusted (its domain truncation).
-        let case = PointCase::with_models(m, l, d, models(el)).ok()?;
-        let truncation = PointDomain::of_case(&case, &Default::default()).truncation_error();
-        if el == Elasticity::Elastic && truncation > MAX_ERROR_ESTIMATE {
-            return None;
-        }
-        point_solve(m, l, d, el)
-    });
+    let s = LimitSolves::new(&at_d, |m, l, el| point_solve(m, l, d, el));
     let mut out = vec![];
     for (film, fit) in fits {
         let x = &fit.x;

@@ -3,9 +3,32 @@
 use ehlmap::params::PointCase;
 use ehlmap::solver::point::{solve_point, PointSolveParams};
 use ehlmap::solver::Status;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+/// Write `spec` (TOML) to `<name>.toml` in a fresh temporary directory tagged `tag` and run
+/// `ehlmap sweep` on it into that directory without progress output: (directory, spec file,
+/// output). The dataset is `directory/<name>`.
+#[allow(dead_code)]
+pub fn sweep_in_temp(tag: &str, name: &str, spec: &str) -> (PathBuf, PathBuf, Output) {
+    let dir = std::env::temp_dir().join(format!("ehlmap-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join(format!("{name}.toml"));
+    std::fs::write(&file, spec).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_ehlmap"))
+        .arg("sweep")
+        .arg(&file)
+        .arg("--out")
+        .arg(&dir)
+        .args(["--progress", "none"])
+        .output()
+        .unwrap();
+    (dir, file, out)
+}
 
 /// Full-model point H_c and H_min extrapolated (Richardson, order 2) from `grid` and its half
 /// grid, and the larger relative change of the two between those grids.
+#[allow(dead_code)]
 pub fn point_reference(c: &PointCase, grid: usize) -> ((f64, f64), f64) {
     let solve = |g: usize| {
         let mut p = PointSolveParams::default();
