@@ -21,7 +21,8 @@ pub struct FitArgs {
     /// Print fit.json to stdout instead of the Markdown report.
     #[arg(long)]
     pub json: bool,
-    /// Skip the solver's asymptote limit solves (a few seconds).
+    /// Skip the solver's asymptote limit solves (a few seconds for line data; for point data about
+    /// 1 min on two cores, 2 on one).
     #[arg(long)]
     pub no_limit_solves: bool,
 }
@@ -29,6 +30,12 @@ pub struct FitArgs {
 /// Run the fit report; returns the exit code.
 pub fn run_fit(a: &FitArgs) -> Result<i32, InputError> {
     let input = load_fit_input(&a.datasets).map_err(InputError)?;
+    if !a.no_limit_solves && !input.point.is_empty() {
+        eprintln!(
+            "fitting; the point asymptote checks solve the limit cases (about 1 min on two cores, \
+             2 on one; --no-limit-solves skips them)"
+        );
+    }
     let report = fit_report(&input, !a.no_limit_solves).map_err(InputError)?;
     // Default beside the first dataset, outside it: the dataset folder holds only Parquet parts
     // (polars' scan_parquet on the folder fails on anything else).

@@ -50,7 +50,8 @@ const POINT_FORM: &str = "Formula (Moes point units, NVM 1994 form): H = { [H_RI
 H_EI/H_RI)); H_RI = c_RI f_RI(D) D^e_RI M^-2, H_EI = a f_EI(D) D^e_EI M^alpha, H_RP = b f_RP(D) \
 D^e_RP L^beta, H_EP = d f_EP(D) D^e_EP M^gamma L^delta, H_00 = c_00/D, with f_* NVM's D factors \
 normalised to 1 at D = 1 and e_* free corrections (0 = NVM; held at 0 when the data have one D). \
-The asymptotes are fitted with alpha_EI and the whole H_EP law first held at NVM's (the \
+H_RI is held: c_RI at the solver's rigid constant, its rigid solves extrapolated to an unbounded \
+domain (35.5 for H_c and H_min, 45.0 for H_pm; NVM 41.3), e_RI = 0. The other asymptotes are fitted with alpha_EI and the whole H_EP law first held at NVM's (the \
 converged point data hardly reach the elastic regimes), then all of them and s0, s1 too (kept only \
 if physical and better) with 40 or more converged cases; c_00 = 1.8 fixed. H_c is the film at \
 the centre, H_pm the film at the pressure maximum on the centre line, H_min the minimum film: \
@@ -180,7 +181,7 @@ fn contact(md: &mut String, c: &ContactReport) {
         );
         let _ = writeln!(
             md,
-            "| film | asymptote | fitted law | at | solver | asymptote | ratio | ratio as M grows | note |\n|---|---|---|---|---|---|---|---|---|"
+            "| film | asymptote | fitted law | at | solver | asymptote | ratio | ratio toward the limit (M or domain scale: ratio) | note |\n|---|---|---|---|---|---|---|---|---|"
         );
         for a in &c.asymptotes {
             let d = a.d.map_or(String::new(), |d| format!(", D = {d}"));
@@ -188,7 +189,10 @@ fn contact(md: &mut String, c: &ContactReport) {
             let trend: Vec<String> = a
                 .trend
                 .iter()
-                .map(|(m, r)| format!("{m:.3}: {r:.4}"))
+                .map(|(m, r)| match a.trend_over.as_str() {
+                    "M" => format!("{m:.3}: {r:.4}"),
+                    over => format!("{over} {m}: {r:.4}"),
+                })
                 .collect();
             let _ = writeln!(
                 md,

@@ -16,4 +16,5 @@ pub mod markdown;
 pub mod model;
 pub mod point_model;
 pub mod report;
+pub mod rigid_point;
 pub mod stats;

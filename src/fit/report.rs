@@ -16,6 +16,7 @@ use crate::fit::checks::{line_checks, point_checks, AsymptoteCheck};
 use crate::fit::lsq::{fit, LsqFit, Sample};
 use crate::fit::model::{FilmModel, LineModel, PARAM_NAMES};
 use crate::fit::point_model::{PointModel, POINT_PARAM_NAMES};
+use crate::fit::rigid_point;
 use crate::fit::stats::{d_table, err_stats, region_table, ErrStats, RegionStats};
 use crate::formulas::{
     dowson_toyoda_line_hc_moes, hamrock_dowson_hc_moes, moes_line_hc, nvm_point_hc,
@@ -474,10 +475,12 @@ fn point_free(pts: &[FitPoint]) -> Vec<usize> {
         .collect()
 }
 
-/// The start of a point fit of `film`: NVM 1994, its elastic laws scaled by 0.6 for H_min.
+/// The start of a point fit of `film`: NVM 1994 with the solver's rigid constant c_RI (held),
+/// its elastic laws scaled by 0.6 for H_min.
 fn point_start(film: Film) -> PointModel {
     let scale: f64 = if film == Film::Minimum { 0.6 } else { 1.0 };
     let mut start = PointModel::nvm();
+    start.x[0] = rigid_point::c_ri(film).ln();
     for k in [2, 8] {
         start.x[k] += scale.ln();
     }
