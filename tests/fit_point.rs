@@ -6,7 +6,9 @@
 //! the other is still fitted.
 
 use ehlmap::fit::dataset::load_fit_input;
-use ehlmap::fit::report::{fit_report, FitInput};
+use ehlmap::fit::point_model::nvm_d_factors;
+use ehlmap::fit::report::{fit_report, Film, FitInput};
+use ehlmap::fit::rigid_point::{RigidPointSolves, C_RI_CENTRE, C_RI_PMAX};
 use std::path::PathBuf;
 use std::process::Command;
 
@@ -178,4 +180,27 @@ fn fit_command_on_a_mixed_dataset_writes_both_sections() {
         );
     }
     std::fs::remove_dir_all(&out).ok();
+}
+
+#[test]
+fn rigid_constant_follows_nvm_d_factor_at_d_one_half() {
+    // The point fit holds H_RI = c_RI f_RI(D) M^-2 with NVM's D factor (e_RI = 0): the solver's
+    // own rigid solves, extrapolated to an unbounded domain, agree with it. Measured ratios
+    // (solver / c_RI f_RI(D)) for H_c: 0.9965, 0.9988, 0.9907, 0.9753 at D = 1, 0.5, 0.25, 0.1;
+    // for H_pm 0.9954, 0.9848, 0.9687, 0.9479.
+    let d = 0.5;
+    let r = RigidPointSolves::run(d).expect("rigid solves converge");
+    let f_ri = nvm_d_factors(d)[0];
+    let films = r.films(Film::Centre);
+    assert!(films[0] < films[1] && films[1] < films[2], "{films:?}");
+    let ratio = r.extrapolated(Film::Centre) / (C_RI_CENTRE * f_ri);
+    assert!((ratio - 1.0).abs() < 0.01, "H_c {ratio}");
+    let ratio = r.extrapolated(Film::PressureMax) / (C_RI_PMAX * f_ri);
+    assert!((ratio - 1.0).abs() < 0.02, "H_pm {ratio}");
+    // H_min is the centre film for a rigid contact.
+    let h_min = r.films(Film::Minimum);
+    assert!(h_min
+        .iter()
+        .zip(films)
+        .all(|(a, b)| (a / b - 1.0).abs() < 1e-12));
 }
