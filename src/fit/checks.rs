@@ -82,8 +82,8 @@ fn models(elasticity: Elasticity) -> Models {
     }
 }
 
-/// Line limit grids: 4097 points, else 2049 (at L = 20 the line smoother stalls on 4097 points
-/// at some M, e.g. 103 and 326, where 2049 converges; its discretisation error is ~1e-4).
+/// Line limit grids: 4097 points, else 2049 (a safety net: until the solver's fallback ladder
+/// gained V(4, 4) cycles the smoother stalled on 4097 points at L = 20 for M = 103 and 326).
 const LINE_CHECK_GRIDS: [usize; 2] = [4097, 2049];
 
 fn line_solve(m: f64, l: f64, el: Elasticity) -> Option<(Outputs, f64)> {
@@ -282,7 +282,7 @@ fn film_checks(film: Film, s: &LimitSolves, d: Option<f64>, laws: Laws) -> Vec<A
 const RP_NOTE: &str =
     "limit alpha q_max = 1 from the rigid L = 0 solve (direct Barus solves diverge)";
 
-/// The line checks (seven solves at 4097 points, or 2049 where 4097 stalls; a few seconds) of
+/// The line checks (seven solves at 4097 points, or 2049 should 4097 fail; a few seconds) of
 /// each fitted film.
 pub fn line_checks(fits: &[(Film, LineModel)], pts: &[FitPoint]) -> Vec<AsymptoteCheck> {
     let s = LimitSolves::new(pts, line_solve);
