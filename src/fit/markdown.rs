@@ -51,11 +51,12 @@ H_EI/H_RI)); H_RI = c_RI f_RI(D) D^e_RI M^-2, H_EI = a f_EI(D) D^e_EI M^alpha, H
 D^e_RP L^beta, H_EP = d f_EP(D) D^e_EP M^gamma L^delta, H_00 = c_00/D, with f_* NVM's D factors \
 normalised to 1 at D = 1 and e_* free corrections (0 = NVM; held at 0 when the data have one D). \
 H_RI is held: c_RI at the solver's rigid constant, its rigid solves extrapolated to an unbounded \
-domain (35.5 for H_c and H_min, 45.0 for H_pm; NVM 41.3), e_RI = 0. The other asymptotes are fitted with alpha_EI and the whole H_EP law first held at NVM's (the \
-converged point data hardly reach the elastic regimes), then all of them and s0, s1 too (kept only \
-if physical and better) with 40 or more converged cases; c_00 = 1.8 fixed. H_c is the film at \
-the centre, H_pm the film at the pressure maximum on the centre line, H_min the minimum film: \
-each has its own fit.";
+domain (35.5 for H_c and H_min, 45.0 for H_pm; NVM 41.3), e_RI = 0. The other asymptotes are \
+fitted with alpha_EI and the whole H_EP law first held at NVM's (the converged point data \
+hardly reach the elastic regimes), then all of them and s0, s1 too (kept only if physical and \
+better) with 40 or more converged cases; c_00 = 1.8 fixed. H_c is the film at the centre, H_pm \
+the film at the pressure maximum on the centre line, H_min the minimum film: each has its own \
+fit.";
 
 fn quantity(md: &mut String, q: &QuantityFit) {
     let _ = writeln!(

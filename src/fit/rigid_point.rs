@@ -11,8 +11,10 @@
 //! default 257^2 solve, whose discretisation error is about 0.2 %), and Richardson extrapolation
 //! in 1/R removes both terms: E1(R) = 2 H(2R) - H(R), H_inf = (4 E1(2R) - E1(R))/3.
 //!
-//! Measured at D = 1, M = 1 (H_c; each value grid-converged by Richardson from two grids):
-//! 24.84, 29.44, 32.26, 33.8 on domains scaled 1, 2, 4, 8; E1 = 34.03, 35.09, 35.40; the
+//! Measured at D = 1, M = 1 (H_c; each value grid-converged by Richardson from two or three
+//! grids; at scale 8 from 513^2 and 1025^2 with the convergence ratio measured at scale 4, its
+//! 2049^2 solve was stopped after 16 minutes): 24.84, 29.44, 32.26, 33.8 on domains scaled
+//! 1, 2, 4, 8; E1 = 34.03, 35.09, 35.40; the
 //! extrapolation is 35.44 from scales 1-4 and 35.50 from scales 2-8, hence [`C_RI_CENTRE`] = 35.5
 //! (+-0.1). The same for the film at the pressure maximum: 31.46, 37.25, 40.80, 42.86; E1 = 43.04,
 //! 44.35, 44.92; extrapolations 44.79 and 45.11: [`C_RI_PMAX`] = 45.0 (+-0.2). (NVM 1994 use 41.3,
