@@ -109,6 +109,16 @@ fn line_asymptotes_agree_with_the_limit_solves() {
     }
     let rp = check("H_pm", "rigid-piezoviscous").ratio.unwrap();
     assert!((rp - 1.0).abs() < 0.05, "H_pm RP ratio {rp}");
+    // Beyond the data: at twice the largest L (20, M = 500) the EI law's share of the blend
+    // falls (like L^-3/4) and the solver / fitted EP law ratio moves to 1 (measured H_pm 1.0078
+    // against 1.0503 at L = 10; the nightly sweep: 1.0053 at L = 40 against 1.0304 at L = 20).
+    let ep = check("H_pm", "elastic-piezoviscous");
+    let (l2, beyond) = ep.beyond.expect("EP solve at twice the largest L");
+    let beyond = beyond.expect("converged");
+    assert_eq!(l2, 20.0);
+    assert!((beyond - 1.0).abs() < 0.01, "beyond {beyond}");
+    assert!((beyond - 1.0).abs() < 0.3 * (ep.ratio.unwrap() - 1.0).abs());
+    assert!(check("H_pm", "elastic-isoviscous").beyond.is_none());
     // The summary counts the checks within 1 %.
     assert!(
         md.contains(

@@ -61,6 +61,12 @@ pub struct AsymptoteCheck {
     /// What the trend's first entry is: "M" or "domain scale".
     #[serde(default = "m_name")]
     pub trend_over: String,
+    /// Elastic-piezoviscous row: (L, solver / fitted law) at the largest M and twice the largest
+    /// L of the data, beyond the swept range, where the EI law's share of the blend is smaller
+    /// (it falls like L^-3/4): whether the ratio keeps approaching 1 past the data. The ratio is
+    /// None when that solve failed.
+    #[serde(default)]
+    pub beyond: Option<(f64, Option<f64>)>,
 }
 
 fn m_name() -> String {
@@ -146,6 +152,8 @@ struct LimitSolves {
     rigid: Option<(Outputs, f64)>,
     ei: Vec<Solve>,
     ep: Vec<Solve>,
+    /// Elastic at the largest M of the EP trend and twice the largest L (L > 0 data only).
+    ep_beyond: Option<Solve>,
 }
 
 impl LimitSolves {
@@ -183,6 +191,10 @@ impl LimitSolves {
             } else {
                 vec![]
             },
+            ep_beyond: (l_max > 0.0).then(|| {
+                let l2 = 2.0 * l_max;
+                (l2, solve(m_ep, l2, Elasticity::Elastic).map(|o| o.0))
+            }),
         }
     }
 
@@ -274,6 +286,10 @@ fn film_checks(film: Film, s: &LimitSolves, d: Option<f64>, laws: Laws) -> Vec<A
                 note: note.to_string(),
                 trend,
                 trend_over: m_name(),
+                beyond: s.ep_beyond.as_ref().filter(|_| k == 3).map(|(l2, o)| {
+                    let law = (laws.at)(s.m_ep, *l2)[3];
+                    (*l2, o.as_ref().map(|o| film.of_outputs(o) / law))
+                }),
             }
         })
         .collect()
@@ -301,7 +317,7 @@ pub fn line_checks(fits: &[(Film, LineModel)], pts: &[FitPoint]) -> Vec<Asymptot
                 "largest M of the data's L = 0 cases",
                 RP_NOTE,
                 "largest L of the data and the largest M there (the RP and EI laws still \
-                 contribute)",
+                 contribute; also solved at twice that L, beyond the data)",
             ],
             at: &|m, l| fit.asymptotes(m, l),
         };
@@ -349,7 +365,7 @@ pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<Asympt
                  error above 2 % are left out",
                 RP_NOTE,
                 "largest L of the data and the largest M there (the other laws still \
-                 contribute)",
+                 contribute; also solved at twice that L, beyond the data)",
             ],
             at: &|m, l| fit.asymptotes(m, l, d),
         };

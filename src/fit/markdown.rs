@@ -207,7 +207,11 @@ fn contact(md: &mut String, c: &ContactReport) {
                 a.solver.map_or("failed".into(), |v| format!("{v:.5}")),
                 a.fitted,
                 a.ratio.map_or("-".into(), |v| format!("{v:.4}")),
-                trend.join(", "),
+                trend.join(", ")
+                    + &a.beyond.map_or(String::new(), |(l, r)| {
+                        let r = r.map_or("solve failed".into(), |r| format!("{r:.4}"));
+                        format!("; L = {l} (beyond the data): {r}")
+                    }),
                 a.note
             );
         }
