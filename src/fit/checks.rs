@@ -121,11 +121,14 @@ fn point_solve(m: f64, l: f64, d: f64, el: Elasticity) -> Option<(Outputs, f64)>
     let mut p = PointSolveParams::default();
     p.mg.grid = POINT_CHECK_GRID;
     let s = solve_point(&case, &p);
-    let ab1 = PointCase::with_models(m, 1.0, d, models(el))
-        .ok()?
-        .venner()
-        .alpha_bar;
+    let ab1 = point_alpha_bar_1(m, d, el)?;
     (s.outputs.status == Status::Converged).then_some((s.outputs, ab1))
+}
+
+/// alpha_bar of a point case at L = 1 (the rigid-piezoviscous row scales it by L).
+fn point_alpha_bar_1(m: f64, d: f64, el: Elasticity) -> Option<f64> {
+    let case = PointCase::with_models(m, 1.0, d, models(el)).ok()?;
+    Some(case.venner().alpha_bar)
 }
 
 /// H_RP at `l` from a rigid isoviscous solve: (c L)^(2/3), c = alpha_bar(L=1) P_max H^(3/2)
@@ -142,9 +145,9 @@ fn max_of<'a>(pts: impl Iterator<Item = &'a FitPoint>, f: fn(&FitPoint) -> f64) 
 /// A limit solve: (M, outputs), None where it did not converge or was not trusted.
 type Solve = (f64, Option<Outputs>);
 
-/// The limit solves of one contact: rigid L = 0 at M = 1; elastic at L = 0 up to the largest M of
-/// the data's L = 0 cases, and at the largest L up to the largest M of those cases (each at
-/// [`TREND_FRACTIONS`] of that M).
+/// The limit solves of one contact: rigid L = 0 at M = 1 (given by the caller); elastic at L = 0
+/// up to the largest M of the data's L = 0 cases, and at the largest L up to the largest M of
+/// those cases (each at [`TREND_FRACTIONS`] of that M), and at twice that L.
 struct LimitSolves {
     m_ei: f64,
     m_ep: f64,
@@ -159,6 +162,7 @@ struct LimitSolves {
 impl LimitSolves {
     fn new(
         pts: &[FitPoint],
+        rigid: Option<(Outputs, f64)>,
         solve: impl Fn(f64, f64, Elasticity) -> Option<(Outputs, f64)>,
     ) -> Self {
         let l_max = max_of(pts.iter(), |p| p.l);
@@ -184,7 +188,7 @@ impl LimitSolves {
             m_ei,
             m_ep,
             l_max,
-            rigid: solve(1.0, 0.0, Elasticity::Rigid),
+            rigid,
             ei: trend(m_ei, 0.0),
             ep: if l_max > 0.0 {
                 trend(m_ep, l_max)
@@ -301,7 +305,7 @@ const RP_NOTE: &str =
 /// The line checks (seven solves at 4097 points, or 2049 should 4097 fail; a few seconds) of
 /// each fitted film.
 pub fn line_checks(fits: &[(Film, LineModel)], pts: &[FitPoint]) -> Vec<AsymptoteCheck> {
-    let s = LimitSolves::new(pts, line_solve);
+    let s = LimitSolves::new(pts, line_solve(1.0, 0.0, Elasticity::Rigid), line_solve);
     let mut out = vec![];
     for (film, fit) in fits {
         let x = &fit.x;
@@ -338,11 +342,17 @@ pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<Asympt
         ds.fold(0.0, f64::max)
     };
     let at_d: Vec<FitPoint> = pts.iter().filter(|p| p.d == Some(d)).copied().collect();
-    // The enlarged-domain rigid solves (about 60 s for the 1025^2 one) beside the others.
-    let (s, domains) = rayon::join(
-        || LimitSolves::new(&at_d, |m, l, el| point_solve(m, l, d, el)),
+    // The enlarged-domain rigid solves (about 60 s for the 1025^2 one) beside the elastic ones;
+    // their default-domain solve is the plain rigid solve of the rigid-piezoviscous row.
+    let (mut s, domains) = rayon::join(
+        || LimitSolves::new(&at_d, None, |m, l, el| point_solve(m, l, d, el)),
         || RigidPointSolves::run(d),
     );
+    s.rigid = domains
+        .as_ref()
+        .and_then(|r| r.default_domain())
+        .zip(point_alpha_bar_1(1.0, d, Elasticity::Rigid))
+        .map(|(o, ab1)| (o.clone(), ab1));
     let mut out = vec![];
     for (film, fit) in fits {
         let x = &fit.x;
@@ -370,7 +380,7 @@ pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<Asympt
             at: &|m, l| fit.asymptotes(m, l, d),
         };
         let mut rows = film_checks(*film, &s, Some(d), laws);
-        match &domains {
+        match domains.as_ref().filter(|r| r.converged()) {
             Some(r) => domain_limit(&mut rows[0], r, *film),
             None => rows[0].note = RIGID_POINT_FAILED.to_string(),
         }

@@ -67,7 +67,7 @@ pub struct RigidPointSolves {
 }
 
 impl RigidPointSolves {
-    /// All three solves at ellipticity `d`; None when one of them does not converge.
+    /// All three solves at ellipticity `d`, converged or not; None only for an invalid `d`.
     pub fn run(d: f64) -> Option<Self> {
         let models = Models {
             elasticity: Elasticity::Rigid,
@@ -88,10 +88,22 @@ impl RigidPointSolves {
                 (scale, solve_point(&case, &p).outputs)
             })
             .collect();
-        solves
+        Some(RigidPointSolves { d, solves })
+    }
+
+    /// Whether every solve converged (the extrapolation needs all three).
+    pub fn converged(&self) -> bool {
+        self.solves
             .iter()
             .all(|(_, o)| o.status == Status::Converged)
-            .then_some(RigidPointSolves { d, solves })
+    }
+
+    /// The converged solve on the default domain (scale 1, 257^2: the plain rigid point solve).
+    pub fn default_domain(&self) -> Option<&Outputs> {
+        self.solves
+            .first()
+            .map(|(_, o)| o)
+            .filter(|o| o.status == Status::Converged)
     }
 
     /// The film on each domain.
