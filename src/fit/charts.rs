@@ -6,7 +6,7 @@
 //! Point charts are drawn at D = 1 (curves, contours) or over all D (parity, error map).
 
 use crate::fit::charts_map::{error_map, regime_map};
-use crate::fit::report::{FitPoint, FittedModel};
+use crate::fit::report::{Film, FitPoint, FittedModel};
 use crate::formulas::{moes_line_hc, nvm_point_hc};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -296,6 +296,12 @@ pub fn write_charts(
     pts: &[FitPoint],
     model: &FittedModel,
 ) -> Result<Vec<String>, String> {
+    // The charts show H_c: the cases whose H_c is within the fit's error limit.
+    let pts: &[FitPoint] = &pts
+        .iter()
+        .filter(|p| Film::Centre.of_point(p).is_some())
+        .copied()
+        .collect::<Vec<_>>();
     if pts.is_empty() {
         return Ok(vec![]);
     }

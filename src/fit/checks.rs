@@ -22,7 +22,7 @@ use crate::fit::dataset::MAX_ERROR_ESTIMATE;
 use crate::fit::model::LineModel;
 use crate::fit::point_model::PointModel;
 use crate::fit::report::{Film, FitPoint};
-use crate::fit::rigid_point::{RigidPointSolves, DOMAIN_SCALES};
+use crate::fit::rigid_point::{extrapolate, RigidPointSolves, DOMAIN_SCALES};
 use crate::params::{Elasticity, LineCase, Models, PointCase};
 use crate::problem::point_domain::PointDomain;
 use crate::solution::Outputs;
@@ -106,20 +106,21 @@ fn line_solve(m: f64, l: f64, el: Elasticity) -> Option<(Outputs, f64)> {
     })
 }
 
-/// Point limit grid. (129^2 under-resolves the elastic solves at the largest M of a 257^2
-/// sweep: at M = 1000, D = 1 its H_min came out negative.)
+/// Smallest point limit grid; the checks solve on the data's finest grid when that is finer.
+/// (129^2 under-resolves the elastic solves at the largest M of a 257^2 sweep: at M = 1000,
+/// D = 1 its H_min came out negative.)
 const POINT_CHECK_GRID: usize = 257;
 
-/// A point limit solve; an elastic one in the rigid-like range (domain-truncation error above
-/// 2 %) is not trusted and not solved.
-fn point_solve(m: f64, l: f64, d: f64, el: Elasticity) -> Option<(Outputs, f64)> {
+/// A point limit solve on `grid` points per direction; an elastic one in the rigid-like range
+/// (domain-truncation error above 2 %) is not trusted and not solved.
+fn point_solve(m: f64, l: f64, d: f64, el: Elasticity, grid: usize) -> Option<(Outputs, f64)> {
     let case = PointCase::with_models(m, l, d, models(el)).ok()?;
     let truncation = PointDomain::of_case(&case, &Default::default()).truncation_error();
     if el == Elasticity::Elastic && truncation > MAX_ERROR_ESTIMATE {
         return None;
     }
     let mut p = PointSolveParams::default();
-    p.mg.grid = POINT_CHECK_GRID;
+    p.mg.grid = grid;
     let s = solve_point(&case, &p);
     let ab1 = point_alpha_bar_1(m, d, el)?;
     (s.outputs.status == Status::Converged).then_some((s.outputs, ab1))
@@ -330,8 +331,8 @@ pub fn line_checks(fits: &[(Film, LineModel)], pts: &[FitPoint]) -> Vec<Asymptot
     out
 }
 
-/// The point checks (seven solves at 257 x 257 points and the rigid solves on enlarged domains:
-/// about 110 s of work, 60 s on two cores) of each fitted film, at D = 1 (else the largest D of
+/// The point checks (seven solves at 257 x 257 points, or the data's finer grid, and the rigid
+/// solves on enlarged domains: about 110 s of work at 257^2, 60 s on two cores) of each fitted film, at D = 1 (else the largest D of
 /// the data).
 pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<AsymptoteCheck> {
     // At D = 1 when the data have it (else their largest D), up to that D's largest M and L.
@@ -342,16 +343,21 @@ pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<Asympt
         ds.fold(0.0, f64::max)
     };
     let at_d: Vec<FitPoint> = pts.iter().filter(|p| p.d == Some(d)).copied().collect();
+    let grid = at_d
+        .iter()
+        .filter_map(|p| p.grid)
+        .fold(POINT_CHECK_GRID, usize::max);
     // The enlarged-domain rigid solves (about 60 s for the 1025^2 one) beside the elastic ones;
     // their default-domain solve is the plain rigid solve of the rigid-piezoviscous row.
     let (mut s, domains) = rayon::join(
-        || LimitSolves::new(&at_d, None, |m, l, el| point_solve(m, l, d, el)),
+        || LimitSolves::new(&at_d, None, |m, l, el| point_solve(m, l, d, el, grid)),
         || RigidPointSolves::run(d),
     );
+    let ab1 = point_alpha_bar_1(1.0, d, Elasticity::Rigid);
     s.rigid = domains
         .as_ref()
         .and_then(|r| r.default_domain())
-        .zip(point_alpha_bar_1(1.0, d, Elasticity::Rigid))
+        .zip(ab1)
         .map(|(o, ab1)| (o.clone(), ab1));
     let mut out = vec![];
     for (film, fit) in fits {
@@ -381,7 +387,12 @@ pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<Asympt
         };
         let mut rows = film_checks(*film, &s, Some(d), laws);
         match domains.as_ref().filter(|r| r.converged()) {
-            Some(r) => domain_limit(&mut rows[0], r, *film),
+            Some(r) => {
+                domain_limit(&mut rows[0], r, *film);
+                if let (Some(row), Some(ab1)) = (rows.get_mut(2), ab1) {
+                    domain_rp(row, r, *film, ab1);
+                }
+            }
             None => rows[0].note = RIGID_POINT_FAILED.to_string(),
         }
         out.extend(rows);
@@ -394,6 +405,32 @@ const RIGID_POINT_NOTE: &str = "rigid solves, L = 0 (H M^2 is exact for any M) o
      r^-3: H is low by about 1/R; src/fit/rigid_point.rs)";
 const RIGID_POINT_FAILED: &str = "rigid solve, L = 0, default domain only (an enlarged-domain \
      solve did not converge): biased low by its truncation, about 30 %";
+
+/// The rigid-piezoviscous row from the domain-enlarged solves: c = alpha_bar(L = 1) P_max
+/// H^(3/2) on each domain (the default domain's is biased like its film), extrapolated in 1/R
+/// like the film; the solver value is (c L)^(2/3), the trend the ratio on each domain.
+fn domain_rp(row: &mut AsymptoteCheck, r: &RigidPointSolves, film: Film, ab1: f64) {
+    let c = [0, 1, 2].map(|k| {
+        let o = &r.solves[k].1;
+        ab1 * o.p_max * film.of_outputs(o).powf(1.5)
+    });
+    let h_rp = |c: f64| (c * row.l).powf(2.0 / 3.0);
+    let solver = h_rp(extrapolate(c));
+    row.solver = Some(solver);
+    row.ratio = Some(solver / row.fitted);
+    row.grid = r.solves.last().map(|(_, o)| o.grid);
+    row.trend = DOMAIN_SCALES
+        .iter()
+        .zip(c)
+        .map(|(s, c)| (*s, h_rp(c) / row.fitted))
+        .collect();
+    row.trend_over = "domain scale".to_string();
+    row.note = RP_POINT_NOTE.to_string();
+}
+
+const RP_POINT_NOTE: &str = "limit alpha q_max = 1 from the rigid L = 0 solves on the default \
+     domain enlarged 1, 2, 4 times, extrapolated to an unbounded one like the rigid-isoviscous \
+     row (direct Barus solves diverge)";
 
 /// The rigid-isoviscous row from the domain-enlarged solves: the solver value is their
 /// extrapolation, the trend the ratio on each domain.

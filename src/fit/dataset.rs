@@ -1,15 +1,18 @@
 //! Reading sweep datasets for the fit: every part file of each directory (arrow-rs reader),
 //! deduplicated by case id across directories, converged valid rows only, split by contact
 //! (line / point; a mixed dataset gives both); failed rows and duplicates are counted for the
-//! report. Converged rows whose Richardson error estimate of H_c or H_min exceeds
-//! [`MAX_ERROR_ESTIMATE`] are left out as grid-unconverged (a fit to 2 % cannot use data that are
-//! themselves uncertain by more), each listed with its estimate in the report; so are point rows
+//! report. A film whose Richardson error estimate (H_c_err, H_min_err) exceeds
+//! [`MAX_ERROR_ESTIMATE`] is left out of its film's fit as grid-unconverged (a fit to 2 % cannot
+//! use data that are themselves uncertain by more; [`crate::fit::report::Film::of_point`]); rows
+//! where both exceed it are left out, each listed with its estimate in the report; rows used for
+//! one film only are listed too (on the 513^2 nightly point sweep H_c is converged to 2 % at
+//! M = 1000, D = 1, H_min at the exit constriction is not). So are point rows
 //! whose domain-truncation error estimate (`PointDomain::truncation_error`, 2.5 times the change
 //! a doubled domain makes; rigid-like cases at small M) exceeds the same limit. (Filtering on the
 //! doubling change alone, `PointDomain::bias`, kept rows that are some 4 % low: on the nightly
 //! point sweep at 257^2 the fit's max error was then 3.8 %, at M = 7.2, L = 5, D = 1, with the
 //! fit above the data; with this filter 1.8 %.) The film at the pressure maximum (`H_c_pmax`,
-//! fitted as H_pm) has no error estimate of its own: rows are filtered on H_c's and H_min's.
+//! fitted as H_pm) has no error estimate of its own: it needs both H_c's and H_min's.
 //! The datasets carry no G column, so `FitPoint::g` is None (formulas that need G are skipped by
 //! the report).
 
@@ -21,7 +24,7 @@ use crate::select::ModelChoice;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
-/// Largest Richardson error estimate (H_c_err, H_min_err) of a row used by the fit.
+/// Largest Richardson error estimate (H_c_err, H_min_err) of a film used by the fit.
 pub const MAX_ERROR_ESTIMATE: f64 = 0.02;
 
 /// Load the fit input from one or more dataset directories.
@@ -56,10 +59,14 @@ pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, String> {
                 h_min,
                 g: None,
                 h_pm: row.h_c_pmax.filter(|v| v.is_finite() && *v > 0.0),
+                grid: row.grid.and_then(|g| usize::try_from(g).ok()),
+                h_c_err: row.h_c_err,
+                h_min_err: row.h_min_err,
             }),
             _ => None,
         };
-        let est = row.h_c_err.unwrap_or(0.0).max(row.h_min_err.unwrap_or(0.0));
+        let (err_c, err_min) = (row.h_c_err.unwrap_or(0.0), row.h_min_err.unwrap_or(0.0));
+        let est = err_c.min(err_min);
         let truncation = domain_truncation(row);
         if point.is_some() && truncation > MAX_ERROR_ESTIMATE {
             input.excluded.push(format!(
@@ -75,15 +82,32 @@ pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, String> {
         }
         if point.is_some() && est > MAX_ERROR_ESTIMATE {
             input.excluded.push(format!(
-                "{} M = {:.4}, L = {}{}: error estimate {:.1} % > {:.0} %",
+                "{} M = {:.4}, L = {}{}: error estimates H_c {:.1} %, H_min {:.1} % > {:.0} %",
                 row.contact,
                 row.m,
                 row.l,
                 row.d.map_or(String::new(), |d| format!(", D = {d}")),
-                100.0 * est,
+                100.0 * err_c,
+                100.0 * err_min,
                 100.0 * MAX_ERROR_ESTIMATE
             ));
             continue;
+        }
+        if point.is_some() && err_c.max(err_min) > MAX_ERROR_ESTIMATE {
+            let (used, other, e) = if err_c > err_min {
+                ("H_min", "H_c", err_c)
+            } else {
+                ("H_c", "H_min", err_min)
+            };
+            input.one_film.push(format!(
+                "{} M = {:.4}, L = {}{}: {used} only ({other} error estimate {:.1} % > {:.0} %)",
+                row.contact,
+                row.m,
+                row.l,
+                row.d.map_or(String::new(), |d| format!(", D = {d}")),
+                100.0 * e,
+                100.0 * MAX_ERROR_ESTIMATE
+            ));
         }
         match (row.contact.as_str(), point) {
             ("line", Some(p)) => input.line.push(p),

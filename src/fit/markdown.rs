@@ -45,16 +45,16 @@ converged cases (a 1 sigma of 0 marks a parameter held fixed). H_pm, the film at
 maximum (Moes' central film), is fitted with the same form and its own exact H_RI = 3/M (the \
 flux thickness); H_min with H_RI = 2.4475/M.";
 
-const POINT_FORM: &str = "Formula (Moes point units, NVM 1994 form): H = { [H_RI^(3/2) + \
-(H_EI^-4 + H_00^-4)^(-3/8)]^(2s/3) + (H_RP^-8 + H_EP^-8)^(-s/8) }^(1/s), s = s0 (1 + exp(-s1 \
+const POINT_FORM: &str = "Formula (Moes point units, NVM 1994 form): H = { [H_RI^r + \
+(H_EI^-4 + H_00^-4)^(-r/4)]^(s/r) + (H_RP^-8 + H_EP^-8)^(-s/8) }^(1/s), s = s0 (1 + exp(-s1 \
 H_EI/H_RI)); H_RI = c_RI f_RI(D) D^e_RI M^-2, H_EI = a f_EI(D) D^e_EI M^alpha, H_RP = b f_RP(D) \
 D^e_RP L^beta, H_EP = d f_EP(D) D^e_EP M^gamma L^delta, H_00 = c_00/D, with f_* NVM's D factors \
 normalised to 1 at D = 1 and e_* free corrections (0 = NVM; held at 0 when the data have one D). \
 H_RI is held: c_RI at the solver's rigid constant, its rigid solves extrapolated to an unbounded \
 domain (35.5 for H_c and H_min, 45.0 for H_pm; NVM 41.3), e_RI = 0. The other asymptotes are \
 fitted with alpha_EI and the whole H_EP law first held at NVM's (the converged point data \
-hardly reach the elastic regimes), then all of them and s0, s1 too (kept only if physical and \
-better) with 40 or more converged cases; c_00 = 1.8 fixed. H_c is the film at the centre, H_pm \
+hardly reach the elastic regimes), then all of them and the blend (s0, s1, c_00, r: NVM's 1.5, 1.2, 1.8, 3/2) too (kept only \
+if physical, identified and better) with 40 or more converged cases. H_c is the film at the centre, H_pm \
 the film at the pressure maximum on the centre line, H_min the minimum film: each has its own \
 fit.";
 
@@ -231,6 +231,9 @@ pub fn to_markdown(r: &FitReport) -> String {
     );
     for e in &r.excluded {
         let _ = writeln!(md, "Excluded: {e}.");
+    }
+    for e in &r.one_film {
+        let _ = writeln!(md, "Used for one film only: {e}.");
     }
     contact(&mut md, &r.line);
     contact(&mut md, &r.point);

@@ -13,6 +13,7 @@
 //! "skipped: N cases, need at least K"; the report fails only when no contact could be fitted.
 
 use crate::fit::checks::{line_checks, point_checks, AsymptoteCheck};
+use crate::fit::dataset::MAX_ERROR_ESTIMATE;
 use crate::fit::lsq::{fit, LsqFit, Sample};
 use crate::fit::model::{FilmModel, LineModel, PARAM_NAMES};
 use crate::fit::point_model::{PointModel, POINT_PARAM_NAMES};
@@ -55,6 +56,16 @@ pub struct FitPoint {
     pub g: Option<f64>,
     #[serde(default)]
     pub h_pm: Option<f64>,
+    /// Points per direction of the solve (the limit checks solve point cases on at least this).
+    #[serde(default)]
+    pub grid: Option<usize>,
+    /// Richardson error estimates of H_c and H_min (None: not estimated). A film whose estimate
+    /// exceeds [`MAX_ERROR_ESTIMATE`] is left out of that film's fit ([`Film::of_point`]); H_pm,
+    /// which has no estimate of its own, needs both within it.
+    #[serde(default)]
+    pub h_c_err: Option<f64>,
+    #[serde(default)]
+    pub h_min_err: Option<f64>,
 }
 
 /// The film a fit describes.
@@ -83,12 +94,14 @@ impl Film {
         }
     }
 
-    /// This film of a dataset case (None when the dataset does not carry it).
+    /// This film of a dataset case (None when the dataset does not carry it, or when its error
+    /// estimate exceeds [`MAX_ERROR_ESTIMATE`]).
     pub fn of_point(self, p: &FitPoint) -> Option<f64> {
+        let ok = |e: Option<f64>| e.is_none_or(|e| e <= MAX_ERROR_ESTIMATE);
         match self {
-            Film::Centre => Some(p.h_c),
-            Film::PressureMax => p.h_pm,
-            Film::Minimum => Some(p.h_min),
+            Film::Centre => ok(p.h_c_err).then_some(p.h_c),
+            Film::PressureMax => p.h_pm.filter(|_| ok(p.h_c_err) && ok(p.h_min_err)),
+            Film::Minimum => ok(p.h_min_err).then_some(p.h_min),
         }
     }
 
@@ -119,6 +132,9 @@ pub struct FitInput {
     pub duplicates: usize,
     /// Rows left out with the reason (e.g. an error estimate above the threshold).
     pub excluded: Vec<String>,
+    /// Rows used for one film only (the other film's error estimate is above the threshold).
+    #[serde(default)]
+    pub one_film: Vec<String>,
 }
 
 /// A fitted parameter with its one-sigma uncertainty (0: held fixed).
@@ -202,6 +218,9 @@ pub struct FitReport {
     pub datasets: Vec<String>,
     pub duplicate_rows: usize,
     pub excluded: Vec<String>,
+    /// Rows used for one film only, with the reason.
+    #[serde(default)]
+    pub one_film: Vec<String>,
     pub line: ContactReport,
     pub point: ContactReport,
 }
@@ -221,10 +240,12 @@ fn samples(pts: &[FitPoint], film: Film) -> Vec<Sample> {
 }
 
 /// Fit the `r.stage1` parameters from `start`; with enough data refit all of `r.stage2` from
-/// there and keep it when it stays physical and fits better; if it does not, try once more with
+/// there and keep it when it stays physical, identified (every sigma finite: J^T J not
+/// singular) and fits better; if it does not, try once more with
 /// the rigid-piezoviscous law (`r.rp`) held at its stage-1 fit (a freed RP law can run off when
 /// the data hardly see it: the point H_min fit on the 257^2 nightly sweep sent b_RP to e^-40;
-/// holding it brought the max error from 18 % to 13 %).
+/// holding it brought the max error from 18 % to 13 %), then with the `r.late` parameters held
+/// at their start, then with both held.
 fn staged<Mo: FilmModel>(
     data: &[Sample],
     start: &Mo,
@@ -234,15 +255,22 @@ fn staged<Mo: FilmModel>(
     if data.len() < FULL_FIT_MIN_POINTS || r.stage2.len() <= r.stage1.len() {
         return Ok(f);
     }
-    let held: Vec<usize> = r
-        .stage2
-        .iter()
-        .copied()
-        .filter(|k| !r.rp.contains(k))
-        .collect();
-    for free in [&r.stage2, &held] {
+    let without = |out: &[usize]| -> Vec<usize> {
+        r.stage2
+            .iter()
+            .copied()
+            .filter(|k| !out.contains(k))
+            .collect()
+    };
+    let both: Vec<usize> = r.rp.iter().chain(r.late).copied().collect();
+    let mut tries = vec![r.stage2.clone(), without(r.rp)];
+    if !r.late.is_empty() {
+        tries.extend([without(r.late), without(&both)]);
+    }
+    for free in &tries {
         if let Ok(g) = fit(data, &f.model, free) {
-            if (r.physical)(&g.model) && g.rms_log < f.rms_log {
+            let identified = g.sigma.iter().all(|s| s.is_finite());
+            if (r.physical)(&g.model) && identified && g.rms_log < f.rms_log {
                 f = g;
                 break;
             }
@@ -383,6 +411,8 @@ struct Recipe<Mo> {
     stage2: Vec<usize>,
     /// The rigid-piezoviscous law's parameters (held in the fallback of [`staged`]).
     rp: &'static [usize],
+    /// Blend parameters held at their start in the later fallbacks of [`staged`].
+    late: &'static [usize],
     physical: fn(&Mo) -> bool,
     names: &'static [&'static str],
     wrap: fn(Mo) -> FittedModel,
@@ -443,6 +473,7 @@ fn line_report(
         stage1: LINE_STAGE1.to_vec(),
         stage2: LINE_STAGE2.to_vec(),
         rp: &[2, 3],
+        late: &[],
         physical: line_physical,
         names: &PARAM_NAMES,
         wrap: FittedModel::Line,
@@ -496,7 +527,7 @@ fn point_report(
     // elastic cases (129^2 data reached M ~ 50, D = 1: M ~ 20) they are not identifiable; freed,
     // alpha_EI turned positive and H_EP ran off to 1e3 times the film. Stage 2 (from
     // FULL_FIT_MIN_POINTS cases: the 257^2 nightly data reach M = 139 at D = 1 and 1000 at
-    // D = 0.1) frees everything and is kept only when physical and better.
+    // D = 0.1) frees everything and is kept only when physical, identified and better.
     let all_free = point_free(pts);
     let free: Vec<usize> = all_free
         .iter()
@@ -508,13 +539,15 @@ fn point_report(
         return Ok(skipped("point", pts.len(), failed, need));
     }
     let mut all = all_free.clone();
-    all.extend([12, 13]);
+    // The blend: s0, s1, c_00 and the rigid/elastic isoviscous power r.
+    all.extend([12, 13, 14, 15]);
     let recipe = Recipe {
         contact: "point",
         start: point_start,
         stage1: free,
         stage2: all,
         rp: &[5, 6, 7],
+        late: &[14, 15],
         physical: PointModel::physical,
         names: &POINT_PARAM_NAMES,
         wrap: FittedModel::Point,
@@ -558,7 +591,46 @@ pub fn fit_report(input: &FitInput, limit_solves: bool) -> Result<FitReport, Str
         datasets: input.datasets.clone(),
         duplicate_rows: input.duplicates,
         excluded: input.excluded.clone(),
+        one_film: input.one_film.clone(),
         line,
         point,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_film_with_a_large_error_estimate_is_left_out_of_its_fit_only() {
+        let p = FitPoint {
+            m: 372.76,
+            l: 0.0,
+            d: Some(1.0),
+            h_c: 0.98,
+            h_min: 0.59,
+            g: None,
+            h_pm: Some(0.97),
+            grid: Some(513),
+            h_c_err: Some(0.012),
+            h_min_err: Some(0.035),
+        };
+        assert_eq!(Film::Centre.of_point(&p), Some(0.98));
+        assert_eq!(Film::Minimum.of_point(&p), None);
+        // H_pm has no estimate of its own: it needs both.
+        assert_eq!(Film::PressureMax.of_point(&p), None);
+        let q = FitPoint {
+            h_min_err: Some(0.02),
+            ..p
+        };
+        assert_eq!(Film::Minimum.of_point(&q), Some(0.59));
+        assert_eq!(Film::PressureMax.of_point(&q), Some(0.97));
+        // No estimate (a dataset solved without one): every film is used.
+        let r = FitPoint {
+            h_c_err: None,
+            h_min_err: None,
+            ..p
+        };
+        assert!(Film::ALL.iter().all(|f| f.of_point(&r).is_some()));
+    }
 }
