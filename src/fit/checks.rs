@@ -416,15 +416,7 @@ fn domain_rp(row: &mut AsymptoteCheck, r: &RigidPointSolves, film: Film, ab1: f6
     });
     let h_rp = |c: f64| (c * row.l).powf(2.0 / 3.0);
     let solver = h_rp(extrapolate(c));
-    row.solver = Some(solver);
-    row.ratio = Some(solver / row.fitted);
-    row.grid = r.solves.last().map(|(_, o)| o.grid);
-    row.trend = DOMAIN_SCALES
-        .iter()
-        .zip(c)
-        .map(|(s, c)| (*s, h_rp(c) / row.fitted))
-        .collect();
-    row.trend_over = "domain scale".to_string();
+    set_domain_row(row, r, solver, c.map(h_rp));
     row.note = RP_POINT_NOTE.to_string();
 }
 
@@ -435,14 +427,23 @@ const RP_POINT_NOTE: &str = "limit alpha q_max = 1 from the rigid L = 0 solves o
 /// The rigid-isoviscous row from the domain-enlarged solves: the solver value is their
 /// extrapolation, the trend the ratio on each domain.
 fn domain_limit(row: &mut AsymptoteCheck, r: &RigidPointSolves, film: Film) {
-    let films = r.films(film);
-    let solver = r.extrapolated(film);
+    set_domain_row(row, r, r.extrapolated(film), r.films(film));
+}
+
+/// A row whose solver value is the domain extrapolation `solver` of the values `per_domain` on
+/// the [`DOMAIN_SCALES`] (its trend: the ratio on each domain).
+fn set_domain_row(
+    row: &mut AsymptoteCheck,
+    r: &RigidPointSolves,
+    solver: f64,
+    per_domain: [f64; 3],
+) {
     row.solver = Some(solver);
     row.ratio = Some(solver / row.fitted);
     row.grid = r.solves.last().map(|(_, o)| o.grid);
     row.trend = DOMAIN_SCALES
         .iter()
-        .zip(films)
+        .zip(per_domain)
         .map(|(s, h)| (*s, h / row.fitted))
         .collect();
     row.trend_over = "domain scale".to_string();

@@ -70,11 +70,9 @@ pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, String> {
         let truncation = domain_truncation(row);
         if point.is_some() && truncation > MAX_ERROR_ESTIMATE {
             input.excluded.push(format!(
-                "point M = {:.4}, L = {}, D = {}: domain truncation error about {:.0} % > {:.0} % \
+                "{}: domain truncation error about {:.0} % > {:.0} % \
                  (rigid-like case, see src/problem/point_domain.rs)",
-                row.m,
-                row.l,
-                row.d.unwrap_or(f64::NAN),
+                label(row),
                 100.0 * truncation,
                 100.0 * MAX_ERROR_ESTIMATE
             ));
@@ -82,11 +80,8 @@ pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, String> {
         }
         if point.is_some() && est > MAX_ERROR_ESTIMATE {
             input.excluded.push(format!(
-                "{} M = {:.4}, L = {}{}: error estimates H_c {:.1} %, H_min {:.1} % > {:.0} %",
-                row.contact,
-                row.m,
-                row.l,
-                row.d.map_or(String::new(), |d| format!(", D = {d}")),
+                "{}: error estimates H_c {:.1} %, H_min {:.1} % > {:.0} %",
+                label(row),
                 100.0 * err_c,
                 100.0 * err_min,
                 100.0 * MAX_ERROR_ESTIMATE
@@ -100,11 +95,8 @@ pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, String> {
                 ("H_c", "H_min", err_min)
             };
             input.one_film.push(format!(
-                "{} M = {:.4}, L = {}{}: {used} only ({other} error estimate {:.1} % > {:.0} %)",
-                row.contact,
-                row.m,
-                row.l,
-                row.d.map_or(String::new(), |d| format!(", D = {d}")),
+                "{}: {used} only ({other} error estimate {:.1} % > {:.0} %)",
+                label(row),
                 100.0 * e,
                 100.0 * MAX_ERROR_ESTIMATE
             ));
@@ -117,6 +109,17 @@ pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, String> {
         }
     }
     Ok(input)
+}
+
+/// "line M = .., L = .." or "point M = .., L = .., D = ..": a row in the report's lists.
+fn label(row: &CaseRow) -> String {
+    format!(
+        "{} M = {:.4}, L = {}{}",
+        row.contact,
+        row.m,
+        row.l,
+        row.d.map_or(String::new(), |d| format!(", D = {d}"))
+    )
 }
 
 /// The domain-truncation error estimate of a point row solved on a point grid (0 otherwise).
