@@ -116,7 +116,7 @@ fn committed_point_specs_are_valid() {
     assert_eq!(smoke.contacts[0].numerics.grid, 65);
     assert_eq!(ehlmap::sweep::plan::plan(&smoke).unwrap().len(), 8);
     let nightly = spec::load(&root.join("sweeps/nightly-point.toml")).unwrap();
-    assert_eq!(nightly.contacts[0].numerics.grid, 257);
+    assert_eq!(nightly.contacts[0].numerics.grid, 513);
     assert!(nightly.contacts[0].numerics.error_estimate);
     assert_eq!(nightly.m.len(), 8);
     assert_eq!((nightly.m[0], nightly.m[7]), (1.0, 1000.0));
