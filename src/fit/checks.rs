@@ -331,9 +331,10 @@ pub fn line_checks(fits: &[(Film, LineModel)], pts: &[FitPoint]) -> Vec<Asymptot
     out
 }
 
-/// The point checks (seven solves at 257 x 257 points, or the data's finer grid, and the rigid
-/// solves on enlarged domains: about 110 s of work at 257^2, 60 s on two cores) of each fitted film, at D = 1 (else the largest D of
-/// the data).
+/// The point checks of each fitted film, at D = 1 (else the largest D of the data): seven
+/// elastic solves at 257 x 257 points, or the data's finer grid, and the rigid solves on
+/// enlarged domains (about 110 s of work at 257^2, 60 s on two cores; on the 513^2 nightly
+/// data 10 min, most of it elastic L = 20 solves that run the whole fallback ladder and fail).
 pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<AsymptoteCheck> {
     // At D = 1 when the data have it (else their largest D), up to that D's largest M and L.
     let ds = pts.iter().filter_map(|p| p.d);

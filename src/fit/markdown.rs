@@ -53,10 +53,10 @@ normalised to 1 at D = 1 and e_* free corrections (0 = NVM; held at 0 when the d
 H_RI is held: c_RI at the solver's rigid constant, its rigid solves extrapolated to an unbounded \
 domain (35.5 for H_c and H_min, 45.0 for H_pm; NVM 41.3), e_RI = 0. The other asymptotes are \
 fitted with alpha_EI and the whole H_EP law first held at NVM's (the converged point data \
-hardly reach the elastic regimes), then all of them and the blend (s0, s1, c_00, r: NVM's 1.5, 1.2, 1.8, 3/2) too (kept only \
-if physical, identified and better) with 40 or more converged cases. H_c is the film at the centre, H_pm \
-the film at the pressure maximum on the centre line, H_min the minimum film: each has its own \
-fit.";
+hardly reach the elastic regimes), then all of them and the blend (s0, s1, c_00, r: NVM's \
+1.5, 1.2, 1.8, 3/2) too (kept only if physical, identified and better) with 40 or more \
+converged cases. H_c is the film at the centre, H_pm the film at the pressure maximum on the \
+centre line, H_min the minimum film: each has its own fit.";
 
 fn quantity(md: &mut String, q: &QuantityFit) {
     let _ = writeln!(

@@ -13,8 +13,8 @@
 //! c_00 and r are freed with the other blend parameters once the data are many (the line model
 //! frees its blending powers likewise): on the 513^2 nightly point sweep, whose converged H_c
 //! reach M = 1000 at every D, NVM's c_00 = 1.8 and r = 3/2 left the L = 0 rows' curvature in M
-//! unmatched (max error 2.95 %, at M = 52, D = 0.25); freed, c_00 = 1.7 and r = 1.0, and the
-//! max error is 1.6 %.
+//! unmatched (max error 2.95 %, at M = 52, D = 0.25); freed, c_00 = 1.61 and r = 1.02 for H_c,
+//! and the max error is 1.63 %.
 //!
 //! Why this D form: NVM's D factors carry the Hertzian geometry (the contact ellipse and the load
 //! per unit length at y = 0), which is what makes the elliptic EI and EP asymptotes tend to the
