@@ -6,7 +6,7 @@
 
 use ehlmap::fit::dataset::load_fit_input;
 use ehlmap::fit::markdown::to_markdown;
-use ehlmap::fit::report::{fit_report, FitInput};
+use ehlmap::fit::report::{fit_report, Film, FitInput, FitPoint};
 use std::path::PathBuf;
 use std::process::Command;
 
@@ -214,4 +214,37 @@ fn fit_command_writes_report_json_and_charts() {
         .unwrap();
     assert_eq!(bad.status.code(), Some(2));
     std::fs::remove_dir_all(&out).ok();
+}
+
+#[test]
+fn a_film_with_a_large_error_estimate_is_left_out_of_its_fit_only() {
+    let p = FitPoint {
+        m: 372.76,
+        l: 0.0,
+        d: Some(1.0),
+        h_c: 0.98,
+        h_min: 0.59,
+        g: None,
+        h_pm: Some(0.97),
+        grid: Some(513),
+        h_c_err: Some(0.012),
+        h_min_err: Some(0.035),
+    };
+    assert_eq!(Film::Centre.of_point(&p), Some(0.98));
+    assert_eq!(Film::Minimum.of_point(&p), None);
+    // H_pm has no estimate of its own: it needs both.
+    assert_eq!(Film::PressureMax.of_point(&p), None);
+    let q = FitPoint {
+        h_min_err: Some(0.02),
+        ..p
+    };
+    assert_eq!(Film::Minimum.of_point(&q), Some(0.59));
+    assert_eq!(Film::PressureMax.of_point(&q), Some(0.97));
+    // No estimate (a dataset solved without one): every film is used.
+    let r = FitPoint {
+        h_c_err: None,
+        h_min_err: None,
+        ..p
+    };
+    assert!(Film::ALL.iter().all(|f| f.of_point(&r).is_some()));
 }
