@@ -102,6 +102,18 @@ fn summary(md: &mut String, c: &ContactReport) {
             100.0 * max,
             100.0 * MAX_ERROR_TARGET
         );
+        if max > MAX_ERROR_TARGET {
+            match &q.within_target {
+                Some(r) => {
+                    let _ = write!(
+                        line,
+                        ", met for M in [{:.4}, {:.4}] ({} of {} cases)",
+                        r.m_lo, r.m_hi, r.n, r.of
+                    );
+                }
+                None => line.push_str(", met at no M of the data"),
+            }
+        }
         for p in c.published.iter().filter(|p| p.against == q.quantity) {
             if let Some(all) = &p.overall {
                 let cmp = if max < all.max.abs() {

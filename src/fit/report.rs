@@ -15,10 +15,13 @@
 use crate::fit::checks::{line_checks, point_checks, AsymptoteCheck};
 use crate::fit::dataset::MAX_ERROR_ESTIMATE;
 use crate::fit::lsq::{fit, LsqFit, Sample};
+use crate::fit::markdown::MAX_ERROR_TARGET;
 use crate::fit::model::{FilmModel, LineModel, PARAM_NAMES};
 use crate::fit::point_model::{PointModel, POINT_PARAM_NAMES};
 use crate::fit::rigid_point;
-use crate::fit::stats::{d_table, err_stats, region_table, ErrStats, RegionStats};
+use crate::fit::stats::{
+    d_table, err_stats, region_table, target_range, ErrStats, RegionStats, TargetRange,
+};
 use crate::formulas::{
     dowson_toyoda_line_hc_moes, hamrock_dowson_hc_moes, moes_line_hc, nvm_point_hc,
 };
@@ -174,6 +177,10 @@ pub struct QuantityFit {
     pub regions: Vec<RegionStats>,
     /// Per D (point contacts).
     pub per_d: Vec<RegionStats>,
+    /// The M range over which the fit meets the 2 % target ([`MAX_ERROR_TARGET`]); None when no
+    /// M value of the data has all its cases within it.
+    #[serde(default)]
+    pub within_target: Option<TargetRange>,
 }
 
 fn h_c_name() -> String {
@@ -316,6 +323,7 @@ fn quantity<Mo: FilmModel>(
         overall: err_stats(&tuples).expect("non-empty data"),
         regions: region_table(&tuples),
         per_d: d_table(&dts),
+        within_target: target_range(&tuples, MAX_ERROR_TARGET),
     }
 }
 

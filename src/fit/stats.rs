@@ -1,5 +1,6 @@
 //! Relative-error statistics of a formula against numerical data: overall and per region of the
-//! (M, L) plane (M decades x L bands), so a report shows where a formula is weak.
+//! (M, L) plane (M decades x L bands), so a report shows where a formula is weak, and the M range
+//! over which it meets a target ([`target_range`]), so it says where it can be trusted.
 
 use serde::{Deserialize, Serialize};
 
@@ -94,6 +95,62 @@ pub fn region_table(points: &[(f64, f64, f64, f64)]) -> Vec<RegionStats> {
     out
 }
 
+/// The M range over which a formula meets a target: every case with M in [`m_lo`, `m_hi`] (all
+/// L, all D) has |formula/data - 1| <= `target`.
+///
+/// [`m_lo`]: TargetRange::m_lo
+/// [`m_hi`]: TargetRange::m_hi
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TargetRange {
+    pub target: f64,
+    pub m_lo: f64,
+    pub m_hi: f64,
+    /// Cases in the range, and in all.
+    pub n: usize,
+    pub of: usize,
+}
+
+/// The run of consecutive M values of the data (each with all its cases within `target`) that
+/// holds the most cases; on a tie the higher M range (the elastic end, where formulas are used
+/// most). None when no M value has all its cases within the target.
+pub fn target_range(points: &[(f64, f64, f64, f64)], target: f64) -> Option<TargetRange> {
+    let mut ms: Vec<f64> = points.iter().map(|p| p.0).collect();
+    ms.sort_by(f64::total_cmp);
+    ms.dedup();
+    // (cases at this M, all of them within the target) per distinct M, in increasing M.
+    let per_m: Vec<(usize, bool)> = ms
+        .iter()
+        .map(|&m| {
+            let at: Vec<_> = points.iter().filter(|p| p.0 == m).collect();
+            let ok = at
+                .iter()
+                .all(|&&(_, _, f, d)| (f / d - 1.0).abs() <= target);
+            (at.len(), ok)
+        })
+        .collect();
+    let mut best: Option<(usize, usize, usize)> = None; // (first, last, cases)
+    let mut start = 0;
+    let mut cases = 0;
+    for (k, &(n, ok)) in per_m.iter().enumerate() {
+        if !ok {
+            start = k + 1;
+            cases = 0;
+            continue;
+        }
+        cases += n;
+        if best.is_none_or(|(_, _, c)| cases >= c) {
+            best = Some((start, k, cases));
+        }
+    }
+    best.map(|(a, b, n)| TargetRange {
+        target,
+        m_lo: ms[a],
+        m_hi: ms[b],
+        n,
+        of: points.len(),
+    })
+}
+
 /// Statistics per ellipticity D of (D, formula, data) tuples, in increasing D.
 pub fn d_table(points: &[(f64, f64, f64)]) -> Vec<RegionStats> {
     let mut ds: Vec<f64> = points.iter().map(|p| p.0).collect();
@@ -133,5 +190,38 @@ mod tests {
         let t = region_table(&pts);
         assert_eq!(t.len(), 3);
         assert_eq!(t[0].region, "M < 10, L = 0");
+    }
+
+    /// Errors (formula/data - 1) of a made-up formula on a grid of M x L: a bad row at M = 2 and
+    /// one at M = 500 split the range; the longer run between them (M = 5 .. 200) is kept.
+    #[test]
+    fn target_range_is_the_longest_run_of_m_values_within_the_target() {
+        let ms = [1.0, 2.0, 5.0, 10.0, 50.0, 200.0, 500.0, 1000.0];
+        let mut pts = vec![];
+        for &m in &ms {
+            for l in [0.0, 10.0] {
+                let e = match (m, l) {
+                    (2.0, 10.0) => 0.045,
+                    (500.0, 0.0) => -0.021,
+                    _ => 0.019,
+                };
+                pts.push((m, l, 1.0 + e, 1.0));
+            }
+        }
+        let r = target_range(&pts, 0.02).unwrap();
+        assert_eq!((r.m_lo, r.m_hi, r.n, r.of), (5.0, 200.0, 8, 16));
+        // Everything within a looser target: the whole range.
+        let r = target_range(&pts, 0.05).unwrap();
+        assert_eq!((r.m_lo, r.m_hi, r.n), (1.0, 1000.0, 16));
+        // Nothing within a tight one.
+        assert!(target_range(&pts, 0.01).is_none());
+        // A tie (one M value each side of the bad one) goes to the higher M.
+        let two = [
+            (1.0, 0.0, 1.0, 1.0),
+            (2.0, 0.0, 1.5, 1.0),
+            (3.0, 0.0, 1.0, 1.0),
+        ];
+        let r = target_range(&two, 0.02).unwrap();
+        assert_eq!((r.m_lo, r.m_hi, r.n, r.of), (3.0, 3.0, 1, 3));
     }
 }
