@@ -3,7 +3,7 @@
 //! [`model`] (line, Moes 1992 form) and [`point_model`] (point, NVM 1994 form) define the
 //! blended-asymptote formulas, [`lsq`] fits either in log space by Levenberg-Marquardt with
 //! parameter uncertainties, [`stats`] turns formula-vs-data errors into tables (overall and per
-//! region of the (M, L) plane), [`checks`] compares the fitted asymptotes with the solver's limit
+//! region of the (M, L) plane), [`film`] names the films fitted, [`checks`] compares the fitted asymptotes with the solver's limit
 //! solves, [`report`] and [`markdown`] assemble the report, [`charts`] draws it.
 
 pub mod charts;
@@ -11,6 +11,7 @@ pub mod charts_map;
 pub mod checks;
 pub mod cli;
 pub mod dataset;
+pub mod film;
 pub mod lsq;
 pub mod markdown;
 pub mod model;

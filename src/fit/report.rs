@@ -13,7 +13,7 @@
 //! "skipped: N cases, need at least K"; the report fails only when no contact could be fitted.
 
 use crate::fit::checks::{line_checks, point_checks, AsymptoteCheck};
-use crate::fit::dataset::MAX_ERROR_ESTIMATE;
+pub use crate::fit::film::Film;
 use crate::fit::lsq::{fit, LsqFit, Sample};
 use crate::fit::markdown::MAX_ERROR_TARGET;
 use crate::fit::model::{FilmModel, LineModel, PARAM_NAMES};
@@ -26,7 +26,6 @@ use crate::formulas::{
     dowson_toyoda_line_hc_moes, hamrock_dowson_hc_moes, moes_line_hc, nvm_point_hc,
 };
 use crate::select::MARTIN_FLUX;
-use crate::solution::Outputs;
 use serde::{Deserialize, Serialize};
 
 /// The exact rigid-isoviscous constant of the line film at X = 0 (Martin, Reynolds exit condition).
@@ -63,59 +62,12 @@ pub struct FitPoint {
     #[serde(default)]
     pub grid: Option<usize>,
     /// Richardson error estimates of H_c and H_min (None: not estimated). A film whose estimate
-    /// exceeds [`MAX_ERROR_ESTIMATE`] is left out of that film's fit ([`Film::of_point`]); H_pm,
-    /// which has no estimate of its own, needs both within it.
+    /// exceeds [`crate::fit::dataset::MAX_ERROR_ESTIMATE`] is left out of that film's fit
+    /// ([`Film::of_point`]); H_pm, which has no estimate of its own, needs both within it.
     #[serde(default)]
     pub h_c_err: Option<f64>,
     #[serde(default)]
     pub h_min_err: Option<f64>,
-}
-
-/// The film a fit describes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Film {
-    /// H_c: the film at X = 0 (Y = 0).
-    Centre,
-    /// H_pm: the film at the pressure maximum on the centre line, Moes' central film (its
-    /// rigid-isoviscous line limit is the flux thickness 3/M). Where the piezoviscous spike is
-    /// the global maximum it is the film under the spike, up to 0.9 % below H_c on the nightly
-    /// line sweep (M 14-122, L 8-20).
-    PressureMax,
-    /// H_min: the minimum film.
-    Minimum,
-}
-
-impl Film {
-    pub const ALL: [Film; 3] = [Film::Centre, Film::PressureMax, Film::Minimum];
-
-    /// The name used in reports and `fit.json` (H_c, H_pm, H_min).
-    pub fn name(self) -> &'static str {
-        match self {
-            Film::Centre => "H_c",
-            Film::PressureMax => "H_pm",
-            Film::Minimum => "H_min",
-        }
-    }
-
-    /// This film of a dataset case (None when the dataset does not carry it, or when its error
-    /// estimate exceeds [`MAX_ERROR_ESTIMATE`]).
-    pub fn of_point(self, p: &FitPoint) -> Option<f64> {
-        let ok = |e: Option<f64>| e.is_none_or(|e| e <= MAX_ERROR_ESTIMATE);
-        match self {
-            Film::Centre => ok(p.h_c_err).then_some(p.h_c),
-            Film::PressureMax => p.h_pm.filter(|_| ok(p.h_c_err) && ok(p.h_min_err)),
-            Film::Minimum => ok(p.h_min_err).then_some(p.h_min),
-        }
-    }
-
-    /// This film of a solve.
-    pub fn of_outputs(self, o: &Outputs) -> f64 {
-        match self {
-            Film::Centre => o.h_c,
-            Film::PressureMax => o.h_c_pmax,
-            Film::Minimum => o.h_min,
-        }
-    }
 }
 
 impl FitPoint {
