@@ -2,7 +2,9 @@
 //! coefficients and uncertainties, error tables overall / per (M, L) region / per D, the
 //! published formulas on the same cases, asymptote checks), or the reason it was skipped.
 
-use crate::fit::report::{ContactReport, FitReport, QuantityFit};
+use crate::fit::report::{
+    ContactReport, FitReport, QuantityFit, ASYMPTOTE_TARGET, MAX_ERROR_TARGET,
+};
 use crate::fit::stats::{ErrStats, RegionStats};
 use std::fmt::Write;
 
@@ -75,11 +77,6 @@ fn quantity(md: &mut String, q: &QuantityFit) {
         table(md, &q.overall, &q.per_d);
     }
 }
-
-/// The fit's targets: max error within [`MAX_ERROR_TARGET`] of the data, below the published
-/// formulas' on the same film, asymptotes within [`ASYMPTOTE_TARGET`] of the limit solves.
-pub const MAX_ERROR_TARGET: f64 = 0.02;
-pub const ASYMPTOTE_TARGET: f64 = 0.01;
 
 /// One line per film: its max error against the target and the published formulas on the same
 /// film, and how many of its asymptote checks are within their target.

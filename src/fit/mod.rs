@@ -3,8 +3,9 @@
 //! [`model`] (line, Moes 1992 form) and [`point_model`] (point, NVM 1994 form) define the
 //! blended-asymptote formulas, [`lsq`] fits either in log space by Levenberg-Marquardt with
 //! parameter uncertainties, [`stats`] turns formula-vs-data errors into tables (overall and per
-//! region of the (M, L) plane), [`film`] names the films fitted, [`checks`] compares the fitted asymptotes with the solver's limit
-//! solves, [`report`] and [`markdown`] assemble the report, [`charts`] draws it.
+//! region of the (M, L) plane, and the M range that meets a target), [`film`] names the films
+//! fitted, [`checks`] compares the fitted asymptotes with the solver's limit solves, [`report`]
+//! and [`markdown`] assemble the report, [`charts`] draws it.
 
 pub mod charts;
 pub mod charts_map;

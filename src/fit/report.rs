@@ -15,7 +15,6 @@
 use crate::fit::checks::{line_checks, point_checks, AsymptoteCheck};
 pub use crate::fit::film::Film;
 use crate::fit::lsq::{fit, LsqFit, Sample};
-use crate::fit::markdown::MAX_ERROR_TARGET;
 use crate::fit::model::{FilmModel, LineModel, PARAM_NAMES};
 use crate::fit::point_model::{PointModel, POINT_PARAM_NAMES};
 use crate::fit::rigid_point;
@@ -42,6 +41,11 @@ pub const B_RP_CENTRAL: f64 = 1.0496;
 /// sweep at 257^2 keeps 46 cases, and freeing those laws takes its H_c max error from 4.0 % to
 /// 1.8 %; no line dataset in use has 40-59 cases.
 pub const FULL_FIT_MIN_POINTS: usize = 40;
+
+/// The fit's targets: max error within [`MAX_ERROR_TARGET`] of the data, below the published
+/// formulas' on the same film, asymptotes within [`ASYMPTOTE_TARGET`] of the limit solves.
+pub const MAX_ERROR_TARGET: f64 = 0.02;
+pub const ASYMPTOTE_TARGET: f64 = 0.01;
 
 /// Extra cases required beyond the number of free parameters.
 pub const SPARE_CASES: usize = 5;
