@@ -111,7 +111,7 @@ fn point_fit_beats_nvm_and_checks_its_asymptotes() {
     let check = |name: &str| check("H_c", name);
     // Why the fitted rigid-piezoviscous law is not the limit (README, known limits): the elastic
     // films at the largest L lie well above it (measured: limit 0.7098 L^(2/3) = 5.23 at L = 20,
-    // D = 1; fitted H_c 7.29 and 7.09 at M = 52 and 139, +36-40 %), and the blend's
+    // D = 1; the data H_c 7.29 and 7.09 at M = 52 and 139, +36-40 %), and the blend's
     // piezoviscous bracket never exceeds H_RP, so a law that fits them sits above the limit.
     let rp = check("rigid-piezoviscous");
     assert_eq!((rp.l, rp.d), (20.0, Some(1.0)));
