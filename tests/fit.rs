@@ -256,7 +256,8 @@ fn a_film_with_a_large_error_estimate_is_left_out_of_its_fit_only() {
 #[test]
 fn the_report_gives_the_m_range_where_each_fit_meets_its_target() {
     let input = load_fit_input(&[data()]).unwrap();
-    let r = fit_report(&input, false).unwrap().line;
+    let report = fit_report(&input, false).unwrap();
+    let r = &report.line;
     let h_c = r.h_c.as_ref().unwrap();
     let range = h_c.within_target.as_ref().unwrap();
     assert_eq!(
@@ -271,7 +272,7 @@ fn the_report_gives_the_m_range_where_each_fit_meets_its_target() {
     assert!(below.map(|p| err(p).abs()).fold(0.0, f64::max) > 0.02);
     let h_pm = r.h_pm.as_ref().unwrap().within_target.as_ref().unwrap();
     assert_eq!((h_pm.m_lo, h_pm.m_hi, h_pm.n), (2.0, 500.0, 32));
-    let md = to_markdown(&fit_report(&input, false).unwrap());
+    let md = to_markdown(&report);
     assert!(
         md.contains("(target 2 %: not met), met for M in [10.0000, 500.0000] (24 of 32 cases)"),
         "{md}"
