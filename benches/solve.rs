@@ -4,8 +4,8 @@
 //! Target (issue 2): M = 20, L = 10 on 4097 points converged (load error < 1e-6, H_c within 0.1 %
 //! of the fully converged value) in under 50 ms on one core.
 
-use ehlmap::params::LineCase;
-use ehlmap::solver::line::{solve_line, LineSolveParams};
+use ehlmap::model::case::LineCase;
+use ehlmap::solve::line::{solve_line, LineSolveParams};
 use std::time::Instant;
 
 fn median(mut v: Vec<f64>) -> f64 {

@@ -5,12 +5,12 @@ fn main() {
     let cli = Cli::parse();
     let result = match &cli.command {
         Command::Solve(a) => run_solve(a),
-        Command::Sweep(a) => ehlmap::sweep::cli::run_sweep(a),
-        Command::Fit(a) => ehlmap::fit::cli::run_fit(a),
+        Command::Sweep(a) => ehlmap::cli::sweep::run_sweep(a),
+        Command::Fit(a) => ehlmap::cli::fit::run_fit(a),
         Command::Case(a) => ehlmap::cli::run_case(a),
-        Command::Bench(a) => ehlmap::bench::cli::run_bench(a),
-        Command::Stability(a) => ehlmap::bench::cli::run_stability(a),
-        Command::Chart(a) => ehlmap::regimes::run_chart(a),
+        Command::Bench(a) => ehlmap::cli::bench::run_bench(a),
+        Command::Stability(a) => ehlmap::cli::bench::run_stability(a),
+        Command::Chart(a) => ehlmap::model::regimes::run_chart(a),
     };
     match result {
         Ok(code) => std::process::exit(code),

@@ -1,10 +1,10 @@
 //! Accuracy targets: the reported error estimate must be honest, i.e. the true error against a
 //! much finer solve (Richardson over 4097 and 8193 points) is below the estimate.
 
-use ehlmap::accuracy::richardson2;
-use ehlmap::params::LineCase;
-use ehlmap::solver::line::{solve_line, solve_line_to_accuracy, LineSolveParams};
-use ehlmap::solver::Status;
+use ehlmap::model::case::LineCase;
+use ehlmap::solve::line::{solve_line, solve_line_to_accuracy, LineSolveParams};
+use ehlmap::solve::Status;
+use ehlmap::strategy::accuracy::richardson2;
 
 fn reference(case: &LineCase) -> (f64, f64) {
     let run = |g: usize| {
@@ -61,8 +61,8 @@ fn error_estimates_are_honest_on_a_validation_set() {
 /// Point contacts: the same check, against Richardson over 129^2 and 257^2 nodes.
 #[test]
 fn point_error_estimates_are_honest_on_a_validation_set() {
-    use ehlmap::params::PointCase;
-    use ehlmap::solver::point::{solve_point, solve_point_to_accuracy, PointSolveParams};
+    use ehlmap::model::case::PointCase;
+    use ehlmap::solve::point::{solve_point, solve_point_to_accuracy, PointSolveParams};
     let run = |c: &PointCase, g: usize| {
         let mut p = PointSolveParams::default();
         p.mg.grid = g;

@@ -1,11 +1,11 @@
 //! The baseline solvers (dense Newton-Raphson, single-grid relaxation) solve the same discrete
 //! problem as the multigrid: on the same grid they must give the same answer.
 
-use ehlmap::params::{Elasticity, LineCase, Models};
-use ehlmap::solver::line::{solve_line, LineSolveParams, Method};
-use ehlmap::solver::Status;
+use ehlmap::model::case::{Elasticity, LineCase, Models};
+use ehlmap::solve::line::{solve_line, LineSolveParams, Method};
+use ehlmap::solve::Status;
 
-fn run(case: &LineCase, method: Method, grid: usize) -> ehlmap::solution::Outputs {
+fn run(case: &LineCase, method: Method, grid: usize) -> ehlmap::solve::solution::Outputs {
     let mut p = LineSolveParams {
         method,
         ..Default::default()

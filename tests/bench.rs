@@ -3,7 +3,7 @@
 //! order, and the Pareto summary picks a converged, accurate-enough run.
 
 use ehlmap::bench::{speed, stability};
-use ehlmap::params::{LineCase, PointCase};
+use ehlmap::model::case::{LineCase, PointCase};
 
 #[test]
 fn methods_share_the_discretisation_error_and_pareto_is_consistent() {

@@ -5,8 +5,8 @@
 //! are left out and listed; the fit uses the other 32.
 
 use ehlmap::fit::dataset::load_fit_input;
-use ehlmap::fit::markdown::to_markdown;
-use ehlmap::fit::report::{fit_report, Film, FitInput, FitPoint};
+use ehlmap::report::markdown::to_markdown;
+use ehlmap::report::{fit_report, Film, FitInput, FitPoint};
 use std::path::PathBuf;
 use std::process::Command;
 

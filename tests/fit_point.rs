@@ -7,8 +7,8 @@
 
 use ehlmap::fit::dataset::load_fit_input;
 use ehlmap::fit::point_model::nvm_d_factors;
-use ehlmap::fit::report::{fit_report, Film, FitInput};
-use ehlmap::fit::rigid_point::{RigidPointSolves, C_RI_CENTRE, C_RI_PMAX};
+use ehlmap::limits::rigid_point::{RigidPointSolves, C_RI_CENTRE, C_RI_PMAX};
+use ehlmap::report::{fit_report, Film, FitInput};
 use std::path::PathBuf;
 use std::process::Command;
 
@@ -18,7 +18,7 @@ fn dir(name: &str) -> PathBuf {
         .join(name)
 }
 
-fn param(q: &ehlmap::fit::report::QuantityFit, name: &str) -> (f64, f64) {
+fn param(q: &ehlmap::report::QuantityFit, name: &str) -> (f64, f64) {
     let p = q.params.iter().find(|p| p.name == name).unwrap();
     (p.value, p.sigma)
 }

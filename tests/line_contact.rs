@@ -2,12 +2,12 @@
 //! solution, the Hertz pressure of a dry contact, grid-convergence rates, Moes' 1992 formula,
 //! conservation of load, and honest failure reporting.
 
-use ehlmap::accuracy::richardson3;
-use ehlmap::formulas::moes_line_hc;
-use ehlmap::params::{Elasticity, LineCase, Models};
-use ehlmap::solver::line::{solve_line, LineSolution, LineSolveParams};
-use ehlmap::solver::multigrid::{LineMgParams, LineMultigrid};
-use ehlmap::solver::Status;
+use ehlmap::model::case::{Elasticity, LineCase, Models};
+use ehlmap::model::formulas::moes_line_hc;
+use ehlmap::solve::line::multigrid::{LineMgParams, LineMultigrid};
+use ehlmap::solve::line::{solve_line, LineSolution, LineSolveParams};
+use ehlmap::solve::Status;
+use ehlmap::strategy::accuracy::richardson3;
 
 fn solve(m: f64, l: f64, models: Models, grid: usize) -> LineSolution {
     let case = LineCase::with_models(m, l, models).unwrap();

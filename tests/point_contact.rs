@@ -2,15 +2,15 @@
 //! FMG code's grid-converged circular case (PHYSICS.md section 6), second-order grid convergence,
 //! load conservation and P >= 0, and honest statuses on extreme input.
 
-use ehlmap::params::PointCase;
-use ehlmap::problem::point::PointPhysics;
-use ehlmap::solver::fmg::fmg_solve;
-use ehlmap::solver::line::Method;
-use ehlmap::solver::point::{solve_point, PointMgParams, PointSolveParams};
-use ehlmap::solver::point_mg::PointMultigrid;
-use ehlmap::solver::Status;
+use ehlmap::discrete::point::operator::PointPhysics;
+use ehlmap::model::case::PointCase;
+use ehlmap::solve::fmg::fmg_solve;
+use ehlmap::solve::line::Method;
+use ehlmap::solve::point::multigrid::PointMultigrid;
+use ehlmap::solve::point::{solve_point, PointMgParams, PointSolveParams};
+use ehlmap::solve::Status;
 
-fn solve(m: f64, l: f64, d: f64, grid: usize) -> ehlmap::solver::point::PointSolution {
+fn solve(m: f64, l: f64, d: f64, grid: usize) -> ehlmap::solve::point::PointSolution {
     let case = PointCase::new(m, l, d).unwrap();
     let p = PointSolveParams {
         mg: PointMgParams {
@@ -143,7 +143,7 @@ fn elliptic_films_follow_nvm_where_it_is_a_good_fit() {
     for (m, d) in [(30.0, 0.5), (100.0, 0.25), (30.0, 1.0)] {
         let s = solve(m, 10.0, d, 129);
         assert_eq!(s.outputs.status, Status::Converged, "{}", s.outputs.reason);
-        let nvm = ehlmap::formulas::nvm_point_hc(m, 10.0, d);
+        let nvm = ehlmap::model::formulas::nvm_point_hc(m, 10.0, d);
         let dev = s.outputs.h_c / nvm - 1.0;
         assert!(
             dev.abs() < 0.06,
@@ -235,7 +235,7 @@ fn newton_relaxation_and_multigrid_solve_the_same_discrete_problem() {
 /// in an elastic one.
 #[test]
 fn domain_bias_estimate_matches_a_doubled_domain() {
-    use ehlmap::problem::point_domain::PointDomain;
+    use ehlmap::discrete::point::domain::PointDomain;
     for (m, d) in [(5.0, 1.0), (20.0, 0.25), (30.0, 1.0)] {
         let case = PointCase::new(m, 0.0, d).unwrap();
         let bias = PointDomain::of_case(&case, &Default::default()).bias();
@@ -275,8 +275,8 @@ fn domain_bias_estimate_matches_a_doubled_domain() {
 /// error estimate and says the target is not met when that breaks it.
 #[test]
 fn accuracy_target_counts_the_domain_truncation() {
-    use ehlmap::problem::point_domain::PointDomain;
-    use ehlmap::solver::point::solve_point_to_accuracy;
+    use ehlmap::discrete::point::domain::PointDomain;
+    use ehlmap::solve::point::solve_point_to_accuracy;
     let case = PointCase::new(5.0, 0.0, 1.0).unwrap();
     let t = PointDomain::of_case(&case, &Default::default()).truncation_error();
     assert!(t > 0.2 && t < 0.3, "{t}");

@@ -3,9 +3,9 @@
 //! and no NaN in any file.
 
 use arrow_array::Float64Array;
-use ehlmap::io::fields::write_fields;
-use ehlmap::io::results::read_dataset;
-use ehlmap::solver::point::PointFields;
+use ehlmap::solve::point::PointFields;
+use ehlmap::store::fields::write_fields;
+use ehlmap::store::results::read_dataset;
 use ehlmap::sweep::spec::{self, Contact};
 use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
 use std::path::{Path, PathBuf};

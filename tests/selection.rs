@@ -1,15 +1,15 @@
-//! Model selection (`ehlmap::select`): each simplification is checked against the full model,
+//! Model selection (`ehlmap::strategy::select`): each simplification is checked against the full model,
 //! solved independently on two fine grids and Richardson-extrapolated (order 2), and the
 //! reported error estimate must bound the true error.
 
 mod common;
 
 use common::point_reference;
-use ehlmap::params::{LineCase, PointCase};
-use ehlmap::select::{solve_line_selected, solve_point_selected, ModelChoice};
-use ehlmap::solver::line::{solve_line, LineSolveParams};
-use ehlmap::solver::point::PointSolveParams;
-use ehlmap::solver::Status;
+use ehlmap::model::case::{LineCase, PointCase};
+use ehlmap::solve::line::{solve_line, LineSolveParams};
+use ehlmap::solve::point::PointSolveParams;
+use ehlmap::solve::Status;
+use ehlmap::strategy::select::{solve_line_selected, solve_point_selected, ModelChoice};
 
 const TARGET: f64 = 0.01;
 

@@ -1,4 +1,4 @@
-//! Slender elliptic contacts answered by a line contact (`ehlmap::slender`): the gap bound is
+//! Slender elliptic contacts answered by a line contact (`ehlmap::strategy::slender`): the gap bound is
 //! checked on a validation set that was not used to set it, against point solves on 129^2 and
 //! 257^2 nodes extrapolated (Richardson, order 2), and the selection picks the line model only
 //! inside its gate, with an answer within the target of the point reference.
@@ -6,12 +6,12 @@
 mod common;
 
 use common::point_reference;
-use ehlmap::params::PointCase;
-use ehlmap::select::{solve_point_selected, ModelChoice};
-use ehlmap::slender::{equivalent_line, gap_bound, point_outputs};
-use ehlmap::solver::line::{solve_line, LineSolveParams};
-use ehlmap::solver::point::PointSolveParams;
-use ehlmap::solver::Status;
+use ehlmap::model::case::PointCase;
+use ehlmap::solve::line::{solve_line, LineSolveParams};
+use ehlmap::solve::point::PointSolveParams;
+use ehlmap::solve::Status;
+use ehlmap::strategy::select::{solve_point_selected, ModelChoice};
+use ehlmap::strategy::slender::{equivalent_line, gap_bound, point_outputs};
 
 fn gap(got: (f64, f64), reference: (f64, f64)) -> f64 {
     (got.0 / reference.0 - 1.0)
@@ -89,7 +89,7 @@ fn sweep_rows_of_the_line_model_are_valid_and_say_so() {
     let log = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{log}");
     assert!(log.contains("slender-line 1"), "{log}");
-    let rows = ehlmap::io::results::read_dataset(&dir.join("sl")).unwrap();
+    let rows = ehlmap::store::results::read_dataset(&dir.join("sl")).unwrap();
     assert_eq!(rows.len(), 2);
     for r in &rows {
         assert_eq!(r.status, "converged", "{}", r.reason);

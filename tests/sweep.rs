@@ -3,7 +3,7 @@
 //! variables), resume skipping stored ids, and a real `kill -9` of a running sweep.
 //! The sweeps are tiny (257 points) so that the file runs in seconds.
 
-use ehlmap::io::results::{is_part_name, part_files, read_dataset, read_part, CaseRow};
+use ehlmap::store::results::{is_part_name, part_files, read_dataset, read_part, CaseRow};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};

@@ -3,7 +3,7 @@
 
 mod common;
 
-use ehlmap::io::results::read_dataset;
+use ehlmap::store::results::read_dataset;
 use std::process::Command;
 
 #[test]

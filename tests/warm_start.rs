@@ -1,10 +1,10 @@
-//! Warm starts (`ehlmap::sweep::warm`): a line solve started on the finest level from a solved
+//! Warm starts (`ehlmap::strategy::warm`): a line solve started on the finest level from a solved
 //! neighbour's pressure converges to the same solution as the cold FMG solve, whatever the
 //! guess's film level; neighbour cases get their own ids.
 
-use ehlmap::params::LineCase;
-use ehlmap::solver::line::{solve_line, solve_line_from, warm_guess, LineSolveParams};
-use ehlmap::solver::Status;
+use ehlmap::model::case::LineCase;
+use ehlmap::solve::line::{solve_line, solve_line_from, warm_guess, LineSolveParams};
+use ehlmap::solve::Status;
 
 fn params(grid: usize) -> LineSolveParams {
     let mut p = LineSolveParams::default();
@@ -86,7 +86,7 @@ fn sweep_rows_count_the_warm_start_chain() {
     // The cost is the cold ladder's plus the whole chain's (recomputed here: deterministic).
     let mut spent = (0.0, 0.0);
     let p = solve_params(&failing, 257);
-    assert!(ehlmap::sweep::warm::warm_start_line(&failing, &p, &mut spent).is_none());
+    assert!(ehlmap::strategy::warm::warm_start_line(&failing, &p, &mut spent).is_none());
     assert!(spent.0 > 0.5 * c.info.work_units, "{spent:?}");
     let expect = c.info.work_units + spent.0;
     let got = row.work_units.unwrap();

@@ -6,7 +6,6 @@
 //! map. Both write a Parquet table and charts. [`selection`] measures what model selection and
 //! accuracy targets save on a sweep spec (`ehlmap bench --selection SPEC`).
 
-pub mod cli;
 pub mod selection;
 pub mod speed;
 pub mod stability;

@@ -1,5 +1,5 @@
 //! The saving of "model no more than a case needs": every case of a sweep spec solved twice,
-//! (a) with an accuracy target, i.e. the cheapest verified model (`crate::select`) on the
+//! (a) with an accuracy target, i.e. the cheapest verified model (`crate::strategy::select`) on the
 //! coarsest grid whose error estimate meets the target, and (b) with the full model on the
 //! spec's finest grid, as a sweep without a target would. Both go through the sweep's own row
 //! builder ([`solve_case`]); the cases run in parallel on the current rayon pool, each solve on
@@ -8,9 +8,9 @@
 //! Reported: total time of (a) and (b), cases per model, and the deviation of (a) from (b),
 //! which the target should bound wherever (b) is itself converged to better than the target.
 
-use crate::io::results::CaseRow;
+use crate::store::results::CaseRow;
+use crate::sweep::executor::solve_case;
 use crate::sweep::plan::Case;
-use crate::sweep::run::solve_case;
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;

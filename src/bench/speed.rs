@@ -2,12 +2,12 @@
 //! grids count points per direction; dense Newton runs on point grids up to 33^2 only, the
 //! smoother alone up to 65^2.
 
-use crate::accuracy::richardson2;
-use crate::params::{LineCase, PointCase};
-use crate::solution::Outputs;
-use crate::solver::line::{solve_line, LineSolveParams, Method};
-use crate::solver::multigrid::CycleType;
-use crate::solver::point::{solve_point, PointSolveParams};
+use crate::model::case::{LineCase, PointCase};
+use crate::solve::line::multigrid::CycleType;
+use crate::solve::line::{solve_line, LineSolveParams, Method};
+use crate::solve::point::{solve_point, PointSolveParams};
+use crate::solve::solution::Outputs;
+use crate::strategy::accuracy::richardson2;
 use serde::Serialize;
 use std::time::Instant;
 

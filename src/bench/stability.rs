@@ -6,11 +6,11 @@
 //! times the default multigrid's wall time on the same (M, L) (and more than [`SLOW_FLOOR_S`])
 //! is classed `too-slow`: it converged, but no one would run it that way.
 
-use crate::params::{LineCase, PointCase};
-use crate::solution::Outputs;
-use crate::solver::line::{solve_line, LineSolveParams, Method};
-use crate::solver::point::{solve_point, PointSolveParams};
-use crate::solver::relax::Smoother;
+use crate::model::case::{LineCase, PointCase};
+use crate::solve::line::relax::Smoother;
+use crate::solve::line::{solve_line, LineSolveParams, Method};
+use crate::solve::point::{solve_point, PointSolveParams};
+use crate::solve::solution::Outputs;
 use serde::Serialize;
 
 /// A converged cell slower than this many times the default multigrid on its (M, L) is too slow.
@@ -139,7 +139,7 @@ fn map_one(
     for &m in ms {
         for &l in ls {
             let (o, attempt) = solve(m, l);
-            ok += usize::from(o.status == crate::solver::Status::Converged);
+            ok += usize::from(o.status == crate::solve::Status::Converged);
             cells.push(Cell {
                 method: name.to_string(),
                 m,

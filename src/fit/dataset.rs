@@ -3,7 +3,7 @@
 //! (line / point; a mixed dataset gives both); failed rows and duplicates are counted for the
 //! report. A film whose Richardson error estimate (H_c_err, H_min_err) exceeds
 //! [`MAX_ERROR_ESTIMATE`] is left out of its film's fit as grid-unconverged (a fit to 2 % cannot
-//! use data that are themselves uncertain by more; [`crate::fit::report::Film::of_point`]); rows
+//! use data that are themselves uncertain by more; [`crate::report::Film::of_point`]); rows
 //! where both exceed it are left out, each listed with its estimate in the report; rows used for
 //! one film only are listed too (on the 513^2 nightly point sweep H_c is converged to 2 % at
 //! M = 1000, D = 1, H_min at the exit constriction is not). So are point rows
@@ -16,11 +16,11 @@
 //! The datasets carry no G column, so `FitPoint::g` is None (formulas that need G are skipped by
 //! the report).
 
-use crate::fit::report::{FitInput, FitPoint};
-use crate::io::results::{read_dataset, CaseRow};
-use crate::params::{Elasticity, PointCase};
-use crate::problem::point_domain::PointDomain;
-use crate::select::ModelChoice;
+use crate::discrete::point::domain::PointDomain;
+use crate::model::case::{Elasticity, PointCase};
+use crate::report::{FitInput, FitPoint};
+use crate::store::results::{read_dataset, CaseRow};
+use crate::strategy::select::ModelChoice;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 

@@ -3,8 +3,8 @@
 //! filter) and from a solve.
 
 use crate::fit::dataset::MAX_ERROR_ESTIMATE;
-use crate::fit::report::FitPoint;
-use crate::solution::Outputs;
+use crate::report::FitPoint;
+use crate::solve::solution::Outputs;
 
 /// The film a fit describes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

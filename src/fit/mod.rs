@@ -7,16 +7,9 @@
 //! fitted, [`checks`] compares the fitted asymptotes with the solver's limit solves, [`report`]
 //! and [`markdown`] assemble the report, [`charts`] draws it.
 
-pub mod charts;
-pub mod charts_map;
-pub mod checks;
-pub mod cli;
 pub mod dataset;
 pub mod film;
 pub mod lsq;
-pub mod markdown;
 pub mod model;
 pub mod point_model;
-pub mod report;
-pub mod rigid_point;
 pub mod stats;

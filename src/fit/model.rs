@@ -113,7 +113,7 @@ mod tests {
         let m = LineModel::moes();
         for (mm, l) in [(20.0, 10.0), (5.0, 0.0), (1000.0, 20.0), (1.0, 5.0)] {
             let a = m.eval(mm, l);
-            let b = crate::formulas::moes_line_hc(mm, l);
+            let b = crate::model::formulas::moes_line_hc(mm, l);
             assert!((a / b - 1.0).abs() < 1e-12, "M={mm} L={l}: {a} vs {b}");
         }
     }

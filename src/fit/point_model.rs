@@ -21,7 +21,7 @@
 //! line ones as D -> 0; the free exponent e_i only corrects the residual D trend over the swept D
 //! range (e_i = 0 is NVM). The M^-2 of H_RI is exact for a rigid isoviscous point contact (the
 //! pressure scales with 1/H^2 at fixed load), and its constant at D = 1 is the solver's own
-//! (rigid solves extrapolated to an unbounded domain, [`crate::fit::rigid_point`]: 35.5 for H_c
+//! (rigid solves extrapolated to an unbounded domain, [`crate::limits::rigid_point`]: 35.5 for H_c
 //! and H_min, 45.0 at the pressure maximum), with NVM's D factor (e_RI = 0): the fitted rows
 //! (a domain-truncation error below 2 %, so M >= 19 at D = 1 on the nightly sweep) barely see
 //! the rigid-isoviscous regime. Fitted freely there, c_RI came out 40.2 with a sigma of 19 %, and
@@ -62,7 +62,7 @@ pub fn nvm_d_factors(d: f64) -> [f64; 4] {
 impl PointModel {
     /// The fitted asymptote parameters: constants, exponents and D corrections of H_EI .. H_EP.
     /// H_RI is held: c_RI at the solver's domain-extrapolated rigid value
-    /// ([`crate::fit::rigid_point`]) and its D correction e_RI at 0 (NVM's D factor).
+    /// ([`crate::limits::rigid_point`]) and its D correction e_RI at 0 (NVM's D factor).
     pub const ASYMPTOTES: [usize; 10] = [2, 3, 4, 5, 6, 7, 8, 9, 10, 11];
     /// Indices of the D-correction exponents (held at 0 when the data have a single D).
     pub const D_EXPONENTS: [usize; 4] = [1, 4, 7, 11];
@@ -152,7 +152,7 @@ impl FilmModel for PointModel {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::formulas::{nvm_point_asymptotes, nvm_point_hc};
+    use crate::model::formulas::{nvm_point_asymptotes, nvm_point_hc};
 
     #[test]
     fn nvm_parameters_reproduce_the_published_formula() {

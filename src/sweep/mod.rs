@@ -18,7 +18,7 @@
 //!   starts do not break this either; `warm_start` records the neighbour's case id.
 //! * **Shards**: `--shard i/n` (or `SLURM_ARRAY_TASK_ID`/`SLURM_ARRAY_TASK_COUNT`) keeps the cases
 //!   whose mixed id is `i - 1 (mod n)`; the union of shards 1..n is the whole sweep.
-//! * **Storage** ([`crate::io::results`]): `<out>/<name>/part-<i>of<n>-<run>.parquet`, one file
+//! * **Storage** ([`crate::store::results`]): `<out>/<name>/part-<i>of<n>-<run>.parquet`, one file
 //!   per process, rewritten atomically (temporary file + rename) after every batch; a `kill -9`
 //!   loses at most the cases solved since the last flush, and never leaves a file that a reader
 //!   chokes on. Failed solves are rows with their `status` and `reason`; non-finite outputs are
@@ -26,9 +26,7 @@
 //! * **Exit codes**: 0 when every case of the shard is stored (numerical failures included),
 //!   1 on an I/O error while running, 2 on a bad spec or bad arguments.
 
-pub mod cli;
+pub mod executor;
 pub mod plan;
 pub mod row;
-pub mod run;
 pub mod spec;
-pub mod warm;

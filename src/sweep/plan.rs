@@ -7,9 +7,9 @@
 //! count are not part of it. Shard `i/n` holds the cases whose mixed id is `i - 1` modulo `n`,
 //! so the shards partition the sweep, and a case stays in its shard when the spec gains values.
 
-use crate::lubricant::{Density, Viscosity};
-use crate::params::{LineCase, Models, ParamError, PointCase};
-use crate::solver::multigrid::CycleType;
+use crate::model::case::{LineCase, Models, ParamError, PointCase};
+use crate::model::lubricant::{Density, Viscosity};
+use crate::solve::line::multigrid::CycleType;
 use crate::sweep::spec::{Contact, ContactSpec, Numerics, SpecError, SweepSpec, ViscositySpec};
 use std::collections::HashSet;
 use std::fmt;

@@ -1,21 +1,21 @@
 //! One case to one row: solve a planned case (line or point; with the spec's accuracy target,
-//! through the model selection of `crate::select`), add the half-grid error estimate when the
+//! through the model selection of `crate::strategy::select`), add the half-grid error estimate when the
 //! spec asks for it, and copy every output into a [`CaseRow`]. Non-finite outputs become nulls
 //! with `valid = false`; a panicking solve becomes a row with status `panic`.
 
-use crate::accuracy::relative_error;
-use crate::io::results::{finite, larger_error, CaseRow};
-use crate::lubricant::{Density, Viscosity};
-use crate::params::ParamError;
-use crate::select::{solve_line_selected, solve_point_selected, ModelChoice};
-use crate::solution::Outputs;
-use crate::solver::line::{solve_line, LineSolveParams, ESTIMATE_ORDER};
-use crate::solver::multigrid::CycleType;
-use crate::solver::point::{solve_point, PointSolveParams};
-use crate::solver::Status;
+use crate::model::case::ParamError;
+use crate::model::lubricant::{Density, Viscosity};
+use crate::solve::line::multigrid::CycleType;
+use crate::solve::line::{solve_line, LineSolveParams, ESTIMATE_ORDER};
+use crate::solve::point::{solve_point, PointSolveParams};
+use crate::solve::solution::Outputs;
+use crate::solve::Status;
+use crate::store::results::{finite, larger_error, CaseRow};
+use crate::strategy::accuracy::relative_error;
+use crate::strategy::select::{solve_line_selected, solve_point_selected, ModelChoice};
+use crate::strategy::warm::warm_start_line;
 use crate::sweep::plan::Case;
 use crate::sweep::spec::Contact;
-use crate::sweep::warm::warm_start_line;
 
 /// The input columns of a case; outputs empty, status "not-run".
 pub fn input_row(case: &Case, sweep: &str) -> CaseRow {

@@ -39,9 +39,9 @@
 //! flush_seconds = 30             # ... or this long after the previous flush
 //! ```
 
-use crate::lubricant::Density;
-use crate::params::Elasticity;
-use crate::solver::multigrid::CycleType;
+use crate::model::case::Elasticity;
+use crate::model::lubricant::Density;
+use crate::solve::line::multigrid::CycleType;
 use std::collections::BTreeMap;
 use std::fmt;
 use std::ops::Range;

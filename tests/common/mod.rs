@@ -1,8 +1,8 @@
 //! Helpers shared by the integration tests.
 
-use ehlmap::params::PointCase;
-use ehlmap::solver::point::{solve_point, PointSolveParams};
-use ehlmap::solver::Status;
+use ehlmap::model::case::PointCase;
+use ehlmap::solve::point::{solve_point, PointSolveParams};
+use ehlmap::solve::Status;
 use std::path::PathBuf;
 use std::process::{Command, Output};
 

@@ -7,7 +7,7 @@
 use super::contacts::ContactAxes;
 use super::ctx::{join, Ctx, Table};
 use super::{Contact, ContactSpec, Numerics, SpecError};
-use crate::solver::multigrid::CycleType;
+use crate::solve::line::multigrid::CycleType;
 use std::ops::Range;
 
 /// The settings a `[numerics]` table (or one of its per-contact tables) may hold.

@@ -1,0 +1,89 @@
+//! `ehlmap fit DATASET... [--out DIR] [--json]`: fit, report, charts. A mixed dataset is fitted
+//! per contact (line charts `parity.png` ..., point charts `point_parity.png` ...); a contact with
+//! too few cases is reported as skipped; exit 2 only when nothing could be fitted.
+
+use crate::cli::InputError;
+use crate::fit::dataset::load_fit_input;
+use crate::render::charts::write_charts;
+use crate::report::fit_report;
+use crate::report::markdown::to_markdown;
+use std::path::PathBuf;
+
+#[derive(clap::Args, Debug)]
+pub struct FitArgs {
+    /// Sweep dataset directories (all part files inside are read).
+    #[arg(required = true)]
+    pub datasets: Vec<PathBuf>,
+    /// Where report.md, fit.json and the charts go (default: DATASET-report beside the first
+    /// dataset, outside it, so that the dataset folder holds only Parquet parts).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Print fit.json to stdout instead of the Markdown report.
+    #[arg(long)]
+    pub json: bool,
+    /// Skip the solver's asymptote limit solves (a few seconds for line data; for point data they
+    /// solve on the data's grid, at least 257^2: 1-2 min on two cores, 7 min for 513^2 data).
+    #[arg(long)]
+    pub no_limit_solves: bool,
+}
+
+/// Run the fit report; returns the exit code.
+pub fn run_fit(a: &FitArgs) -> Result<i32, InputError> {
+    let input = load_fit_input(&a.datasets).map_err(InputError)?;
+    if !a.no_limit_solves && !input.point.is_empty() {
+        eprintln!(
+            "fitting; the point asymptote checks solve the limit cases on the data's grid (1-2 min \
+             on two cores for 257^2 or coarser data, about 7 min for 513^2; --no-limit-solves \
+             skips them)"
+        );
+    }
+    let report = fit_report(&input, !a.no_limit_solves).map_err(InputError)?;
+    // Default beside the first dataset, outside it: the dataset folder holds only Parquet parts
+    // (polars' scan_parquet on the folder fails on anything else).
+    let out = a.out.clone().unwrap_or_else(|| {
+        let d = &a.datasets[0];
+        let name = d
+            .file_name()
+            .map_or("dataset".into(), |n| n.to_string_lossy().into_owned());
+        d.with_file_name(format!("{name}-report"))
+    });
+    std::fs::create_dir_all(&out)
+        .map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
+    let json = serde_json::to_string_pretty(&report).expect("report serialises");
+    let mut md = to_markdown(&report);
+    let mut charts = vec![];
+    for (prefix, pts, c) in [
+        ("", &input.line, &report.line),
+        ("point_", &input.point, &report.point),
+    ] {
+        if let Some(q) = &c.h_c {
+            charts.extend(
+                write_charts(&out, prefix, pts, &q.model)
+                    .map_err(|e| InputError(format!("charts: {e}")))?,
+            );
+        }
+    }
+    if !charts.is_empty() {
+        md.push_str("\n## Charts\n\n");
+        for c in &charts {
+            md.push_str(&format!("![{c}]({c}.png)\n"));
+        }
+    }
+    let write = |name: &str, text: &str| {
+        std::fs::write(out.join(name), text)
+            .map_err(|e| InputError(format!("{}: {e}", out.join(name).display())))
+    };
+    write("report.md", &md)?;
+    write("fit.json", &json)?;
+    if a.json {
+        println!("{json}");
+    } else {
+        println!("{md}");
+        eprintln!(
+            "wrote {}/report.md, fit.json and {} charts (PNG, SVG)",
+            out.display(),
+            charts.len()
+        );
+    }
+    Ok(0)
+}

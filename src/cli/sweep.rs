@@ -1,0 +1,207 @@
+//! `ehlmap sweep SPEC [--out DIR] [--threads N] [--shard i/n] [--resume] [--dry-run]`.
+//!
+//! * `--out DIR`: base directory of datasets (default: the spec's `[output] dir`, "outputs");
+//!   the dataset is `DIR/<name>/`.
+//! * `--threads N`: worker threads (default: `SLURM_CPUS_PER_TASK` when set, else all cores).
+//! * `--shard i/n`: solve only shard i of n (default: from `SLURM_ARRAY_TASK_ID`,
+//!   `SLURM_ARRAY_TASK_MIN`, `SLURM_ARRAY_TASK_STEP` and `SLURM_ARRAY_TASK_COUNT` when they are
+//!   set, else the whole sweep).
+//! * `--resume`: continue an earlier run; refuses to start when the dataset directory holds no
+//!   part file (a plain rerun skips stored cases too, and may start a new dataset).
+//! * `--dry-run`: print the planned cases of the shard (id, M, L, D for point contacts, estimated
+//!   cost, stored or not) and exit.
+
+use crate::cli::InputError;
+use crate::store::results;
+use crate::sweep::executor::{self, Progress, RunOptions};
+use crate::sweep::plan::{self, Shard};
+use crate::sweep::spec;
+use clap::ValueEnum;
+use std::path::PathBuf;
+
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum ProgressArg {
+    /// A bar on a terminal, log lines otherwise.
+    Auto,
+    Bar,
+    Log,
+    None,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct SweepArgs {
+    /// The sweep spec (TOML), e.g. sweeps/smoke.toml.
+    pub spec: PathBuf,
+    /// Base directory of the datasets (the dataset goes to DIR/<name>/).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Worker threads (default: SLURM_CPUS_PER_TASK, else all cores).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=4096))]
+    pub threads: Option<u32>,
+    /// Solve only shard i of n (1-based), e.g. 2/4.
+    #[arg(long)]
+    pub shard: Option<String>,
+    /// Continue an earlier run (the dataset must exist); stored cases are always skipped.
+    #[arg(long)]
+    pub resume: bool,
+    /// Print the planned cases and exit without solving.
+    #[arg(long)]
+    pub dry_run: bool,
+    #[arg(long, value_enum, default_value = "auto")]
+    pub progress: ProgressArg,
+    /// After the sweep, run the fit report on its dataset (`ehlmap fit DATASET`).
+    #[arg(long)]
+    pub fit: bool,
+}
+
+fn env_usize(name: &str) -> Result<Option<usize>, InputError> {
+    match std::env::var(name) {
+        Err(_) => Ok(None),
+        Ok(v) if v.trim().is_empty() => Ok(None),
+        Ok(v) => v
+            .trim()
+            .parse::<usize>()
+            .map(Some)
+            .map_err(|_| InputError(format!("{name}={v} is not a non-negative integer"))),
+    }
+}
+
+/// The shard from `--shard`, else from the Slurm array variables, else the whole sweep.
+pub fn resolve_shard(arg: Option<&str>) -> Result<Shard, InputError> {
+    if let Some(s) = arg {
+        return Shard::parse(s).map_err(InputError);
+    }
+    let Some(id) = env_usize("SLURM_ARRAY_TASK_ID")? else {
+        return Ok(Shard::WHOLE);
+    };
+    let count = env_usize("SLURM_ARRAY_TASK_COUNT")?.ok_or_else(|| {
+        InputError("SLURM_ARRAY_TASK_ID is set but SLURM_ARRAY_TASK_COUNT is not".into())
+    })?;
+    let min = env_usize("SLURM_ARRAY_TASK_MIN")?.unwrap_or(0);
+    let step = env_usize("SLURM_ARRAY_TASK_STEP")?.unwrap_or(1).max(1);
+    if id < min || (id - min) % step != 0 || (id - min) / step >= count {
+        return Err(InputError(format!(
+            "SLURM_ARRAY_TASK_ID={id} does not fit SLURM_ARRAY_TASK_MIN={min}, \
+             SLURM_ARRAY_TASK_STEP={step}, SLURM_ARRAY_TASK_COUNT={count}"
+        )));
+    }
+    Ok(Shard {
+        index: (id - min) / step + 1,
+        count,
+    })
+}
+
+/// `--threads`, else `SLURM_CPUS_PER_TASK`, else the available cores.
+pub fn resolve_threads(arg: Option<u32>) -> Result<usize, InputError> {
+    if let Some(n) = arg {
+        return Ok(n as usize);
+    }
+    match env_usize("SLURM_CPUS_PER_TASK")? {
+        Some(0) => Err(InputError("SLURM_CPUS_PER_TASK=0: need at least 1".into())),
+        Some(n) => Ok(n),
+        None => Ok(std::thread::available_parallelism().map_or(1, |n| n.get())),
+    }
+}
+
+/// Run `ehlmap sweep`; returns the exit code (0 done, 1 I/O failure while running).
+pub fn run_sweep(args: &SweepArgs) -> Result<i32, InputError> {
+    let spec = spec::load(&args.spec).map_err(|e| InputError(e.to_string()))?;
+    let cases = plan::plan(&spec).map_err(|e| InputError(e.to_string()))?;
+    let shard = resolve_shard(args.shard.as_deref())?;
+    let threads = resolve_threads(args.threads)?;
+    let base = args.out.clone().unwrap_or_else(|| spec.output.dir.clone());
+    let dataset = base.join(&spec.name);
+    let parts = results::part_files(&dataset).map_err(InputError)?;
+    if args.resume && parts.is_empty() {
+        return Err(InputError(format!(
+            "--resume: {} holds no dataset to resume (run without --resume to start one)",
+            dataset.display()
+        )));
+    }
+    if args.dry_run {
+        let stored = results::stored_ids(&dataset).map_err(InputError)?;
+        let mine: Vec<_> = cases.iter().filter(|c| shard.contains(c.id)).collect();
+        println!(
+            "# sweep {}: {} cases, shard {shard}: {}, dataset {}",
+            spec.name,
+            cases.len(),
+            mine.len(),
+            dataset.display()
+        );
+        println!("# case_id contact M L D cost stored");
+        for c in mine {
+            let d = c.d.map_or("-".to_string(), |d| d.to_string());
+            println!(
+                "{} {} {} {} {d} {:.0} {}",
+                c.id_hex(),
+                c.contact.as_str(),
+                c.m,
+                c.l,
+                c.cost,
+                stored.contains(&c.id_hex())
+            );
+        }
+        return Ok(0);
+    }
+    let progress = match args.progress {
+        ProgressArg::Auto => Progress::Auto,
+        ProgressArg::Bar => Progress::Bar,
+        ProgressArg::Log => Progress::Log,
+        ProgressArg::None => Progress::None,
+    };
+    let opts = RunOptions {
+        dataset: dataset.clone(),
+        threads,
+        shard,
+        progress,
+    };
+    eprintln!(
+        "sweep {}: {} cases, shard {shard} holds {}; {} threads -> {}",
+        spec.name,
+        cases.len(),
+        cases.iter().filter(|c| shard.contains(c.id)).count(),
+        threads,
+        dataset.display()
+    );
+    match executor::execute(&spec, &cases, &opts) {
+        Ok(r) => {
+            let file = r
+                .file
+                .as_ref()
+                .map_or("no file written".to_string(), |p| p.display().to_string());
+            eprintln!(
+                "sweep {}: {} already stored, {} solved ({} failed) in {:.1} s; {}",
+                spec.name, r.already_stored, r.solved, r.failed, r.wall_s, file
+            );
+            if r.models.keys().any(|m| m != "full") {
+                let counts: Vec<String> = r
+                    .models
+                    .iter()
+                    .map(|(m, n)| {
+                        let t = r.model_seconds.get(m).copied().unwrap_or(0.0);
+                        format!("{m} {n} ({t:.1} s)")
+                    })
+                    .collect();
+                eprintln!(
+                    "sweep {}: models used: {} (ehlmap bench --selection SPEC measures the saving)",
+                    spec.name,
+                    counts.join(", ")
+                );
+            }
+            if args.fit {
+                let fa = crate::cli::fit::FitArgs {
+                    datasets: vec![dataset.clone()],
+                    out: None,
+                    json: false,
+                    no_limit_solves: false,
+                };
+                return crate::cli::fit::run_fit(&fa);
+            }
+            Ok(0)
+        }
+        Err(e) => {
+            eprintln!("ehlmap: sweep {}: {e}", spec.name);
+            Ok(1)
+        }
+    }
+}

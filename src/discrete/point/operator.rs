@@ -1,0 +1,308 @@
+//! The discrete point-contact problem on one grid level (Hertzian scaling X = x/b, Y = y/b,
+//! P = p/p_h, H = h Rx/b^2; PHYSICS.md sections 2, 6b; the groups in [`crate::model::case::VennerPoint`]).
+//!
+//! Nodes (X_i, Y_j) = (X_in + i hx, -Y_half + j hy), stored row-major with X fastest (node (i, j)
+//! at j nx + i); P = 0 on the boundary. At interior nodes
+//!
+//! L_ij = [ex_{i-1/2}(P_{i-1,j} - P_ij) + ex_{i+1/2}(P_{i+1,j} - P_ij)]/hx^2
+//!      + [ey_{j-1/2}(P_{i,j-1} - P_ij) + ey_{j+1/2}(P_{i,j+1} - P_ij)]/hy^2 - D_x(rho H)_ij = f_ij
+//!
+//! with eps = rho H^3/(eta lambda), face values the means of the nodal ones, and D_x the upwind
+//! difference along x (second order, (1.5 q_i - 2 q_{i-1} + 0.5 q_{i-2})/hx; first order at i = 1).
+//! The film is H_ij = H0 + X_i^2/2 + D Y_j^2/2 + c sum K(|i-k|, |j-l|) P_kl with the exact cell
+//! integrals of 1/r ([`crate::discrete::point::kernel`]) and c = (1+D)/(2 pi E) (2/pi^2 circular), the sum
+//! dropped for rigid surfaces. The load equation is hx hy sum P = g (2 pi k/3 on the finest level).
+//! A dry contact replaces L by -H.
+
+use crate::discrete::line::operator::{UPWIND1, UPWIND2};
+use crate::discrete::point::kernel::{direct_product2d, kernel2d, DeformPlan2d};
+use crate::model::case::{Elasticity, PointCase};
+use crate::model::lubricant::{Density, Viscosity};
+
+/// The physics of a point case in Hertzian scaling, shared by all levels.
+#[derive(Clone, Copy, Debug)]
+pub struct PointPhysics {
+    pub lambda: f64,
+    pub alpha_bar: f64,
+    pub viscosity: Viscosity,
+    pub density: Density,
+    pub elastic: bool,
+    pub dry: bool,
+    pub second_order: bool,
+    /// D = Rx/Ry: the curvature of the gap across the rolling direction.
+    pub d: f64,
+    /// k = a/b.
+    pub k: f64,
+    /// Coefficient of the deformation sum, (1+D)/(2 pi E).
+    pub coef: f64,
+    /// Load target 2 pi k/3.
+    pub load: f64,
+    /// H_Moes / H_Venner.
+    pub h_scale: f64,
+}
+
+impl PointPhysics {
+    pub fn from_case(case: &PointCase) -> Self {
+        let v = case.venner();
+        PointPhysics {
+            lambda: v.lambda,
+            alpha_bar: v.alpha_bar,
+            viscosity: case.models.viscosity,
+            density: case.models.density,
+            elastic: case.models.elasticity == Elasticity::Elastic,
+            dry: false,
+            second_order: true,
+            d: case.d,
+            k: v.k,
+            coef: v.film_coef,
+            load: v.load,
+            h_scale: v.h_scale,
+        }
+    }
+
+    /// eps for a nodal pressure and film.
+    #[inline]
+    pub fn eps(&self, p: f64, film: f64, rho: f64) -> f64 {
+        if self.dry {
+            0.0
+        } else {
+            let hh = film.max(0.0);
+            rho * hh * hh * hh / (self.viscosity.eta(p, self.alpha_bar) * self.lambda)
+        }
+    }
+}
+
+/// One grid level of a point contact.
+pub struct PointLevel {
+    pub nx: usize,
+    pub ny: usize,
+    pub hx: f64,
+    pub hy: f64,
+    pub x: Vec<f64>,
+    pub y: Vec<f64>,
+    pub p: Vec<f64>,
+    pub film: Vec<f64>,
+    pub eps: Vec<f64>,
+    pub rho: Vec<f64>,
+    /// FAS right-hand side of the Reynolds equation (zero on the finest level).
+    pub f: Vec<f64>,
+    /// Right-hand side of the load equation.
+    pub g: f64,
+    /// Coarse nodes held fixed (their fine neighbourhood touches the cavitated set).
+    pub frozen: Vec<bool>,
+    /// K(dx, dy) at dy nx + dx.
+    pub kernel: Vec<f64>,
+    deform: DeformPlan2d,
+    /// The rigid gap X^2/2 + D Y^2/2.
+    pub gap: Vec<f64>,
+    /// Work buffer (deformation).
+    pub work: Vec<f64>,
+    /// Work buffer (residuals).
+    pub delta: Vec<f64>,
+    /// Compute the deformation by the O(N^2) direct sum instead of the FFT (baseline).
+    pub direct_deformation: bool,
+}
+
+impl PointLevel {
+    /// A level with `ix` x `iy` intervals on [x_in, x_out] x [-y_half, y_half], P = 0.
+    pub fn new(
+        phys: &PointPhysics,
+        x_in: f64,
+        x_out: f64,
+        y_half: f64,
+        ix: usize,
+        iy: usize,
+    ) -> Self {
+        let (nx, ny) = (ix + 1, iy + 1);
+        let hx = (x_out - x_in) / ix as f64;
+        let hy = 2.0 * y_half / iy as f64;
+        let x: Vec<f64> = (0..nx).map(|i| x_in + i as f64 * hx).collect();
+        let y: Vec<f64> = (0..ny).map(|j| -y_half + j as f64 * hy).collect();
+        let kernel = kernel2d(nx, ny, hx, hy);
+        let mut gap = vec![0.0; nx * ny];
+        for j in 0..ny {
+            for i in 0..nx {
+                gap[j * nx + i] = 0.5 * x[i] * x[i] + 0.5 * phys.d * y[j] * y[j];
+            }
+        }
+        let n = nx * ny;
+        PointLevel {
+            nx,
+            ny,
+            hx,
+            hy,
+            x,
+            y,
+            p: vec![0.0; n],
+            film: vec![0.0; n],
+            eps: vec![0.0; n],
+            rho: vec![1.0; n],
+            f: vec![0.0; n],
+            g: phys.load,
+            frozen: vec![false; n],
+            deform: DeformPlan2d::new(&kernel, nx, ny),
+            kernel,
+            gap,
+            work: vec![0.0; n],
+            delta: vec![0.0; n],
+            direct_deformation: false,
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.p.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.p.is_empty()
+    }
+
+    /// Index of node (i, j).
+    #[inline]
+    pub fn at(&self, i: usize, j: usize) -> usize {
+        j * self.nx + i
+    }
+
+    /// Whether node (i, j) is on the boundary.
+    #[inline]
+    pub fn boundary(&self, i: usize, j: usize) -> bool {
+        i == 0 || j == 0 || i + 1 == self.nx || j + 1 == self.ny
+    }
+
+    /// The deformation sum c K*P (no H0, no gap) into `work`.
+    pub fn deformation(&mut self, phys: &PointPhysics) {
+        if phys.elastic {
+            if self.direct_deformation {
+                direct_product2d(&self.kernel, self.nx, self.ny, &self.p, &mut self.work);
+            } else {
+                self.deform.apply(&self.p, &mut self.work);
+            }
+            for w in self.work.iter_mut() {
+                *w *= phys.coef;
+            }
+        } else {
+            self.work.fill(0.0);
+        }
+    }
+
+    /// Recompute H (by the fast product), rho and eps from P and H0.
+    pub fn update_film(&mut self, phys: &PointPhysics, h0: f64) {
+        self.deformation(phys);
+        for c in 0..self.len() {
+            self.film[c] = h0 + self.gap[c] + self.work[c];
+        }
+        self.update_coefficients(phys);
+    }
+
+    /// Recompute rho and eps from P and the current H.
+    pub fn update_coefficients(&mut self, phys: &PointPhysics) {
+        for c in 0..self.len() {
+            let p = self.p[c];
+            let rho = phys.density.rho(p);
+            self.rho[c] = rho;
+            self.eps[c] = phys.eps(p, self.film[c], rho);
+        }
+    }
+
+    /// Upwind weights at column i.
+    #[inline]
+    pub fn upwind(&self, phys: &PointPhysics, i: usize) -> [f64; 3] {
+        if phys.second_order && i >= 2 {
+            UPWIND2
+        } else {
+            UPWIND1
+        }
+    }
+
+    /// L at interior node (i, j).
+    #[inline]
+    pub fn reynolds(&self, phys: &PointPhysics, i: usize, j: usize) -> f64 {
+        let c = self.at(i, j);
+        if phys.dry {
+            return -self.film[c];
+        }
+        let nx = self.nx;
+        let (e, p) = (&self.eps, &self.p);
+        let exm = 0.5 * (e[c - 1] + e[c]);
+        let exp = 0.5 * (e[c] + e[c + 1]);
+        let eym = 0.5 * (e[c - nx] + e[c]);
+        let eyp = 0.5 * (e[c] + e[c + nx]);
+        let pois = (exm * (p[c - 1] - p[c]) + exp * (p[c + 1] - p[c])) / (self.hx * self.hx)
+            + (eym * (p[c - nx] - p[c]) + eyp * (p[c + nx] - p[c])) / (self.hy * self.hy);
+        let w = self.upwind(phys, i);
+        let mut wedge = 0.0;
+        for (k, &wk) in w.iter().enumerate() {
+            if wk != 0.0 {
+                wedge += wk * self.rho[c - k] * self.film[c - k];
+            }
+        }
+        pois - wedge / self.hx
+    }
+
+    /// r = f - L at interior nodes, 0 on the boundary; with `active_only`, 0 also where P = 0.
+    pub fn residual(&self, phys: &PointPhysics, active_only: bool, out: &mut [f64]) {
+        for j in 0..self.ny {
+            for i in 0..self.nx {
+                let c = self.at(i, j);
+                out[c] = if self.boundary(i, j) || (active_only && self.p[c] <= 0.0) {
+                    0.0
+                } else {
+                    self.f[c] - self.reynolds(phys, i, j)
+                };
+            }
+        }
+    }
+
+    /// hx hy sum P.
+    pub fn load(&self) -> f64 {
+        self.hx * self.hy * self.p.iter().sum::<f64>()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rigid_reynolds_operator_is_second_order() {
+        // P = exp(-X^2 - Y^2), H = 1 + X^2/2 + Y^2/2 (rigid, incompressible, lambda = 1, D = 1):
+        // L = div(H^3 grad P) - dH/dX exactly; the discrete operator converges at second order.
+        let phys = PointPhysics {
+            lambda: 1.0,
+            alpha_bar: 0.0,
+            viscosity: Viscosity::Barus,
+            density: Density::Incompressible,
+            elastic: false,
+            dry: false,
+            second_order: true,
+            d: 1.0,
+            k: 1.0,
+            coef: 0.0,
+            load: 1.0,
+            h_scale: 1.0,
+        };
+        let exact = |x: f64, y: f64| {
+            let hh = 1.0 + 0.5 * (x * x + y * y);
+            let p = (-x * x - y * y).exp();
+            let (px, py) = (-2.0 * x * p, -2.0 * y * p);
+            let lap = (4.0 * (x * x + y * y) - 4.0) * p;
+            3.0 * hh * hh * (x * px + y * py) + hh.powi(3) * lap - x
+        };
+        let mut errs = vec![];
+        for n in [32usize, 64, 128] {
+            let mut lv = PointLevel::new(&phys, -4.0, 4.0, 4.0, n, n);
+            for j in 0..lv.ny {
+                for i in 0..lv.nx {
+                    let c = lv.at(i, j);
+                    lv.p[c] = (-lv.x[i] * lv.x[i] - lv.y[j] * lv.y[j]).exp();
+                }
+            }
+            lv.update_film(&phys, 1.0);
+            // Node X = 1, Y = 0.5.
+            let (i, j) = (n / 2 + n / 8, n / 2 + n / 16);
+            errs.push((lv.reynolds(&phys, i, j) - exact(lv.x[i], lv.y[j])).abs());
+        }
+        let rate = (errs[1] / errs[2]).log2();
+        assert!(rate > 1.8 && rate < 2.2, "rate {rate}, errs {errs:?}");
+    }
+}

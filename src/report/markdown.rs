@@ -1,0 +1,248 @@
+//! Markdown rendering of a [`FitReport`]: one section per contact (fitted formula with
+//! coefficients and uncertainties, error tables overall / per (M, L) region / per D, the
+//! published formulas on the same cases, asymptote checks), or the reason it was skipped.
+
+use crate::fit::stats::{ErrStats, RegionStats};
+use crate::report::{ContactReport, FitReport, QuantityFit, ASYMPTOTE_TARGET, MAX_ERROR_TARGET};
+use std::fmt::Write;
+
+fn pct(v: f64) -> String {
+    format!("{:+.2} %", 100.0 * v)
+}
+
+fn stats_row(name: &str, s: &ErrStats) -> String {
+    let at = if s.worst_m.is_nan() {
+        String::new()
+    } else {
+        format!("M = {:.4}, L = {:.3}", s.worst_m, s.worst_l)
+    };
+    format!(
+        "| {name} | {} | {} | {:.2} % | {} | {at} |\n",
+        s.n,
+        pct(s.max),
+        100.0 * s.rms,
+        pct(s.mean),
+    )
+}
+
+fn table(md: &mut String, all: &ErrStats, rows: &[RegionStats]) {
+    md.push_str("| region | n | max error | RMS | mean | worst at |\n|---|---|---|---|---|---|\n");
+    md.push_str(&stats_row("all", all));
+    for rg in rows {
+        md.push_str(&stats_row(&rg.region, &rg.stats));
+    }
+    md.push('\n');
+}
+
+const LINE_FORM: &str =
+    "Formula (Moes units): H = [ (H_RI^p + H_EI^p)^(s/p) + (H_RP^-q + H_EP^-q)^(-s/q) ]^(1/s), \
+s = s0 + s1 exp(-s2 H_EI/H_RI), p = p0 + p1 exp(-s2 H_EI/H_RI), H_RI = 2.4475/M (exact, fixed), H_EI = a M^alpha, \
+H_RP = b L^beta (starting from its rigid limit 1.0496 L^(2/3), times 3/2.4475 for H_pm; see the \
+asymptote table), \
+H_EP = d M^gamma L^delta. The EI, RP and EP laws are fitted; p, q, the s-law and p1 \
+start from Moes' (7/3, 7/2, 7/5 + 8/5 exp(-2 H_EI/H_RI), 0) and are fitted too with 40 or more \
+converged cases (a 1 sigma of 0 marks a parameter held fixed). H_pm, the film at the pressure \
+maximum (Moes' central film), is fitted with the same form and its own exact H_RI = 3/M (the \
+flux thickness); H_min with H_RI = 2.4475/M.";
+
+const POINT_FORM: &str = "Formula (Moes point units, NVM 1994 form): H = { [H_RI^r + \
+(H_EI^-4 + H_00^-4)^(-r/4)]^(s/r) + (H_RP^-8 + H_EP^-8)^(-s/8) }^(1/s), s = s0 (1 + exp(-s1 \
+H_EI/H_RI)); H_RI = c_RI f_RI(D) D^e_RI M^-2, H_EI = a f_EI(D) D^e_EI M^alpha, H_RP = b f_RP(D) \
+D^e_RP L^beta, H_EP = d f_EP(D) D^e_EP M^gamma L^delta, H_00 = c_00/D, with f_* NVM's D factors \
+normalised to 1 at D = 1 and e_* free corrections (0 = NVM; held at 0 when the data have one D). \
+H_RI is held: c_RI at the solver's rigid constant, its rigid solves extrapolated to an unbounded \
+domain (35.5 for H_c and H_min, 45.0 for H_pm; NVM 41.3), e_RI = 0. The other asymptotes are \
+fitted with alpha_EI and the whole H_EP law first held at NVM's (the converged point data \
+hardly reach the elastic regimes), then all of them and the blend (s0, s1, c_00, r: NVM's \
+1.5, 1.2, 1.8, 3/2) too (kept only if physical, identified and better) with 40 or more \
+converged cases. H_c is the film at the centre, H_pm the film at the pressure maximum on the \
+centre line, H_min the minimum film: each has its own fit.";
+
+fn quantity(md: &mut String, q: &QuantityFit) {
+    let _ = writeln!(
+        md,
+        "### {} (LM converged: {}, RMS of log residuals {:.2e})\n",
+        q.quantity, q.converged, q.rms_log
+    );
+    let _ = writeln!(md, "| parameter | value | 1 sigma |\n|---|---|---|");
+    for p in &q.params {
+        let _ = writeln!(md, "| {} | {:.5} | {:.1e} |", p.name, p.value, p.sigma);
+    }
+    md.push('\n');
+    table(md, &q.overall, &q.regions);
+    if !q.per_d.is_empty() {
+        let _ = writeln!(md, "Per ellipticity:\n");
+        table(md, &q.overall, &q.per_d);
+    }
+}
+
+/// One line per film: its max error against the target and the published formulas on the same
+/// film, and how many of its asymptote checks are within their target.
+fn summary(md: &mut String, c: &ContactReport) {
+    let _ = writeln!(
+        md,
+        "### Summary
+"
+    );
+    for q in [&c.h_c, &c.h_pm, &c.h_min].into_iter().flatten() {
+        let max = q.overall.max.abs();
+        let met = if max <= MAX_ERROR_TARGET {
+            "met"
+        } else {
+            "not met"
+        };
+        let mut line = format!(
+            "- {}: max error {:.2} % (target {:.0} %: {met})",
+            q.quantity,
+            100.0 * max,
+            100.0 * MAX_ERROR_TARGET
+        );
+        if max > MAX_ERROR_TARGET {
+            match &q.within_target {
+                Some(r) => {
+                    let _ = write!(
+                        line,
+                        ", met for M in [{:.4}, {:.4}] ({} of {} cases)",
+                        r.m_lo, r.m_hi, r.n, r.of
+                    );
+                }
+                None => line.push_str(", met at no M of the data"),
+            }
+        }
+        for p in c.published.iter().filter(|p| p.against == q.quantity) {
+            if let Some(all) = &p.overall {
+                let cmp = if max < all.max.abs() {
+                    "fit better"
+                } else {
+                    "fit not better"
+                };
+                let _ = write!(line, "; {} {:.2} % ({cmp})", p.name, 100.0 * all.max.abs());
+            }
+        }
+        let checks: Vec<_> = c
+            .asymptotes
+            .iter()
+            .filter(|a| a.quantity == q.quantity)
+            .collect();
+        if !checks.is_empty() {
+            let within: Vec<&str> = checks
+                .iter()
+                .filter(|a| a.ratio.is_some_and(|r| (r - 1.0).abs() <= ASYMPTOTE_TARGET))
+                .map(|a| a.asymptote.as_str())
+                .collect();
+            let _ = write!(
+                line,
+                "; asymptotes within {:.0} % of the limit solves: {} of {}{}",
+                100.0 * ASYMPTOTE_TARGET,
+                within.len(),
+                checks.len(),
+                if within.is_empty() {
+                    String::new()
+                } else {
+                    format!(" ({})", within.join(", "))
+                }
+            );
+        }
+        let _ = writeln!(md, "{line}.");
+    }
+    md.push('\n');
+}
+
+fn contact(md: &mut String, c: &ContactReport) {
+    let _ = writeln!(md, "## {} contact\n", c.contact);
+    if let Some(why) = &c.skipped {
+        let _ = writeln!(md, "{why} (failed rows: {}).\n", c.failed_cases);
+        return;
+    }
+    let _ = writeln!(
+        md,
+        "Converged cases fitted: {}; failed rows left out: {}.\n",
+        c.converged_cases, c.failed_cases
+    );
+    let form = if c.contact == "line" {
+        LINE_FORM
+    } else {
+        POINT_FORM
+    };
+    let _ = writeln!(md, "{form}\n");
+    for why in &c.skipped_films {
+        let _ = writeln!(md, "Not fitted: {why}.\n");
+    }
+    summary(md, c);
+    for q in [&c.h_c, &c.h_pm, &c.h_min].into_iter().flatten() {
+        quantity(md, q);
+    }
+    for p in &c.published {
+        let _ = writeln!(md, "### {} on the same cases ({})\n", p.name, p.against);
+        match (&p.overall, &p.skipped) {
+            (Some(all), _) => table(md, all, &p.regions),
+            (None, Some(why)) => {
+                let _ = writeln!(md, "{why}.\n");
+            }
+            (None, None) => {}
+        }
+    }
+    if !c.asymptotes.is_empty() {
+        let _ = writeln!(
+            md,
+            "### Asymptotes against the solver's limit solves (the same film of the solve)\n"
+        );
+        let _ = writeln!(
+            md,
+            "| film | asymptote | fitted law | at | solver | asymptote | ratio | ratio toward the limit (M or domain scale: ratio) | note |\n|---|---|---|---|---|---|---|---|---|"
+        );
+        for a in &c.asymptotes {
+            let d = a.d.map_or(String::new(), |d| format!(", D = {d}"));
+            let grid = a.grid.map_or(String::new(), |g| format!(", {g} pts"));
+            let trend: Vec<String> = a
+                .trend
+                .iter()
+                .map(|(m, r)| match a.trend_over.as_str() {
+                    "M" => format!("{m:.3}: {r:.4}"),
+                    over => format!("{over} {m}: {r:.4}"),
+                })
+                .collect();
+            let _ = writeln!(
+                md,
+                "| {} | {} | {} | M = {}, L = {}{d} ({}{grid}) | {} | {:.5} | {} | {} | {} |",
+                a.quantity,
+                a.asymptote,
+                a.law,
+                a.m,
+                a.l,
+                a.elasticity,
+                a.solver.map_or("failed".into(), |v| format!("{v:.5}")),
+                a.fitted,
+                a.ratio.map_or("-".into(), |v| format!("{v:.4}")),
+                trend.join(", ")
+                    + &a.beyond.map_or(String::new(), |(l, r)| {
+                        let r = r.map_or("solve failed".into(), |r| format!("{r:.4}"));
+                        format!("; L = {l} (beyond the data): {r}")
+                    }),
+                a.note
+            );
+        }
+        md.push('\n');
+    }
+}
+
+/// Markdown of the report.
+pub fn to_markdown(r: &FitReport) -> String {
+    let mut md = String::new();
+    let _ = writeln!(md, "# ehlmap film-thickness fit\n");
+    let _ = writeln!(
+        md,
+        "Datasets: {}. Duplicate rows dropped: {}. A mixed dataset is fitted per contact.\n",
+        r.datasets.join(", "),
+        r.duplicate_rows
+    );
+    for e in &r.excluded {
+        let _ = writeln!(md, "Excluded: {e}.");
+    }
+    for e in &r.one_film {
+        let _ = writeln!(md, "Used for one film only: {e}.");
+    }
+    contact(&mut md, &r.line);
+    contact(&mut md, &r.point);
+    md
+}

@@ -1,0 +1,564 @@
+//! The fit report: for each contact present in the data (line, point) fits three films ([`Film`]:
+//! H_c at X = 0, H_pm at the pressure maximum, H_min), compares them and the published formulas
+//! with the data, and checks each fitted asymptote against the solver's own limit solves
+//! ([`crate::limits::checks`]). Markdown rendering is in [`crate::report::markdown`].
+//!
+//! Why two central films: Moes' H_RI = 3/M is the rigid-isoviscous flux thickness, the film at
+//! the pressure maximum; the film at X = 0 tends to 2.4475/M instead. Where the pressure peak
+//! moves upstream (line, M < 3 with L > 0) the film at X = 0 is not monotone in M (L = 12: 6.14,
+//! 7.24, 7.08 at M = 1, 1.7, 2.9) while the film at the pressure maximum is (7.35, 7.32, 7.08), so
+//! the Moes form follows H_pm to 1.5 % on the nightly line sweep and H_c only to 4.6 %.
+//!
+//! A contact with fewer converged cases than its model needs (free parameters + 5) is reported as
+//! "skipped: N cases, need at least K"; the report fails only when no contact could be fitted.
+
+pub mod markdown;
+
+pub use crate::fit::film::Film;
+use crate::fit::lsq::{fit, LsqFit, Sample};
+use crate::fit::model::{FilmModel, LineModel, PARAM_NAMES};
+use crate::fit::point_model::{PointModel, POINT_PARAM_NAMES};
+use crate::fit::stats::{
+    d_table, err_stats, region_table, target_range, ErrStats, RegionStats, TargetRange,
+};
+use crate::limits::checks::{line_checks, point_checks, AsymptoteCheck};
+use crate::limits::rigid_point;
+use crate::model::formulas::{
+    dowson_toyoda_line_hc_moes, hamrock_dowson_hc_moes, moes_line_hc, nvm_point_hc,
+};
+use crate::strategy::select::MARTIN_FLUX;
+use serde::{Deserialize, Serialize};
+
+/// The exact rigid-isoviscous constant of the line film at X = 0 (Martin, Reynolds exit condition).
+pub const C_RI_CENTRAL: f64 = 2.4475;
+
+/// The rigid-piezoviscous constant of the line film at X = 0: H_RP = (c L)^(2/3), c = alpha p_max
+/// H^(3/2)/L of the rigid isoviscous solution (the Barus reduced pressure reaches 1/alpha). From
+/// the solver's rigid L = 0 solve at 4097 points, c = 1.0753, (c)^(2/3) = 1.0496; the report
+/// re-derives it from a fresh solve ([`crate::limits::checks`]).
+pub const B_RP_CENTRAL: f64 = 1.0496;
+
+/// Datasets with at least this many converged cases of a contact also fit the blending law (and,
+/// for point contacts, the elastic M exponents and the H_EP law). 40 (was 60): the nightly point
+/// sweep at 257^2 keeps 46 cases, and freeing those laws takes its H_c max error from 4.0 % to
+/// 1.8 %; no line dataset in use has 40-59 cases.
+pub const FULL_FIT_MIN_POINTS: usize = 40;
+
+/// The fit's targets: max error within [`MAX_ERROR_TARGET`] of the data, below the published
+/// formulas' on the same film, asymptotes within [`ASYMPTOTE_TARGET`] of the limit solves.
+pub const MAX_ERROR_TARGET: f64 = 0.02;
+pub const ASYMPTOTE_TARGET: f64 = 0.01;
+
+/// Extra cases required beyond the number of free parameters.
+pub const SPARE_CASES: usize = 5;
+
+/// One converged case of a dataset (`d` is None for line contacts, `g` = alpha E' when the
+/// dataset carries it, `h_pm` the film at the pressure maximum when it does).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FitPoint {
+    pub m: f64,
+    pub l: f64,
+    pub d: Option<f64>,
+    pub h_c: f64,
+    pub h_min: f64,
+    pub g: Option<f64>,
+    #[serde(default)]
+    pub h_pm: Option<f64>,
+    /// Points per direction of the solve (the limit checks solve point cases on at least this).
+    #[serde(default)]
+    pub grid: Option<usize>,
+    /// Richardson error estimates of H_c and H_min (None: not estimated). A film whose estimate
+    /// exceeds [`crate::fit::dataset::MAX_ERROR_ESTIMATE`] is left out of that film's fit
+    /// ([`Film::of_point`]); H_pm, which has no estimate of its own, needs both within it.
+    #[serde(default)]
+    pub h_c_err: Option<f64>,
+    #[serde(default)]
+    pub h_min_err: Option<f64>,
+}
+
+impl FitPoint {
+    fn dd(&self) -> f64 {
+        self.d.unwrap_or(1.0)
+    }
+}
+
+/// What the fit reads: converged points per contact plus counts of what was left out.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct FitInput {
+    pub datasets: Vec<String>,
+    pub line: Vec<FitPoint>,
+    pub point: Vec<FitPoint>,
+    pub failed_line: usize,
+    pub failed_point: usize,
+    pub duplicates: usize,
+    /// Rows left out with the reason (e.g. an error estimate above the threshold).
+    pub excluded: Vec<String>,
+    /// Rows used for one film only (the other film's error estimate is above the threshold).
+    #[serde(default)]
+    pub one_film: Vec<String>,
+}
+
+/// A fitted parameter with its one-sigma uncertainty (0: held fixed).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Param {
+    pub name: String,
+    pub value: f64,
+    pub sigma: f64,
+}
+
+/// A fitted model of either contact.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "lowercase")]
+pub enum FittedModel {
+    Line(LineModel),
+    Point(PointModel),
+}
+
+impl FittedModel {
+    pub fn eval(&self, m: f64, l: f64, d: f64) -> f64 {
+        match self {
+            FittedModel::Line(x) => x.eval(m, l),
+            FittedModel::Point(x) => x.eval(m, l, d),
+        }
+    }
+}
+
+/// The fit of one quantity.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct QuantityFit {
+    pub quantity: String,
+    pub model: FittedModel,
+    pub params: Vec<Param>,
+    pub rms_log: f64,
+    pub converged: bool,
+    pub overall: ErrStats,
+    pub regions: Vec<RegionStats>,
+    /// Per D (point contacts).
+    pub per_d: Vec<RegionStats>,
+    /// The M range over which the fit meets the 2 % target ([`MAX_ERROR_TARGET`]); None when no
+    /// M value of the data has all its cases within it.
+    #[serde(default)]
+    pub within_target: Option<TargetRange>,
+}
+
+fn h_c_name() -> String {
+    Film::Centre.name().to_string()
+}
+
+/// A published formula on the same cases, against one film (`against`: H_c or H_pm), or why it
+/// was skipped.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Published {
+    pub name: String,
+    #[serde(default = "h_c_name")]
+    pub against: String,
+    pub overall: Option<ErrStats>,
+    pub regions: Vec<RegionStats>,
+    pub skipped: Option<String>,
+}
+
+/// The report of one contact.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct ContactReport {
+    pub contact: String,
+    pub converged_cases: usize,
+    pub failed_cases: usize,
+    /// Why this contact was not fitted (None when fitted).
+    pub skipped: Option<String>,
+    pub h_c: Option<QuantityFit>,
+    /// The film at the pressure maximum (None when the dataset does not carry it).
+    #[serde(default)]
+    pub h_pm: Option<QuantityFit>,
+    pub h_min: Option<QuantityFit>,
+    /// Films not fitted because too few cases carry them (H_pm of older datasets).
+    #[serde(default)]
+    pub skipped_films: Vec<String>,
+    pub published: Vec<Published>,
+    pub asymptotes: Vec<AsymptoteCheck>,
+}
+
+/// Everything the report shows; `fit.json` is this, serialised ({"line": .., "point": ..}).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FitReport {
+    pub datasets: Vec<String>,
+    pub duplicate_rows: usize,
+    pub excluded: Vec<String>,
+    /// Rows used for one film only, with the reason.
+    #[serde(default)]
+    pub one_film: Vec<String>,
+    pub line: ContactReport,
+    pub point: ContactReport,
+}
+
+/// The samples of `film`: the cases that carry it.
+fn samples(pts: &[FitPoint], film: Film) -> Vec<Sample> {
+    pts.iter()
+        .filter_map(|p| {
+            film.of_point(p).map(|h| Sample {
+                m: p.m,
+                l: p.l,
+                d: p.dd(),
+                h,
+            })
+        })
+        .collect()
+}
+
+/// Fit the `r.stage1` parameters from `start`; with enough data refit all of `r.stage2` from
+/// there and keep it when it stays physical, identified (every sigma finite: J^T J not
+/// singular) and fits better; if it does not, try once more with
+/// the rigid-piezoviscous law (`r.rp`) held at its stage-1 fit (a freed RP law can run off when
+/// the data hardly see it: the point H_min fit on the 257^2 nightly sweep sent b_RP to e^-40;
+/// holding it brought the max error from 18 % to 13 %), then with the `r.late` parameters held
+/// at their start, then with both held.
+fn staged<Mo: FilmModel>(
+    data: &[Sample],
+    start: &Mo,
+    r: &Recipe<Mo>,
+) -> Result<LsqFit<Mo>, String> {
+    let mut f = fit(data, start, &r.stage1)?;
+    if data.len() < FULL_FIT_MIN_POINTS || r.stage2.len() <= r.stage1.len() {
+        return Ok(f);
+    }
+    let without = |out: &[usize]| -> Vec<usize> {
+        r.stage2
+            .iter()
+            .copied()
+            .filter(|k| !out.contains(k))
+            .collect()
+    };
+    let both: Vec<usize> = r.rp.iter().chain(r.late).copied().collect();
+    let mut tries = vec![r.stage2.clone(), without(r.rp)];
+    if !r.late.is_empty() {
+        tries.extend([without(r.late), without(&both)]);
+    }
+    for free in &tries {
+        if let Ok(g) = fit(data, &f.model, free) {
+            let identified = g.sigma.iter().all(|s| s.is_finite());
+            if (r.physical)(&g.model) && identified && g.rms_log < f.rms_log {
+                f = g;
+                break;
+            }
+        }
+    }
+    Ok(f)
+}
+
+fn quantity<Mo: FilmModel>(
+    film: Film,
+    pts: &[FitPoint],
+    f: LsqFit<Mo>,
+    names: &[&str],
+    wrap: fn(Mo) -> FittedModel,
+) -> QuantityFit {
+    let model = wrap(f.model.clone());
+    let data: Vec<_> = pts
+        .iter()
+        .filter_map(|p| film.of_point(p).map(|h| (p, h)))
+        .collect();
+    let tuples: Vec<_> = data
+        .iter()
+        .map(|(p, h)| (p.m, p.l, model.eval(p.m, p.l, p.dd()), *h))
+        .collect();
+    let dts: Vec<_> = data
+        .iter()
+        .filter_map(|(p, h)| p.d.map(|d| (d, model.eval(p.m, p.l, d), *h)))
+        .collect();
+    QuantityFit {
+        quantity: film.name().to_string(),
+        params: names
+            .iter()
+            .zip(f.model.x().iter().zip(&f.sigma))
+            .map(|(n, (v, s))| Param {
+                name: n.to_string(),
+                value: *v,
+                sigma: *s,
+            })
+            .collect(),
+        model,
+        rms_log: f.rms_log,
+        converged: f.converged,
+        overall: err_stats(&tuples).expect("non-empty data"),
+        regions: region_table(&tuples),
+        per_d: d_table(&dts),
+        within_target: target_range(&tuples, MAX_ERROR_TARGET),
+    }
+}
+
+/// A published formula against H_c and, when the data carry it, H_pm.
+fn published(name: &str, pts: &[FitPoint], f: impl Fn(&FitPoint) -> f64) -> Vec<Published> {
+    [Film::Centre, Film::PressureMax]
+        .into_iter()
+        .filter(|film| pts.iter().any(|p| film.of_point(p).is_some()))
+        .map(|film| {
+            let t: Vec<_> = pts
+                .iter()
+                .filter_map(|p| film.of_point(p).map(|h| (p.m, p.l, f(p), h)))
+                .collect();
+            Published {
+                name: name.to_string(),
+                against: film.name().to_string(),
+                overall: err_stats(&t),
+                regions: region_table(&t),
+                skipped: None,
+            }
+        })
+        .collect()
+}
+
+fn needs_g(name: &str, pts: &[FitPoint], f: impl Fn(&FitPoint, f64) -> f64) -> Vec<Published> {
+    if pts.iter().all(|p| p.g.is_some()) {
+        published(name, pts, |p| f(p, p.g.expect("checked")))
+    } else {
+        vec![Published {
+            name: name.to_string(),
+            against: Film::Centre.name().to_string(),
+            overall: None,
+            regions: vec![],
+            skipped: Some("skipped: dataset has no G".to_string()),
+        }]
+    }
+}
+
+fn skipped(contact: &str, n: usize, failed: usize, need: usize) -> ContactReport {
+    ContactReport {
+        contact: contact.to_string(),
+        converged_cases: n,
+        failed_cases: failed,
+        skipped: Some(format!("skipped: {n} cases, need at least {need}")),
+        ..ContactReport::default()
+    }
+}
+
+/// The line free sets: stage 1 the EI, RP, EP asymptotes (RI is fixed by theory, see
+/// [`C_RI_CENTRAL`]; RP starts from its rigid limit [`B_RP_CENTRAL`] L^(2/3)); stage 2 also the
+/// blending powers and the s-law.
+const LINE_STAGE1: [usize; 7] = [0, 1, 2, 3, 4, 5, 6];
+// (Holding H_RP at its rigid limit B_RP_CENTRAL L^(2/3) was tried on the nightly line sweep: max
+// error 5.5 % against 4.9 % free; the elastic data never reach that limit, so RP is fitted and
+// checked against the limit instead.)
+const LINE_STAGE2: [usize; 13] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12];
+
+/// The start of a line fit of `film`: Moes' laws, with H_RI at its exact constant (2.4475 at
+/// X = 0 and for H_min, 3 at the pressure maximum) and H_RP at its rigid limit scaled the same
+/// way (the rigid-piezoviscous film has the rigid-isoviscous shape).
+fn line_start(film: Film) -> LineModel {
+    let (c_ri, scale) = match film {
+        Film::Centre => (C_RI_CENTRAL, 1.0),
+        Film::PressureMax => (MARTIN_FLUX, 1.0),
+        Film::Minimum => (C_RI_CENTRAL, 0.75),
+    };
+    let mut m = LineModel::moes();
+    m.c_ri = c_ri;
+    m.x[2] = (B_RP_CENTRAL * c_ri / C_RI_CENTRAL).ln();
+    m.x[3] = 2.0 / 3.0;
+    for k in [0, 4] {
+        m.x[k] += f64::ln(scale);
+    }
+    m
+}
+
+fn line_physical(m: &LineModel) -> bool {
+    let x = &m.x;
+    x[7] > 0.5
+        && x[7] + x[12] > 0.5
+        && x[8] > 0.5
+        && x[9] > 0.5
+        && x[11] > 0.0
+        && x.iter().all(|v| v.abs() < 50.0)
+}
+
+/// How one contact is fitted: the start model of each film, the two free sets, the physical
+/// test, and the wrapping into [`FittedModel`].
+struct Recipe<Mo> {
+    contact: &'static str,
+    start: fn(Film) -> Mo,
+    stage1: Vec<usize>,
+    stage2: Vec<usize>,
+    /// The rigid-piezoviscous law's parameters (held in the fallback of [`staged`]).
+    rp: &'static [usize],
+    /// Blend parameters held at their start in the later fallbacks of [`staged`].
+    late: &'static [usize],
+    physical: fn(&Mo) -> bool,
+    names: &'static [&'static str],
+    wrap: fn(Mo) -> FittedModel,
+}
+
+/// Fit each film the data carry (a film with fewer cases than the contact needs is left out and
+/// named in `skipped_films`); returns the report without checks and published formulas, and the
+/// fitted models for the checks.
+fn fit_films<Mo: FilmModel>(
+    r: &Recipe<Mo>,
+    pts: &[FitPoint],
+    failed: usize,
+) -> Result<(ContactReport, Vec<(Film, Mo)>), String> {
+    let need = r.stage1.len() + SPARE_CASES;
+    let mut report = ContactReport {
+        contact: r.contact.to_string(),
+        converged_cases: pts.len(),
+        failed_cases: failed,
+        ..ContactReport::default()
+    };
+    let mut models = vec![];
+    for film in Film::ALL {
+        let data = samples(pts, film);
+        if data.len() < need {
+            report.skipped_films.push(format!(
+                "{}: {} of {} cases carry it, need at least {need}",
+                film.name(),
+                data.len(),
+                pts.len()
+            ));
+            continue;
+        }
+        let f = staged(&data, &(r.start)(film), r)
+            .map_err(|e| format!("{} {}: {e}", r.contact, film.name()))?;
+        models.push((film, f.model.clone()));
+        let q = Some(quantity(film, pts, f, r.names, r.wrap));
+        match film {
+            Film::Centre => report.h_c = q,
+            Film::PressureMax => report.h_pm = q,
+            Film::Minimum => report.h_min = q,
+        }
+    }
+    Ok((report, models))
+}
+
+fn line_report(
+    pts: &[FitPoint],
+    failed: usize,
+    limit_solves: bool,
+) -> Result<ContactReport, String> {
+    let need = LINE_STAGE1.len() + SPARE_CASES;
+    if pts.len() < need {
+        return Ok(skipped("line", pts.len(), failed, need));
+    }
+    let recipe = Recipe {
+        contact: "line",
+        start: line_start,
+        stage1: LINE_STAGE1.to_vec(),
+        stage2: LINE_STAGE2.to_vec(),
+        rp: &[2, 3],
+        late: &[],
+        physical: line_physical,
+        names: &PARAM_NAMES,
+        wrap: FittedModel::Line,
+    };
+    let (mut report, models) = fit_films(&recipe, pts, failed)?;
+    if limit_solves {
+        report.asymptotes = line_checks(&models, pts);
+    }
+    report.published = published("Moes 1992", pts, |p| moes_line_hc(p.m, p.l));
+    report
+        .published
+        .extend(needs_g("Dowson-Toyoda 1979", pts, |p, g| {
+            dowson_toyoda_line_hc_moes(p.m, p.l, g)
+        }));
+    Ok(report)
+}
+
+/// Free point parameters for the data: the D corrections only with two or more D values, the
+/// piezoviscous laws only with L > 0 cases.
+fn point_free(pts: &[FitPoint]) -> Vec<usize> {
+    let mut ds: Vec<f64> = pts.iter().map(|p| p.dd()).collect();
+    ds.sort_by(f64::total_cmp);
+    ds.dedup();
+    let any_piezo = pts.iter().any(|p| p.l > 0.0);
+    PointModel::ASYMPTOTES
+        .iter()
+        .copied()
+        .filter(|k| ds.len() >= 2 || !PointModel::D_EXPONENTS.contains(k))
+        .filter(|k| any_piezo || !PointModel::PIEZO.contains(k))
+        .collect()
+}
+
+/// The start of a point fit of `film`: NVM 1994 with the solver's rigid constant c_RI (held),
+/// its elastic laws scaled by 0.6 for H_min.
+fn point_start(film: Film) -> PointModel {
+    let scale: f64 = if film == Film::Minimum { 0.6 } else { 1.0 };
+    let mut start = PointModel::nvm();
+    start.x[0] = rigid_point::c_ri(film).ln();
+    for k in [2, 8] {
+        start.x[k] += scale.ln();
+    }
+    start
+}
+
+fn point_report(
+    pts: &[FitPoint],
+    failed: usize,
+    limit_solves: bool,
+) -> Result<ContactReport, String> {
+    // Stage 1 holds the M exponents of H_EI (-2/15) and the whole H_EP law at NVM's: with few
+    // elastic cases (129^2 data reached M ~ 50, D = 1: M ~ 20) they are not identifiable; freed,
+    // alpha_EI turned positive and H_EP ran off to 1e3 times the film. Stage 2 (from
+    // FULL_FIT_MIN_POINTS cases: the 257^2 nightly data reach M = 139 at D = 1 and 1000 at
+    // D = 0.1) frees everything and is kept only when physical, identified and better.
+    let all_free = point_free(pts);
+    let free: Vec<usize> = all_free
+        .iter()
+        .copied()
+        .filter(|k| ![3, 8, 9, 10, 11].contains(k))
+        .collect();
+    let need = free.len() + SPARE_CASES;
+    if pts.len() < need {
+        return Ok(skipped("point", pts.len(), failed, need));
+    }
+    let mut all = all_free.clone();
+    // The blend: s0, s1, c_00 and the rigid/elastic isoviscous power r.
+    all.extend([12, 13, 14, 15]);
+    let recipe = Recipe {
+        contact: "point",
+        start: point_start,
+        stage1: free,
+        stage2: all,
+        rp: &[5, 6, 7],
+        late: &[14, 15],
+        physical: PointModel::physical,
+        names: &POINT_PARAM_NAMES,
+        wrap: FittedModel::Point,
+    };
+    let (mut report, models) = fit_films(&recipe, pts, failed)?;
+    if limit_solves {
+        report.asymptotes = point_checks(&models, pts);
+    }
+    report.published = published("NVM 1994", pts, |p| nvm_point_hc(p.m, p.l, p.dd()));
+    report
+        .published
+        .extend(needs_g("Hamrock-Dowson 1977", pts, |p, g| {
+            hamrock_dowson_hc_moes(p.m, p.l, g, p.dd())
+        }));
+    Ok(report)
+}
+
+/// Fit, compare and check each contact present. `limit_solves` runs the solver's limit cases.
+/// Errors: no converged case at all, or no contact with enough cases (the message names each).
+pub fn fit_report(input: &FitInput, limit_solves: bool) -> Result<FitReport, String> {
+    if input.line.is_empty() && input.point.is_empty() {
+        return Err(format!(
+            "no converged cases in {} ({} failed rows, {} excluded for an error estimate \
+             above 2 %): nothing to fit",
+            input.datasets.join(", "),
+            input.failed_line + input.failed_point,
+            input.excluded.len()
+        ));
+    }
+    let line = line_report(&input.line, input.failed_line, limit_solves)?;
+    let point = point_report(&input.point, input.failed_point, limit_solves)?;
+    if line.h_c.is_none() && point.h_c.is_none() {
+        let why = |c: &ContactReport| c.skipped.clone().unwrap_or_default();
+        return Err(format!(
+            "too few converged cases to fit: line {}; point {}",
+            why(&line),
+            why(&point)
+        ));
+    }
+    Ok(FitReport {
+        datasets: input.datasets.clone(),
+        duplicate_rows: input.duplicates,
+        excluded: input.excluded.clone(),
+        one_film: input.one_film.clone(),
+        line,
+        point,
+    })
+}

@@ -1,0 +1,230 @@
+//! The full-multigrid driver shared by the line and point solvers (Venner & Lubrecht's FMG with
+//! the load balance as an outer secant iteration on H0).
+//!
+//! A solver exposes its levels through [`Fas`]: an initial guess, an exact start on the coarsest
+//! level (Newton with the load equation, plus the load slope dG/dH0), the FMG interpolation, one
+//! FAS cycle at fixed H0, and the convergence record of a level. [`fmg_solve`] then runs, level by
+//! level from the coarsest: cycles at fixed H0 until the load error has settled (the residual fell
+//! by 20 since the last H0 change and the load error moved by less than a tenth of itself), then a
+//! safeguarded secant step on H0 ([`LoadBalance`]); H0 is predicted on each new level by
+//! Richardson extrapolation of its last change (H0 converges at second order in h). On the finest
+//! level it stops when the load error and the change of H_c per cycle are below the tolerances,
+//! and reports divergence (non-finite values, residual growth by 1e4), stalling (the load error
+//! stuck with H_c frozen) or the cycle limit honestly.
+
+use crate::solve::load_balance::LoadBalance;
+use crate::solve::newton::NewtonOutcome;
+use crate::solve::{CycleRecord, SolveInfo, Status};
+use std::time::Instant;
+
+/// The driver's tolerances and limits.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FmgControl {
+    /// Cycles on each FMG level before moving to the next finer one (4x this at most).
+    pub fmg_cycles: usize,
+    /// Cycles allowed on the finest level.
+    pub max_cycles: usize,
+    pub tol_load: f64,
+    pub tol_h: f64,
+    /// Load tolerance on the coarser FMG levels.
+    pub tol_load_fmg: f64,
+    /// Damping of the secant step on H0 (`None`: 1).
+    pub load_factor: Option<f64>,
+    /// The cycle budget of a coarser FMG level grows by this factor per level below the finest
+    /// (1: 4 fmg_cycles everywhere). Point contacts use 2: a coarse cycle costs a quarter of the
+    /// next finer one, and a load balance settled on the coarse levels saves fine cycles.
+    pub coarse_budget_growth: usize,
+}
+
+/// What the FMG driver needs from a multilevel solver.
+pub trait Fas {
+    fn control(&self) -> FmgControl;
+    /// Index of the finest level (0 = coarsest).
+    fn top(&self) -> usize;
+    /// Initial guess on the coarsest level.
+    fn initialise(&mut self);
+    /// Exact solve on the coarsest level with the load equation; with `with_slope`, also
+    /// estimate dG/dH0 for [`Fas::load_slope`].
+    fn start_coarse(&mut self, with_slope: bool) -> NewtonOutcome;
+    fn load_slope(&self) -> f64;
+    /// Start level l from level l-1's solution.
+    fn fmg_interpolate(&mut self, l: usize);
+    /// One FAS cycle with level l as the finest, at fixed H0.
+    fn cycle(&mut self, l: usize);
+    /// One relaxation sweep of level l (counted in work units).
+    fn relax(&mut self, l: usize);
+    fn record(&mut self, l: usize) -> CycleRecord;
+    fn h0(&self) -> f64;
+    /// Set H0 and refresh level l's film.
+    fn set_h0(&mut self, l: usize, h0: f64);
+    /// Central film of level l (Hertzian units).
+    fn centre_film(&self, l: usize) -> f64;
+    /// The central film estimate of the domain rule (Hertzian units).
+    fn h_estimate(&self) -> f64;
+    /// Right-hand side of level l's load equation.
+    fn load_target(&self, l: usize) -> f64;
+    fn trace(&self) -> bool;
+    /// Install a warm-start guess (pressure and H0 from a solved neighbour) on level `l`, the
+    /// finest; true when there was one. The FMG ascent is then skipped: the coarse start only
+    /// supplies the load slope, and the finest-level cycles start from the guess.
+    fn install_guess(&mut self, _l: usize) -> bool {
+        false
+    }
+    fn finish(
+        &self,
+        start: Instant,
+        status: Status,
+        reason: String,
+        history: Vec<CycleRecord>,
+    ) -> SolveInfo;
+}
+
+/// Run full multigrid with the load balance (see the module docs).
+pub fn fmg_solve<S: Fas>(s: &mut S) -> SolveInfo {
+    let c = s.control();
+    let start = Instant::now();
+    s.initialise();
+    let top = s.top();
+    let coarse = s.start_coarse(top > 0);
+    if top == 0 {
+        // A single level: the Newton solve is the whole solve.
+        let rec = s.record(0);
+        let (status, reason) = if coarse.converged {
+            (
+                Status::Converged,
+                format!("Newton converged in {} iterations", coarse.iterations),
+            )
+        } else if coarse.singular {
+            (Status::Diverged, "singular Newton system".to_string())
+        } else {
+            (
+                Status::MaxIterations,
+                format!(
+                    "Newton residual {:.2e} after {} iterations",
+                    coarse.residual, coarse.iterations
+                ),
+            )
+        };
+        return s.finish(start, status, reason, vec![rec]);
+    }
+    let mut lb = LoadBalance::new(s.load_slope());
+    let mut history = vec![];
+    let mut status = Status::MaxIterations;
+    let mut reason = format!("no convergence in {} cycles", c.max_cycles);
+    let mut min_res = f64::INFINITY;
+    // H0 at the end of each level: it converges at second order in h, so the next level's
+    // H0 is predicted by extrapolating the last change by 1/4 (Richardson).
+    let mut h0_end = vec![s.h0()];
+    let warm = s.install_guess(top);
+    for l in (if warm { top } else { 1 })..=top {
+        if !warm {
+            if let [.., a, b] = h0_end[..] {
+                if l >= 3 {
+                    s.set_h0(l, b + 0.25 * (b - a));
+                }
+            }
+            s.fmg_interpolate(l);
+        }
+        lb.reset();
+        let final_level = l == top;
+        let (tol_e, max) = if final_level {
+            (c.tol_load, c.max_cycles)
+        } else {
+            (
+                c.tol_load_fmg,
+                4 * c.fmg_cycles * c.coarse_budget_growth.pow((top - l) as u32),
+            )
+        };
+        let mut prev: Option<CycleRecord> = None;
+        let mut first_res = f64::INFINITY;
+        let mut settled_h: Option<f64> = None;
+        for k in 0..max {
+            s.cycle(l);
+            let rec = s.record(l);
+            if s.trace() {
+                eprintln!(
+                    "level {l} cycle {k} res {:.3e} load {:.3e} hc {:.7} wu {:.1} h0 {:.8}",
+                    rec.residual,
+                    rec.load_error,
+                    rec.h_c,
+                    rec.work_units,
+                    s.h0()
+                );
+            }
+            if final_level {
+                history.push(rec);
+            }
+            if !(rec.residual.is_finite() && rec.h_c.is_finite() && s.h0().is_finite()) {
+                status = Status::Diverged;
+                reason = format!("non-finite residual or film on level {l}");
+                return s.finish(start, status, reason, history);
+            }
+            if final_level {
+                min_res = min_res.min(rec.residual);
+                if rec.residual > 1e4 * min_res.max(1e-14) || rec.load_error.abs() > 10.0 {
+                    reason = format!(
+                        "residual grew to {:.3e} (min {:.3e}), load error {:.3e}",
+                        rec.residual, min_res, rec.load_error
+                    );
+                    return s.finish(start, Status::Diverged, reason, history);
+                }
+            }
+            // P has settled for this H0 when the residual fell by 20 since the last H0 change
+            // and the load error moved by less than a tenth of itself over the last cycle.
+            first_res = first_res.min(if prev.is_none() {
+                rec.residual
+            } else {
+                f64::INFINITY
+            });
+            let settled = prev.is_some_and(|p| {
+                (rec.load_error - p.load_error).abs() <= 0.1 * rec.load_error.abs() + 0.25 * tol_e
+                    && rec.residual <= 0.05 * first_res
+            });
+            let dh = prev.map_or(f64::INFINITY, |p| {
+                // (a floor for the dry limit, where H_c is zero up to rounding)
+                (rec.h_c - p.h_c).abs() / rec.h_c.abs().max(1e-6)
+            });
+            if rec.load_error.abs() < tol_e
+                && (settled || k + 1 == max)
+                && (!final_level || dh < c.tol_h)
+            {
+                if final_level {
+                    status = Status::Converged;
+                    reason = format!(
+                        "load error {:.1e} and H_c change {:.1e} below tolerances",
+                        rec.load_error, dh
+                    );
+                }
+                break;
+            }
+            if settled {
+                if final_level {
+                    if let Some(hs) = settled_h {
+                        if (rec.h_c - hs).abs() / rec.h_c.abs() < 1e-12
+                            && rec.load_error.abs() > tol_e
+                        {
+                            status = Status::Stalled;
+                            reason = format!("load error stuck at {:.2e}", rec.load_error);
+                            break;
+                        }
+                    }
+                    settled_h = Some(rec.h_c);
+                }
+                // H0 is a rigid approach: elastic contacts absorb much of a change of it, so the
+                // step limit scales with |H0| as well as with the film.
+                let max_step =
+                    0.3 * s.centre_film(l).abs().max(1e-3 * s.h_estimate()) + 0.1 * s.h0().abs();
+                let g = rec.load_error * s.load_target(l);
+                let next = lb.next(s.h0(), g, max_step);
+                let h0 = s.h0() + c.load_factor.unwrap_or(1.0) * (next - s.h0());
+                s.set_h0(l, h0);
+                prev = None;
+                first_res = f64::INFINITY;
+            } else {
+                prev = Some(rec);
+            }
+        }
+        h0_end.push(s.h0());
+    }
+    s.finish(start, status, reason, history)
+}

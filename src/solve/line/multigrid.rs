@@ -1,0 +1,529 @@
+//! Full multigrid (FAS) for the line contact (Venner & Lubrecht).
+//!
+//! Levels l = 0 (coarsest, n0 intervals) .. finest (n0 2^l intervals) on one domain chosen by
+//! [`crate::discrete::line::domain`]. A cycle on level l (l > 0): `pre` relaxations; the residual
+//! r = f - L(P), zeroed on the cavitated set P = 0, is restricted by full weighting; P is injected,
+//! P^_H = P_h(2I); the coarse right-hand sides are f_H = L_H(P^_H) + R r and
+//! g_H = h_H sum P^_H + (g_h - h_h sum P_h); `gamma` coarse cycles (1: V, 2: W); the correction
+//! P_H - P^_H is interpolated linearly, added and projected on P >= 0; `post` relaxations.
+//! The coarsest level is solved exactly at fixed H0 by semi-smooth Newton (relaxation only if
+//! Newton fails); coarse nodes next to the cavitated set are held fixed. FMG starts with a full
+//! Newton solve (load equation included) on the coarsest grid, interpolates each level's result
+//! (cubic) as the next level's start, and predicts H0 there by extrapolating its last change.
+//!
+//! Load balance: on each level, cycles at fixed H0 until the load error has settled, then a
+//! safeguarded secant step on H0 ([`LoadBalance`]); the slope comes from the coarsest Newton and
+//! is refined level by level. Set `EHLMAP_TRACE=1` to print every cycle to stderr.
+
+use crate::discrete::line::domain::{DomainParams, LineDomain};
+use crate::discrete::line::operator::{LineLevel, LinePhysics};
+use crate::model::case::LineCase;
+use crate::solve::fmg::{fmg_solve, Fas, FmgControl};
+use crate::solve::line::relax::{relax, LineScratch, RelaxParams};
+use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
+use crate::solve::{CycleRecord, SolveInfo, Status};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+use std::time::Instant;
+
+/// V or W cycles.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum CycleType {
+    #[default]
+    V,
+    W,
+}
+
+impl CycleType {
+    pub(crate) fn gamma(self) -> usize {
+        match self {
+            CycleType::V => 1,
+            CycleType::W => 2,
+        }
+    }
+}
+
+/// Multigrid settings; `Default` gives the settings the stability map supports.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LineMgParams {
+    /// Points of the finest level (2^k n0 + 1 for the domain rule's n0; other values are rounded
+    /// up to the next such size).
+    pub grid: usize,
+    pub cycle: CycleType,
+    pub pre: usize,
+    pub post: usize,
+    /// Cycles on each FMG level before moving to the next finer one.
+    pub fmg_cycles: usize,
+    /// Cycles allowed on the finest level after FMG.
+    pub max_cycles: usize,
+    pub relax: RelaxParams,
+    /// Damping of the secant load-balance step on H0 (`None`: 1).
+    pub load_factor: Option<f64>,
+    pub coarse_sweeps: usize,
+    /// Converged when |load error| < tol_load and the relative change of H_c and H_min over a
+    /// cycle is below tol_h.
+    pub tol_load: f64,
+    pub tol_h: f64,
+    /// Load tolerance on the coarser FMG levels before moving up.
+    pub tol_load_fmg: f64,
+    pub domain: DomainParams,
+    /// Override the coarsest grid's interval count (a power of two >= 8).
+    pub coarse_intervals: Option<usize>,
+    pub second_order: bool,
+    /// Newton iterations allowed for the first coarsest-grid solve (and for the Newton method).
+    pub newton_max_iter: usize,
+    /// Deformation by the O(N^2) direct sum on every level instead of the FFT (baseline).
+    pub direct_deformation: bool,
+}
+
+impl Default for LineMgParams {
+    fn default() -> Self {
+        LineMgParams {
+            grid: 2049,
+            cycle: CycleType::V,
+            pre: 2,
+            post: 1,
+            fmg_cycles: 2,
+            max_cycles: 60,
+            relax: RelaxParams::default(),
+            load_factor: None,
+            coarse_sweeps: 20,
+            tol_load: 5e-7,
+            tol_h: 1e-6,
+            tol_load_fmg: 1e-4,
+            domain: DomainParams::default(),
+            coarse_intervals: None,
+            second_order: true,
+            newton_max_iter: 40,
+            direct_deformation: false,
+        }
+    }
+}
+
+/// The state of a line multigrid solve: all levels, H0, counters.
+pub struct LineMultigrid {
+    pub phys: LinePhysics,
+    pub domain: LineDomain,
+    pub levels: Vec<LineLevel>,
+    pub h0: f64,
+    pub params: LineMgParams,
+    /// Injected coarse pressures P^_H per level.
+    p_hat: Vec<Vec<f64>>,
+    pub work_units: f64,
+    /// Estimate of d(h sum P)/dH0 from the coarsest level.
+    load_slope: f64,
+    /// Work buffers of the smoother, shared by all levels.
+    scratch: LineScratch,
+    /// Print every cycle to stderr (`EHLMAP_TRACE` set when the solver was built).
+    trace: bool,
+    fine_intervals: usize,
+    /// A warm-start guess for the finest level ([`LineMultigrid::set_guess`]).
+    guess: Option<WarmGuess>,
+}
+
+/// A solved neighbour's pressure profile (Hertzian X, P) and the central film (Hertzian units)
+/// this case is expected to have, to start the finest-level cycles from.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WarmGuess {
+    pub x: Vec<f64>,
+    pub p: Vec<f64>,
+    pub centre_film: f64,
+}
+
+impl WarmGuess {
+    /// P at `x`, linear between the samples, zero outside them.
+    fn p_at(&self, x: f64) -> f64 {
+        let (xs, ps) = (&self.x, &self.p);
+        if xs.len() < 2 || x <= xs[0] || x >= xs[xs.len() - 1] {
+            return 0.0;
+        }
+        let j = xs.partition_point(|&v| v <= x).clamp(1, xs.len() - 1);
+        let t = (x - xs[j - 1]) / (xs[j] - xs[j - 1]);
+        ((1.0 - t) * ps[j - 1] + t * ps[j]).max(0.0)
+    }
+}
+
+impl LineMultigrid {
+    /// Build the levels for a case. The finest level has at least `params.grid` points.
+    pub fn new(case: &LineCase, params: &LineMgParams) -> Self {
+        let phys = LinePhysics {
+            second_order: params.second_order,
+            ..LinePhysics::from_case(case)
+        };
+        let max_int = (params.grid.max(17) - 1).next_power_of_two();
+        let rigid = case.models.elasticity == crate::model::case::Elasticity::Rigid;
+        let mut domain = LineDomain::for_case(case.m, case.l, rigid, &params.domain, max_int);
+        if let Some(n0) = params.coarse_intervals {
+            domain = LineDomain::aligned(
+                domain.x_in,
+                domain.x_out,
+                n0.min(max_int),
+                domain.h_estimate,
+            );
+        }
+        let mut fine = domain.n0;
+        while fine + 1 < params.grid {
+            fine *= 2;
+        }
+        let mut levels = vec![];
+        let mut n = domain.n0;
+        while n <= fine {
+            let mut lv = LineLevel::new(domain.x_in, domain.x_out, n);
+            lv.direct_deformation = params.direct_deformation;
+            levels.push(lv);
+            n *= 2;
+        }
+        let p_hat = levels.iter().map(|l| vec![0.0; l.len()]).collect();
+        LineMultigrid {
+            phys,
+            domain,
+            levels,
+            h0: 0.0,
+            params: *params,
+            p_hat,
+            work_units: 0.0,
+            load_slope: -1.0,
+            scratch: LineScratch::default(),
+            trace: std::env::var_os("EHLMAP_TRACE").is_some(),
+            fine_intervals: fine,
+            guess: None,
+        }
+    }
+
+    /// Start the next [`LineMultigrid::solve`] from `guess` on the finest level instead of
+    /// the FMG ascent.
+    pub fn set_guess(&mut self, guess: WarmGuess) {
+        self.guess = Some(guess);
+    }
+
+    /// Put the guess on level `l`: P interpolated onto its grid, H0 so that the central film is
+    /// the guess's.
+    fn install_guess(&mut self, l: usize) -> bool {
+        let Some(g) = self.guess.take() else {
+            return false;
+        };
+        let lv = &mut self.levels[l];
+        let n = lv.len();
+        for i in 0..n {
+            lv.p[i] = if i == 0 || i + 1 == n {
+                0.0
+            } else {
+                g.p_at(lv.x[i])
+            };
+        }
+        lv.f.fill(0.0);
+        lv.frozen.fill(false);
+        lv.g = PI / 2.0;
+        lv.update_film(&self.phys, 0.0);
+        self.h0 = g.centre_film - lv.film[self.domain.centre_index(n - 1)];
+        lv.update_film(&self.phys, self.h0);
+        true
+    }
+
+    /// Start on the coarsest level: the Hertz pressure for elastic surfaces; for rigid ones a
+    /// parabola over [-2.5, 0.5] l_h (the Martin pressure's extent, l_h = sqrt(2 H_e)); in the dry
+    /// limit a wider parabola than Hertz, so that the solver has to find Hertz. All carry the load
+    /// pi/2. H0 is chosen so that the central film equals the estimate H_e.
+    pub fn initialise(&mut self) {
+        let dry = self.phys.dry;
+        let rigid = !self.phys.elastic;
+        let h_e = self.domain.h_estimate;
+        let half = 1.5 * (2.0 * h_e).sqrt();
+        let lv = &mut self.levels[0];
+        for i in 0..lv.len() {
+            let x = lv.x[i];
+            lv.p[i] = if dry {
+                PI / 4.0 * (1.0 - x * x / 2.25).max(0.0)
+            } else if rigid {
+                let s = (x + half / 1.5) / half;
+                3.0 * PI / (8.0 * half) * (1.0 - s * s).max(0.0)
+            } else {
+                (1.0 - x * x).max(0.0).sqrt()
+            };
+        }
+        let n = lv.len();
+        lv.p[0] = 0.0;
+        lv.p[n - 1] = 0.0;
+        lv.update_film(&self.phys, 0.0);
+        let ic = self.domain.centre_index(n - 1);
+        self.h0 = h_e - lv.film[ic];
+        lv.update_film(&self.phys, self.h0);
+    }
+
+    /// One relaxation sweep on level `l`, counted in work units.
+    pub fn relax_level(&mut self, l: usize) {
+        let lv = &mut self.levels[l];
+        relax(
+            lv,
+            &self.phys,
+            self.h0,
+            &self.params.relax,
+            &mut self.scratch,
+        );
+        self.work_units += (lv.len() - 1) as f64 / self.fine_intervals as f64;
+    }
+
+    /// Solve the coarsest level's FAS problem for P at fixed H0 by Newton; if Newton fails, fall
+    /// back to `coarse_sweeps` relaxations.
+    fn coarse_solve(&mut self) {
+        let lv = &mut self.levels[0];
+        let before = lv.p.clone();
+        let np = NewtonParams {
+            fix_h0: true,
+            ..NewtonParams::default()
+        };
+        let mut h0 = self.h0;
+        let out = newton_solve(lv, &self.phys, &mut h0, &np);
+        // Newton's cost in work units: each iteration counts as n0 relaxations of level 0.
+        self.work_units += (out.iterations * lv.len()) as f64 / self.fine_intervals as f64;
+        if out.converged || (!out.singular && out.residual < 1e-6) {
+            return;
+        }
+        lv.p.copy_from_slice(&before);
+        lv.update_film(&self.phys, self.h0);
+        for _ in 0..self.params.coarse_sweeps {
+            self.relax_level(0);
+        }
+    }
+
+    /// Full Newton (with the load equation) on the coarsest level from the initial guess, then the
+    /// slope dG/dH0 from a second fixed-H0 solve at a perturbed H0.
+    fn start_coarse(&mut self, with_slope: bool) -> NewtonOutcome {
+        let lv = &mut self.levels[0];
+        lv.f.fill(0.0);
+        lv.g = PI / 2.0;
+        let np = NewtonParams {
+            max_iter: self.params.newton_max_iter,
+            ..NewtonParams::default()
+        };
+        let out = newton_solve(lv, &self.phys, &mut self.h0, &np);
+        let first = out;
+        self.work_units += (out.iterations * lv.len()) as f64 / self.fine_intervals as f64;
+        if !(out.converged || out.residual < 1e-6) {
+            // Relaxation with a gentle H0 update (the classic coarse-grid load balance).
+            lv.update_film(&self.phys, self.h0);
+            for _ in 0..20 * self.params.coarse_sweeps {
+                self.relax_level(0);
+                let lv = &mut self.levels[0];
+                self.h0 += 0.02 * (lv.load() - lv.g);
+                lv.update_film(&self.phys, self.h0);
+            }
+        }
+        let lv = &mut self.levels[0];
+        if !with_slope {
+            return out;
+        }
+        let ic = self.domain.centre_index(lv.len() - 1);
+        let dh = 1e-3 * lv.film[ic].abs().max(1e-3 * self.domain.h_estimate);
+        let fallback = -lv.g / self.domain.h_estimate;
+        self.load_slope = load_slope(lv, &self.phys, self.h0, dh, fallback).0;
+        first
+    }
+
+    /// One FAS cycle with level `l` as the finest.
+    pub fn cycle(&mut self, l: usize) {
+        if l == 0 {
+            self.coarse_solve();
+            return;
+        }
+        for _ in 0..self.params.pre {
+            self.relax_level(l);
+        }
+        {
+            let (lo, hi) = self.levels.split_at_mut(l);
+            let (coarse, fine) = (&mut lo[l - 1], &mut hi[0]);
+            let mut r = std::mem::take(&mut fine.delta);
+            // The full residual, cavitated nodes included: there it is the complementarity
+            // margin (L - f < 0), which keeps the coarse problem strictly cavitated where the fine
+            // one is; zeroing it would make P = 0 a degenerate coarse solution.
+            fine.residual(&self.phys, false, &mut r);
+            let nc = coarse.len();
+            for i in 0..nc {
+                coarse.p[i] = fine.p[2 * i];
+            }
+            coarse.update_film(&self.phys, self.h0);
+            coarse.f[0] = 0.0;
+            coarse.f[nc - 1] = 0.0;
+            for i in 1..nc - 1 {
+                coarse.frozen[i] =
+                    (2 * i - 1..=2 * i + 1).any(|k| fine.p[k] <= 0.0 || fine.frozen[k]);
+                let rr = 0.25 * r[2 * i - 1] + 0.5 * r[2 * i] + 0.25 * r[2 * i + 1];
+                coarse.f[i] = coarse.reynolds(&self.phys, i) + rr;
+            }
+            coarse.g = coarse.load() + (fine.g - fine.load());
+            self.p_hat[l - 1].copy_from_slice(&coarse.p);
+            fine.delta = r;
+        }
+        for _ in 0..self.params.cycle.gamma() {
+            self.cycle(l - 1);
+        }
+        {
+            let (lo, hi) = self.levels.split_at_mut(l);
+            let (coarse, fine) = (&lo[l - 1], &mut hi[0]);
+            let ph = &self.p_hat[l - 1];
+            let nc = coarse.len();
+            for i in 0..nc {
+                let e = coarse.p[i] - ph[i];
+                fine.p[2 * i] += e;
+                if i + 1 < nc {
+                    let e1 = coarse.p[i + 1] - ph[i + 1];
+                    fine.p[2 * i + 1] += 0.5 * (e + e1);
+                }
+            }
+            let nf = fine.len();
+            fine.p[0] = 0.0;
+            fine.p[nf - 1] = 0.0;
+            for p in fine.p.iter_mut() {
+                *p = p.max(0.0);
+            }
+            fine.update_film(&self.phys, self.h0);
+        }
+        for _ in 0..self.params.post {
+            self.relax_level(l);
+        }
+    }
+
+    /// Cubic interpolation of level l-1's pressure as the start on level l (FMG).
+    fn fmg_interpolate(&mut self, l: usize) {
+        let (lo, hi) = self.levels.split_at_mut(l);
+        let (coarse, fine) = (&lo[l - 1], &mut hi[0]);
+        let nc = coarse.len();
+        let pc = &coarse.p;
+        for i in 0..nc {
+            fine.p[2 * i] = pc[i];
+            if i + 1 < nc {
+                fine.p[2 * i + 1] = if i >= 1 && i + 2 < nc {
+                    (-pc[i - 1] + 9.0 * pc[i] + 9.0 * pc[i + 1] - pc[i + 2]) / 16.0
+                } else {
+                    0.5 * (pc[i] + pc[i + 1])
+                };
+            }
+        }
+        for p in fine.p.iter_mut() {
+            *p = p.max(0.0);
+        }
+        fine.f.fill(0.0);
+        fine.frozen.fill(false);
+        fine.g = PI / 2.0;
+        fine.update_film(&self.phys, self.h0);
+    }
+
+    /// Convergence measures of level `l` (the current top level) after a cycle.
+    pub fn record(&mut self, l: usize) -> CycleRecord {
+        let fine = &mut self.levels[l];
+        let mut r = std::mem::take(&mut fine.delta);
+        fine.residual(&self.phys, true, &mut r);
+        let active = fine.p.iter().filter(|&&p| p > 0.0).count().max(1);
+        let residual = r.iter().map(|v| v.abs()).sum::<f64>() / active as f64;
+        fine.delta = r;
+        let load_error = (fine.load() - fine.g) / fine.g;
+        let ic = self.domain.centre_index(fine.len() - 1);
+        CycleRecord {
+            residual,
+            load_error,
+            h_c: fine.film[ic] * self.h_scale(),
+            work_units: self.work_units,
+        }
+    }
+
+    /// H_Moes / H_Venner.
+    pub fn h_scale(&self) -> f64 {
+        8.0 * PI.recip() * (3.0 * PI * PI / (8.0 * self.phys.lambda)).sqrt()
+    }
+
+    /// Run FMG ([`crate::solve::fmg::fmg_solve`]).
+    pub fn solve(&mut self) -> SolveInfo {
+        fmg_solve(self)
+    }
+
+    fn finish(
+        &self,
+        start: Instant,
+        status: Status,
+        reason: String,
+        history: Vec<CycleRecord>,
+    ) -> SolveInfo {
+        let fine = self.levels.last().expect("levels");
+        SolveInfo {
+            status,
+            reason,
+            history,
+            work_units: self.work_units,
+            wall_s: start.elapsed().as_secs_f64(),
+            grid: fine.len(),
+            levels: self.levels.len(),
+        }
+    }
+}
+
+impl Fas for LineMultigrid {
+    fn control(&self) -> FmgControl {
+        let p = &self.params;
+        FmgControl {
+            fmg_cycles: p.fmg_cycles,
+            max_cycles: p.max_cycles,
+            tol_load: p.tol_load,
+            tol_h: p.tol_h,
+            tol_load_fmg: p.tol_load_fmg,
+            load_factor: p.load_factor,
+            coarse_budget_growth: 1,
+        }
+    }
+    fn top(&self) -> usize {
+        self.levels.len() - 1
+    }
+    fn initialise(&mut self) {
+        LineMultigrid::initialise(self)
+    }
+    fn start_coarse(&mut self, with_slope: bool) -> NewtonOutcome {
+        LineMultigrid::start_coarse(self, with_slope)
+    }
+    fn load_slope(&self) -> f64 {
+        self.load_slope
+    }
+    fn fmg_interpolate(&mut self, l: usize) {
+        LineMultigrid::fmg_interpolate(self, l)
+    }
+    fn relax(&mut self, l: usize) {
+        self.relax_level(l)
+    }
+    fn cycle(&mut self, l: usize) {
+        LineMultigrid::cycle(self, l)
+    }
+    fn record(&mut self, l: usize) -> CycleRecord {
+        LineMultigrid::record(self, l)
+    }
+    fn h0(&self) -> f64 {
+        self.h0
+    }
+    fn set_h0(&mut self, l: usize, h0: f64) {
+        self.h0 = h0;
+        self.levels[l].update_film(&self.phys, h0);
+    }
+    fn centre_film(&self, l: usize) -> f64 {
+        let lv = &self.levels[l];
+        lv.film[self.domain.centre_index(lv.len() - 1)]
+    }
+    fn h_estimate(&self) -> f64 {
+        self.domain.h_estimate
+    }
+    fn load_target(&self, l: usize) -> f64 {
+        self.levels[l].g
+    }
+    fn trace(&self) -> bool {
+        self.trace
+    }
+    fn install_guess(&mut self, l: usize) -> bool {
+        LineMultigrid::install_guess(self, l)
+    }
+    fn finish(
+        &self,
+        start: Instant,
+        status: Status,
+        reason: String,
+        history: Vec<CycleRecord>,
+    ) -> SolveInfo {
+        LineMultigrid::finish(self, start, status, reason, history)
+    }
+}

@@ -1,0 +1,309 @@
+//! The multigrid smoothers for the line contact.
+//!
+//! [`line_sweep`] (the default) relaxes the whole line at once: one banded solve per sweep of the
+//! Jacobian with the kernel kept within `band` cells, in distributed variables where
+//! xi_i = min(eps_{i-1/2}, eps_{i+1/2})/h^2 < xi_threshold (see its doc).
+//!
+//! [`relax_sweep`] is Venner and Lubrecht's classic point smoother, kept for comparison:
+//!
+//! * xi_i >= xi_threshold: Gauss-Seidel, P_i += omega_gs r_i / (dL_i/dP_i), the derivative including
+//!   the wedge term's dependence on P_i through the kernel, dH_k/dP_i = -(1/pi) K_{|k-i|}. The film
+//!   at the nodes i-2..=i+2 is corrected locally at once.
+//! * xi_i < xi_threshold (and both neighbours pressurised): distributive Jacobi. The change
+//!   delta_i = r_i / (dL_i/d delta) is applied after the sweep as P_i += omega_ja delta,
+//!   P_{i+-1} -= omega_ja delta/2, where dL_i/d delta is the derivative of L_i for that distributed
+//!   change: its kernel is K_|m| - (K_|m-1| + K_|m+1|)/2.
+//!
+//! After a sweep P is projected on P >= 0 (the cavitation condition) and H, rho, eps are
+//! recomputed by the fast deformation product.
+
+use crate::discrete::line::operator::{LineLevel, LinePhysics};
+use crate::solve::banded::solve_banded;
+use crate::solve::line::jacobian::JacRow;
+use std::f64::consts::PI;
+
+/// Which smoother.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Smoother {
+    /// Whole-line relaxation (default): one banded solve per sweep.
+    #[default]
+    Line,
+    /// The classic point-by-point Gauss-Seidel / distributive Jacobi sweep.
+    Point,
+}
+
+/// Relaxation constants.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RelaxParams {
+    pub smoother: Smoother,
+    /// Under-relaxation of the line smoother.
+    pub omega_line: f64,
+    pub omega_gs: f64,
+    pub omega_ja: f64,
+    pub xi_threshold: f64,
+    /// Half bandwidth of the line system (kernel terms kept exactly within it).
+    pub band: usize,
+    /// Freeze eps in the line system (Picard) instead of the exact local derivatives.
+    pub picard: bool,
+}
+
+impl Default for RelaxParams {
+    fn default() -> Self {
+        RelaxParams {
+            smoother: Smoother::Line,
+            omega_line: 0.5,
+            omega_gs: 0.6,
+            omega_ja: 0.3,
+            xi_threshold: 100.0,
+            band: 8,
+            picard: false,
+        }
+    }
+}
+
+/// Work buffers of the line smoother. Owned by the caller and reused across sweeps and levels,
+/// so once they have grown to the finest level's size a sweep allocates nothing.
+#[derive(Default)]
+pub struct LineScratch {
+    rows: Vec<JacRow>,
+    /// 0: active, 1: cavitated, 2: frozen.
+    kind: Vec<u8>,
+    jset: Vec<bool>,
+    a: Vec<f64>,
+    rhs: Vec<f64>,
+    ent: Vec<f64>,
+    ksym: Vec<f64>,
+}
+
+/// One sweep of the chosen smoother.
+pub fn relax(
+    lv: &mut LineLevel,
+    phys: &LinePhysics,
+    h0: f64,
+    rp: &RelaxParams,
+    scratch: &mut LineScratch,
+) {
+    match rp.smoother {
+        Smoother::Line => line_sweep(lv, phys, h0, rp, scratch),
+        Smoother::Point => relax_sweep(lv, phys, h0, rp),
+    }
+}
+
+/// Line relaxation: all interior nodes at once. With the change of variables dP = D dQ, where D
+/// distributes dQ_i as (-1/2, 1, -1/2) at the low-xi nodes (set J) and is the identity elsewhere,
+/// solve (J_band D) dQ = f - L(P) with the exact Jacobian entries (see
+/// [`crate::solve::line::jacobian`]) kept for |i - j| <= band; the distributed kernel decays like
+/// 1/d^3, so what is dropped is smooth and left to the coarse grids. Cavitated nodes (Newton point
+/// value P_i + r_i/J_ii <= 0) and frozen coarse nodes get the row dP_i = -P_i resp. 0. Then
+/// P += omega_line dP, projected on P >= 0.
+pub fn line_sweep(
+    lv: &mut LineLevel,
+    phys: &LinePhysics,
+    h0: f64,
+    rp: &RelaxParams,
+    scratch: &mut LineScratch,
+) {
+    let n = lv.len();
+    let m = n - 2;
+    let bw = rp.band + 1;
+    let w = 2 * bw + 1;
+    let h2 = lv.h * lv.h;
+    let LineScratch {
+        rows,
+        kind,
+        jset,
+        a,
+        rhs,
+        ent,
+        ksym,
+    } = scratch;
+    rows.clear();
+    rows.extend((1..n - 1).map(|i| {
+        if rp.picard {
+            JacRow::picard(lv, phys, i)
+        } else {
+            JacRow::new(lv, phys, i)
+        }
+    }));
+    kind.clear();
+    kind.resize(n, 0);
+    rhs.clear();
+    rhs.resize(m, 0.0);
+    for i in 1..n - 1 {
+        let r = lv.f[i] - lv.reynolds(phys, i);
+        rhs[i - 1] = r;
+        let d = rows[i - 1].entry(&lv.kernel, i);
+        kind[i] = if lv.frozen[i] {
+            2
+        } else if (d < 0.0 && lv.p[i] + r / d <= 0.0) || (d >= 0.0 && lv.p[i] <= 0.0) {
+            1
+        } else {
+            0
+        };
+    }
+    kind[0] = 2;
+    kind[n - 1] = 2;
+    jset.clear();
+    jset.extend((0..n).map(|i| {
+        i >= 1
+            && i + 1 < n
+            && kind[i - 1] == 0
+            && kind[i] == 0
+            && kind[i + 1] == 0
+            && (phys.dry
+                || 0.5 * (lv.eps[i - 1] + lv.eps[i]).min(lv.eps[i] + lv.eps[i + 1]) / h2
+                    < rp.xi_threshold)
+    }));
+    a.clear();
+    a.resize(m * w, 0.0);
+    ent.clear();
+    ent.resize(2 * bw + 3, 0.0);
+    ksym.clear();
+    ksym.extend((0..2 * bw + 7).map(|q| {
+        let d = (q as isize - bw as isize - 3).unsigned_abs();
+        lv.kernel.get(d).copied().unwrap_or(0.0)
+    }));
+    for i in 1..n - 1 {
+        let row = i - 1;
+        match kind[i] {
+            1 => {
+                a[row * w + bw] = 1.0;
+                rhs[row] = -lv.p[i];
+            }
+            2 => {
+                a[row * w + bw] = 1.0;
+                rhs[row] = 0.0;
+            }
+            _ => {
+                // Row entries J(i, j) for j = i-bw-1 ..= i+bw+1 (zero outside the interior).
+                let j0 = i as isize - bw as isize - 1;
+                rows[row].window(ksym, bw, ent);
+                for (t, v) in ent.iter_mut().enumerate() {
+                    let j = j0 + t as isize;
+                    if j < 1 || j >= n as isize - 1 {
+                        *v = 0.0;
+                    }
+                }
+                for j in i.saturating_sub(bw).max(1)..(i + bw + 1).min(n - 1) {
+                    let t = (j as isize - j0) as usize;
+                    let mut v = ent[t];
+                    if jset[j] {
+                        v -= 0.5 * (ent[t - 1] + ent[t + 1]);
+                    }
+                    a[row * w + (j + bw - i)] = v;
+                }
+            }
+        }
+    }
+    if !solve_banded(a, m, bw, rhs) || rhs.iter().any(|v| !v.is_finite()) {
+        // A zero pivot (the band is not dominant enough): fall back to the point sweep.
+        relax_sweep(lv, phys, h0, rp);
+        return;
+    }
+    // Limit each change so that the viscosity changes by at most a factor e^2 per sweep: with
+    // eta = exp(alpha_bar P) a full Newton change far from the solution is not to be trusted.
+    let max_dp = if phys.alpha_bar > 0.0 {
+        2.0 / phys.alpha_bar
+    } else {
+        f64::INFINITY
+    };
+    for i in 1..n - 1 {
+        let mut dp = rhs[i - 1];
+        if jset[i - 1] {
+            dp -= 0.5 * rhs[i - 2];
+        }
+        if jset[i + 1] {
+            dp -= 0.5 * rhs[i];
+        }
+        match kind[i] {
+            // Cavitated: the complementarity condition sets P = 0 outright.
+            1 => lv.p[i] = 0.0,
+            2 => {}
+            _ => lv.p[i] = (lv.p[i] + (rp.omega_line * dp).clamp(-max_dp, max_dp)).max(0.0),
+        }
+    }
+    lv.update_film(phys, h0);
+}
+
+/// d(wedge_i)/d(unknown) for a change whose film response at node k is -(1/pi) kd(k - i) per unit.
+#[inline]
+fn wedge_derivative(
+    lv: &LineLevel,
+    phys: &LinePhysics,
+    i: usize,
+    kd: impl Fn(isize) -> f64,
+) -> f64 {
+    if !phys.elastic {
+        return 0.0;
+    }
+    let c = lv.upwind(phys, i);
+    let mut s = 0.0;
+    for (k, &ck) in c.iter().enumerate() {
+        if ck != 0.0 {
+            s += ck * lv.rho[i - k] * (-kd(-(k as isize)) / PI);
+        }
+    }
+    s / lv.h
+}
+
+/// One relaxation sweep on a level; returns nothing, updates P, H, rho, eps.
+pub fn relax_sweep(lv: &mut LineLevel, phys: &LinePhysics, h0: f64, rp: &RelaxParams) {
+    let n = lv.len();
+    let h2 = lv.h * lv.h;
+    let k = |d: isize| -> f64 {
+        let d = d.unsigned_abs();
+        if d < lv.kernel.len() {
+            lv.kernel[d]
+        } else {
+            0.0
+        }
+    };
+    let kern: [f64; 5] = std::array::from_fn(|d| k(d as isize));
+    let kv = |d: isize| kern[d.unsigned_abs().min(4)];
+    let kdist = |m: isize| kv(m) - 0.5 * (kv(m - 1) + kv(m + 1));
+    lv.delta.fill(0.0);
+    for i in 1..n - 1 {
+        if lv.frozen[i] {
+            continue;
+        }
+        let em = 0.5 * (lv.eps[i - 1] + lv.eps[i]);
+        let ep = 0.5 * (lv.eps[i] + lv.eps[i + 1]);
+        let r = lv.f[i] - lv.reynolds(phys, i);
+        let xi = em.min(ep) / h2;
+        let jacobi = phys.dry || (xi < rp.xi_threshold && lv.p[i - 1] > 0.0 && lv.p[i + 1] > 0.0);
+        if jacobi {
+            let d = -1.5 * (em + ep) / h2 - wedge_derivative(lv, phys, i, kdist);
+            if d < 0.0 {
+                lv.delta[i] = r / d;
+            }
+        } else {
+            let d = -(em + ep) / h2 - wedge_derivative(lv, phys, i, kv);
+            if d >= 0.0 {
+                continue;
+            }
+            let new = (lv.p[i] + rp.omega_gs * r / d).max(0.0);
+            let change = new - lv.p[i];
+            lv.p[i] = new;
+            if phys.elastic && change != 0.0 {
+                for kk in i.saturating_sub(2)..(i + 3).min(n) {
+                    lv.film[kk] -= kv(kk as isize - i as isize) * change / PI;
+                }
+            }
+        }
+    }
+    for i in 1..n - 1 {
+        let d = lv.delta[i];
+        if d != 0.0 {
+            let c = rp.omega_ja * d;
+            lv.p[i] += c;
+            lv.p[i - 1] -= 0.5 * c;
+            lv.p[i + 1] -= 0.5 * c;
+        }
+    }
+    lv.p[0] = 0.0;
+    lv.p[n - 1] = 0.0;
+    for p in lv.p.iter_mut() {
+        *p = p.max(0.0);
+    }
+    lv.update_film(phys, h0);
+}

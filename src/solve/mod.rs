@@ -1,0 +1,69 @@
+//! Solvers and what every solve returns: a [`Status`] with a reason, the convergence history and
+//! the cost (work units, wall time). Numerical failure is a result, never a panic.
+
+pub mod banded;
+pub mod fmg;
+pub mod ladder;
+pub mod line;
+pub mod load_balance;
+pub mod newton;
+pub mod point;
+pub mod single_grid;
+pub mod solution;
+
+use serde::{Deserialize, Serialize};
+use std::fmt;
+
+/// How a solve ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Status {
+    Converged,
+    Diverged,
+    Stalled,
+    MaxIterations,
+}
+
+impl Status {
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Status::Converged => "converged",
+            Status::Diverged => "diverged",
+            Status::Stalled => "stalled",
+            Status::MaxIterations => "max-iterations",
+        }
+    }
+}
+
+impl fmt::Display for Status {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// One multigrid cycle on the finest level, as seen after it.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CycleRecord {
+    /// Mean |f - L(P)| over the pressurised nodes of the finest level.
+    pub residual: f64,
+    /// (h sum P - target)/target.
+    pub load_error: f64,
+    /// Central film (Moes units) after the cycle.
+    pub h_c: f64,
+    /// Cumulative work units.
+    pub work_units: f64,
+}
+
+/// Convergence information returned with every solve.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SolveInfo {
+    pub status: Status,
+    pub reason: String,
+    pub history: Vec<CycleRecord>,
+    /// Relaxation sweeps in finest-grid equivalents.
+    pub work_units: f64,
+    pub wall_s: f64,
+    /// Points of the finest level.
+    pub grid: usize,
+    pub levels: usize,
+}

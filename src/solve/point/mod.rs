@@ -1,0 +1,344 @@
+//! The point-contact solve as a library call: case + parameters in, outputs + info (+ fields) out.
+//!
+//! Outputs use the line contact's names (PHYSICS.md section 7), evaluated on the finest grid:
+//! `H_c` = H(0, 0); `H_c_pmax` the film at the pressure maximum on the centre line Y = 0; `H_min`
+//! with `X_min`, `Y_min` (parabolic refinement in each direction); `P_max`; `spike` on the centre
+//! line; `H0`; `f` the rolling traction integral (H/2) dP/dX dX dY over the load integral P dX dY
+//! (Hertzian units); `load_error` against 2 pi k/3; plus `D` and `k`.
+//!
+//! With `fallback` on (the default) a solve that does not converge is retried with the line
+//! solver's ladder: line under-relaxation 0.3, then distributive relaxation everywhere, then that
+//! with W cycles. The reason names the attempt kept; the best failed attempt is returned with its
+//! status if none converges.
+
+pub mod jacobian;
+pub mod multigrid;
+pub mod relax;
+
+use crate::discrete::point::domain::{PointDomain, PointDomainParams, BIAS_CAUTION};
+use crate::model::case::PointCase;
+use crate::solve::fmg::fmg_solve;
+use crate::solve::ladder::{refine_to_accuracy, run_ladder, Attempt, COARSE_LADDER_CYCLES};
+use crate::solve::line::multigrid::CycleType;
+use crate::solve::line::relax::RelaxParams;
+use crate::solve::line::Method;
+use crate::solve::point::multigrid::PointMultigrid;
+use crate::solve::single_grid::solve_relax;
+use crate::solve::solution::grid_level;
+use crate::solve::solution::{line_outputs, parabola_vertex, Outputs};
+use crate::solve::SolveInfo;
+
+/// Multigrid settings of a point solve; `Default` gives the settings the stability map supports.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointMgParams {
+    /// Points per direction of the finest level (rounded up to 2^k n0 + 1).
+    pub grid: usize,
+    pub cycle: CycleType,
+    pub pre: usize,
+    pub post: usize,
+    /// Cycles on each FMG level before moving on.
+    pub fmg_cycles: usize,
+    /// Cycles allowed on the finest level after FMG.
+    pub max_cycles: usize,
+    pub tol_load: f64,
+    pub tol_h: f64,
+    pub tol_load_fmg: f64,
+    pub load_factor: Option<f64>,
+    pub relax: RelaxParams,
+    /// Relaxations of the coarsest level when its Newton solve fails.
+    pub coarse_sweeps: usize,
+    pub newton_max_iter: usize,
+    pub second_order: bool,
+    pub domain: PointDomainParams,
+    /// Relax the rows of each colour in parallel (zebra order) on the current rayon pool, on
+    /// levels of 65 rows or more. Off by default: a sweep already runs one solve per thread, and
+    /// the default Gauss-Seidel row order converges faster per sweep.
+    pub parallel: bool,
+    /// Deformation by the O(N^2) direct sum on every level instead of the FFT (baseline).
+    pub direct_deformation: bool,
+}
+
+impl Default for PointMgParams {
+    fn default() -> Self {
+        PointMgParams {
+            grid: 129,
+            cycle: CycleType::V,
+            pre: 2,
+            post: 1,
+            fmg_cycles: 2,
+            max_cycles: 40,
+            tol_load: 1e-6,
+            tol_h: 1e-5,
+            tol_load_fmg: 1e-4,
+            load_factor: None,
+            relax: RelaxParams::default(),
+            coarse_sweeps: 20,
+            newton_max_iter: 40,
+            second_order: true,
+            domain: PointDomainParams::default(),
+            parallel: false,
+            direct_deformation: false,
+        }
+    }
+}
+
+/// Parameters of a point solve.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointSolveParams {
+    /// Multigrid (default); `Relax`: the smoother alone on the finest grid; `Newton`: dense
+    /// semi-smooth Newton on the finest grid (baselines; Newton's O(N^3) cost limits it to
+    /// 33 x 33 points or so).
+    pub method: Method,
+    /// Sweeps allowed to the single-grid relaxation baseline.
+    pub relax_max_sweeps: usize,
+    pub mg: PointMgParams,
+    /// Retry with conservative settings when the first attempt fails.
+    pub fallback: bool,
+    /// Return the P(X, Y), H(X, Y) fields.
+    pub keep_fields: bool,
+}
+
+impl Default for PointSolveParams {
+    fn default() -> Self {
+        PointSolveParams {
+            method: Method::Multigrid,
+            relax_max_sweeps: 20_000,
+            mg: PointMgParams::default(),
+            fallback: true,
+            keep_fields: false,
+        }
+    }
+}
+
+/// The finest-grid fields: node coordinates and, row-major with X fastest (node (i, j) at
+/// j * x.len() + i), P (Hertzian units) and H (Moes units).
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct PointFields {
+    pub x: Vec<f64>,
+    pub y: Vec<f64>,
+    pub p: Vec<f64>,
+    pub h: Vec<f64>,
+}
+
+/// Everything a point solve returns.
+#[derive(Clone, Debug)]
+pub struct PointSolution {
+    pub outputs: Outputs,
+    pub info: SolveInfo,
+    pub fields: Option<PointFields>,
+    /// Which attempt (1-based) produced the result.
+    pub attempt: usize,
+}
+
+fn attempts(p: &PointMgParams) -> Vec<PointMgParams> {
+    let mut damped = *p;
+    damped.relax.omega_line = (0.6 * p.relax.omega_line).min(0.3);
+    let mut a2 = *p;
+    a2.relax.xi_threshold = f64::INFINITY;
+    let mut a3 = a2;
+    a3.cycle = CycleType::W;
+    vec![*p, damped, a2, a3]
+}
+
+/// The outputs of a finished solve (see the module docs).
+pub fn point_outputs(mg: &PointMultigrid, info: &SolveInfo) -> Outputs {
+    let top = mg.levels.len() - 1;
+    let lv = &mg.levels[top];
+    let hs = mg.phys.h_scale;
+    let (nx, ny) = (lv.nx, lv.ny);
+    let (ic, jc) = mg.domain.centre(nx - 1);
+    let row = jc * nx..(jc + 1) * nx;
+    let mut out = line_outputs(
+        &lv.x,
+        &lv.p[row.clone()],
+        &lv.film[row],
+        mg.h0,
+        hs,
+        ic,
+        info,
+    );
+    // Global minimum film over the interior, refined by a parabola in each direction.
+    let mut cmin = lv.at(1, 1);
+    for j in 1..ny - 1 {
+        for i in 1..nx - 1 {
+            let c = lv.at(i, j);
+            if lv.film[c] < lv.film[cmin] {
+                cmin = c;
+            }
+        }
+    }
+    let (i, j) = (cmin % nx, cmin / nx);
+    let f = &lv.film;
+    let (tx, vx) = parabola_vertex(f[cmin - 1], f[cmin], f[cmin + 1]);
+    let (ty, vy) = parabola_vertex(f[cmin - nx], f[cmin], f[cmin + nx]);
+    out.h_min = (vx + vy - f[cmin]) * hs;
+    out.x_min = lv.x[i] + tx * lv.hx;
+    out.y_min = Some(lv.y[j] + ty * lv.hy);
+    let (mut pmax, mut cmax) = (0.0, 0);
+    for (c, &p) in lv.p.iter().enumerate() {
+        if p > pmax {
+            pmax = p;
+            cmax = c;
+        }
+    }
+    if cmax % nx > 0 && cmax % nx + 1 < nx && cmax / nx > 0 && cmax / nx + 1 < ny {
+        let p = &lv.p;
+        let (_, px) = parabola_vertex(p[cmax - 1], p[cmax], p[cmax + 1]);
+        let (_, py) = parabola_vertex(p[cmax - nx], p[cmax], p[cmax + nx]);
+        pmax = px + py - p[cmax];
+    }
+    out.p_max = pmax;
+    let load = lv.load();
+    let mut traction = 0.0;
+    for j in 0..ny {
+        for i in 0..nx - 1 {
+            let c = lv.at(i, j);
+            traction += 0.25 * (f[c] + f[c + 1]) * (lv.p[c + 1] - lv.p[c]) * lv.hy;
+        }
+    }
+    out.f = traction / load;
+    out.load_error = (load - mg.phys.load) / mg.phys.load;
+    out.d = Some(mg.phys.d);
+    out.level = Some(grid_level(info.grid, 16));
+    out.k = Some(mg.phys.k);
+    let bias = mg.domain.bias();
+    if bias >= BIAS_CAUTION {
+        out.reason.push_str(&format!(
+            "; caution: rigid-like case (w = {:.2}), H is biased low by the truncated domain \
+             (doubling it raises H by about {:.0} %)",
+            mg.domain.rigid_weight,
+            100.0 * bias
+        ));
+    }
+    out
+}
+
+fn run(case: &PointCase, p: &PointMgParams, keep_fields: bool) -> PointSolution {
+    let mut mg = PointMultigrid::new(case, p);
+    let info = fmg_solve(&mut mg);
+    package(&mg, info, keep_fields)
+}
+
+fn package(mg: &PointMultigrid, info: SolveInfo, keep_fields: bool) -> PointSolution {
+    let outputs = point_outputs(mg, &info);
+    let fields = keep_fields.then(|| {
+        let lv = mg.levels.last().expect("levels");
+        PointFields {
+            x: lv.x.clone(),
+            y: lv.y.clone(),
+            p: lv.p.clone(),
+            h: lv.film.iter().map(|v| v * mg.phys.h_scale).collect(),
+        }
+    });
+    PointSolution {
+        outputs,
+        info,
+        fields,
+        attempt: 1,
+    }
+}
+
+/// What each attempt of the ladder changes.
+const ATTEMPT_NAMES: [&str; 4] = [
+    "default smoother",
+    "default smoother, under-relaxation 0.3",
+    "distributive line relaxation everywhere",
+    "distributive relaxation, W cycles",
+];
+
+impl Attempt for PointSolution {
+    fn parts(&mut self) -> (&mut SolveInfo, &mut Outputs) {
+        (&mut self.info, &mut self.outputs)
+    }
+    fn info(&self) -> &SolveInfo {
+        &self.info
+    }
+    fn set_attempt(&mut self, k: usize) {
+        self.attempt = k;
+    }
+    fn attempt(&self) -> usize {
+        self.attempt
+    }
+}
+
+/// The baselines run on one level: the finest grid itself.
+fn single_level(p: &PointMgParams) -> PointMgParams {
+    let mut s = *p;
+    s.domain.n0 = (p.grid.max(5) - 1).next_power_of_two();
+    s
+}
+
+/// Solve a point contact. Never panics on a valid case; numerical failure is a status.
+pub fn solve_point(case: &PointCase, params: &PointSolveParams) -> PointSolution {
+    match params.method {
+        Method::Multigrid => {}
+        Method::Newton => {
+            let mut p = single_level(&params.mg);
+            p.newton_max_iter = p.newton_max_iter.max(200);
+            return run(case, &p, params.keep_fields);
+        }
+        Method::Relax => {
+            let mut mg = PointMultigrid::new(case, &single_level(&params.mg));
+            let info = solve_relax(&mut mg, params.relax_max_sweeps, 10);
+            return package(&mg, info, params.keep_fields);
+        }
+    }
+    let list = if params.fallback {
+        attempts(&params.mg)
+    } else {
+        vec![params.mg]
+    };
+    run_ladder(&ATTEMPT_NAMES[..list.len()], |k| {
+        run(case, &list[k], params.keep_fields)
+    })
+}
+
+/// The convergence order assumed by the point solve's accuracy-target estimate (H_c converges at
+/// order 2 on the circular reference case; H_min more slowly, as for the line contact).
+pub const POINT_ESTIMATE_ORDER: f64 = 1.5;
+
+/// Solve to a target relative accuracy of H_c and H_min on 33, 65, 129, ... points per direction
+/// (up to `max_grid`); see [`refine_to_accuracy`]. The grid refinement stops on the
+/// discretisation estimate; the domain-truncation estimate (`PointDomain::truncation_error`,
+/// rigid-like cases) is then added to `error_estimate`, and a target it breaks is reported as
+/// not met.
+pub fn solve_point_to_accuracy(
+    case: &PointCase,
+    params: &PointSolveParams,
+    target: f64,
+    max_grid: usize,
+) -> PointSolution {
+    let mut s = refine_point(case, params, target, max_grid);
+    let t = PointDomain::of_case(case, &params.mg.domain).truncation_error();
+    let o = &mut s.outputs;
+    if let Some(e) = o.error_estimate {
+        o.error_estimate = Some(e + t);
+        if o.accuracy_met == Some(true) && e + t > target {
+            o.accuracy_met = Some(false);
+            let note = format!(
+                "; accuracy target {target:.1e} NOT met with the domain-truncation estimate \
+                 {t:.1e} added"
+            );
+            o.reason.push_str(&note);
+            s.info.reason.push_str(&note);
+        }
+    }
+    s
+}
+
+fn refine_point(
+    case: &PointCase,
+    params: &PointSolveParams,
+    target: f64,
+    max_grid: usize,
+) -> PointSolution {
+    refine_to_accuracy(33, max_grid, target, POINT_ESTIMATE_ORDER, |grid, last| {
+        let mut p = *params;
+        p.mg.grid = grid;
+        p.fallback = params.fallback && last;
+        if !last {
+            p.mg.max_cycles = p.mg.max_cycles.min(COARSE_LADDER_CYCLES);
+        }
+        solve_point(case, &p)
+    })
+}

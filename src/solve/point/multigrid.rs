@@ -1,0 +1,433 @@
+//! Full multigrid (FAS) for the point contact: the line solver's design in 2D.
+//!
+//! Levels l = 0 (coarsest, n0 x n0 intervals) .. finest (n0 2^l per direction) on one domain
+//! ([`crate::discrete::point::domain`]). A cycle on level l > 0: `pre` x-line relaxations
+//! ([`crate::solve::point::relax`]); the full residual (the complementarity margin included on the
+//! cavitated set) is restricted by 9-point full weighting; P is injected; the coarse right-hand
+//! sides are f_H = L_H(P^_H) + R r and g_H = hx hy sum P^_H + (g_h - load_h); `gamma` coarse
+//! cycles; the correction is interpolated bilinearly, added and projected on P >= 0; `post`
+//! relaxations. Coarse nodes whose fine 3 x 3 neighbourhood touches the cavitated set are frozen.
+//! The coarsest level is solved at fixed H0 by semi-smooth Newton on its ~(n0-1)^2 unknowns. FMG
+//! (the driver in [`crate::solve::fmg`]) starts from the Hertz pressure with a full Newton solve
+//! and interpolates each level's result to the next (cubic along each direction).
+
+use crate::discrete::point::domain::PointDomain;
+use crate::discrete::point::operator::{PointLevel, PointPhysics};
+use crate::model::case::{Elasticity, PointCase};
+use crate::solve::fmg::{Fas, FmgControl};
+use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
+use crate::solve::point::relax::{point_line_sweep, PointScratch};
+use crate::solve::point::PointMgParams;
+use crate::solve::{CycleRecord, SolveInfo, Status};
+use std::time::Instant;
+
+/// The state of a point multigrid solve.
+pub struct PointMultigrid {
+    pub phys: PointPhysics,
+    pub domain: PointDomain,
+    pub levels: Vec<PointLevel>,
+    pub h0: f64,
+    pub params: PointMgParams,
+    p_hat: Vec<Vec<f64>>,
+    pub work_units: f64,
+    load_slope: f64,
+    scratch: PointScratch,
+    trace: bool,
+    fine_cells: f64,
+}
+
+impl PointMultigrid {
+    pub fn new(case: &PointCase, params: &PointMgParams) -> Self {
+        let phys = PointPhysics {
+            second_order: params.second_order,
+            ..PointPhysics::from_case(case)
+        };
+        Self::with_physics(case, phys, params)
+    }
+
+    /// Levels for a case with the given physics (e.g. a dry contact).
+    pub fn with_physics(case: &PointCase, phys: PointPhysics, params: &PointMgParams) -> Self {
+        let rigid = case.models.elasticity == Elasticity::Rigid;
+        let domain = PointDomain::for_case(
+            case.m,
+            case.l,
+            case.d,
+            phys.k,
+            phys.h_scale,
+            rigid,
+            &params.domain,
+        );
+        let mut levels = vec![];
+        let mut n = domain.n0;
+        loop {
+            let mut lv = PointLevel::new(&phys, domain.x_in, domain.x_out, domain.y_half, n, n);
+            lv.direct_deformation = params.direct_deformation;
+            levels.push(lv);
+            if n + 1 >= params.grid {
+                break;
+            }
+            n *= 2;
+        }
+        let p_hat = levels.iter().map(|l| vec![0.0; l.len()]).collect();
+        PointMultigrid {
+            phys,
+            domain,
+            levels,
+            h0: 0.0,
+            params: *params,
+            p_hat,
+            work_units: 0.0,
+            load_slope: -1.0,
+            scratch: PointScratch::default(),
+            trace: std::env::var_os("EHLMAP_TRACE").is_some(),
+            fine_cells: (n * n) as f64,
+        }
+    }
+
+    /// Index of X = Y = 0 on level l.
+    pub fn centre_index(&self, l: usize) -> usize {
+        let lv = &self.levels[l];
+        let (i, j) = self.domain.centre(lv.nx - 1);
+        lv.at(i, j)
+    }
+
+    /// One relaxation sweep on level l, counted in work units.
+    pub fn relax_level(&mut self, l: usize) {
+        let lv = &mut self.levels[l];
+        // Zebra rows on the rayon pool only where a level has enough rows to share.
+        let parallel = self.params.parallel && lv.ny >= 65;
+        point_line_sweep(
+            lv,
+            &self.phys,
+            self.h0,
+            &self.params.relax,
+            &mut self.scratch,
+            parallel,
+        );
+        self.work_units += ((lv.nx - 1) * (lv.ny - 1)) as f64 / self.fine_cells;
+    }
+
+    fn newton_cost(&mut self, iterations: usize) {
+        // A Newton iteration on level 0 counts as one sweep of level 0 per unknown row.
+        let lv = &self.levels[0];
+        self.work_units += (iterations * (lv.nx - 1)) as f64 * ((lv.nx - 1) * (lv.ny - 1)) as f64
+            / self.fine_cells;
+    }
+
+    fn coarse_solve(&mut self) {
+        let lv = &mut self.levels[0];
+        let before = lv.p.clone();
+        let np = NewtonParams {
+            fix_h0: true,
+            ..NewtonParams::default()
+        };
+        let mut h0 = self.h0;
+        let out = newton_solve(lv, &self.phys, &mut h0, &np);
+        self.newton_cost(out.iterations);
+        if out.converged || (!out.singular && out.residual < 1e-6) {
+            return;
+        }
+        let lv = &mut self.levels[0];
+        lv.p.copy_from_slice(&before);
+        lv.update_film(&self.phys, self.h0);
+        for _ in 0..self.params.coarse_sweeps {
+            self.relax_level(0);
+        }
+    }
+
+    /// 9-point full weighting of a fine field at the interior coarse node (i, j).
+    fn full_weight(fine: &PointLevel, r: &[f64], i: usize, j: usize) -> f64 {
+        let c = fine.at(2 * i, 2 * j);
+        let nx = fine.nx;
+        (4.0 * r[c]
+            + 2.0 * (r[c - 1] + r[c + 1] + r[c - nx] + r[c + nx])
+            + r[c - nx - 1]
+            + r[c - nx + 1]
+            + r[c + nx - 1]
+            + r[c + nx + 1])
+            / 16.0
+    }
+
+    fn fas_cycle(&mut self, l: usize) {
+        if l == 0 {
+            self.coarse_solve();
+            return;
+        }
+        for _ in 0..self.params.pre {
+            self.relax_level(l);
+        }
+        {
+            let (lo, hi) = self.levels.split_at_mut(l);
+            let (coarse, fine) = (&mut lo[l - 1], &mut hi[0]);
+            let mut r = std::mem::take(&mut fine.delta);
+            fine.residual(&self.phys, false, &mut r);
+            for j in 0..coarse.ny {
+                for i in 0..coarse.nx {
+                    let cc = coarse.at(i, j);
+                    coarse.p[cc] = fine.p[fine.at(2 * i, 2 * j)];
+                }
+            }
+            coarse.update_film(&self.phys, self.h0);
+            coarse.f.fill(0.0);
+            for j in 1..coarse.ny - 1 {
+                for i in 1..coarse.nx - 1 {
+                    let cc = coarse.at(i, j);
+                    let fc = fine.at(2 * i, 2 * j);
+                    let nx = fine.nx;
+                    coarse.frozen[cc] = [fc - nx, fc, fc + nx]
+                        .iter()
+                        .any(|&b| (b - 1..=b + 1).any(|q| fine.p[q] <= 0.0 || fine.frozen[q]));
+                    coarse.f[cc] =
+                        coarse.reynolds(&self.phys, i, j) + Self::full_weight(fine, &r, i, j);
+                }
+            }
+            coarse.g = coarse.load() + (fine.g - fine.load());
+            self.p_hat[l - 1].copy_from_slice(&coarse.p);
+            fine.delta = r;
+        }
+        for _ in 0..self.params.cycle.gamma() {
+            self.fas_cycle(l - 1);
+        }
+        {
+            let (lo, hi) = self.levels.split_at_mut(l);
+            let (coarse, fine) = (&lo[l - 1], &mut hi[0]);
+            let ph = &self.p_hat[l - 1];
+            let e = |i: usize, j: usize| {
+                let c = coarse.at(i, j);
+                coarse.p[c] - ph[c]
+            };
+            for j in 0..fine.ny {
+                for i in 0..fine.nx {
+                    let (ic, jc) = (i / 2, j / 2);
+                    let (ic1, jc1) = (i.div_ceil(2), j.div_ceil(2));
+                    let v = 0.25 * (e(ic, jc) + e(ic1, jc) + e(ic, jc1) + e(ic1, jc1));
+                    let c = fine.at(i, j);
+                    if !fine.boundary(i, j) {
+                        fine.p[c] = (fine.p[c] + v).max(0.0);
+                    }
+                }
+            }
+            fine.update_film(&self.phys, self.h0);
+        }
+        for _ in 0..self.params.post {
+            self.relax_level(l);
+        }
+    }
+}
+
+/// Cubic interpolation at the midpoint between v1 and v2 (linear next to the ends).
+#[inline]
+fn mid(v: &[f64], i: usize) -> f64 {
+    if i >= 1 && i + 2 < v.len() {
+        (-v[i - 1] + 9.0 * v[i] + 9.0 * v[i + 1] - v[i + 2]) / 16.0
+    } else {
+        0.5 * (v[i] + v[i + 1])
+    }
+}
+
+impl Fas for PointMultigrid {
+    fn control(&self) -> FmgControl {
+        let p = &self.params;
+        FmgControl {
+            fmg_cycles: p.fmg_cycles,
+            max_cycles: p.max_cycles,
+            tol_load: p.tol_load,
+            tol_h: p.tol_h,
+            tol_load_fmg: p.tol_load_fmg,
+            load_factor: p.load_factor,
+            coarse_budget_growth: 2,
+        }
+    }
+
+    fn top(&self) -> usize {
+        self.levels.len() - 1
+    }
+
+    /// The Hertz ellipsoid sqrt(1 - X^2 - (Y/k)^2) (load 2 pi k/3) for elastic surfaces (in the dry
+    /// limit one 1.5 times wider with the same load, so the solver has to find Hertz); for rigid
+    /// ones, and where the rigid-isoviscous weight exceeds 1/2, a paraboloid of radius 1.5 l_h
+    /// centred 0.5 l_h upstream, with the same load; H0 so that the central film equals the
+    /// estimate.
+    fn initialise(&mut self) {
+        let h_e = self.domain.h_estimate;
+        // Where the rigid-isoviscous regime dominates, the Hertz pressure is far from the answer
+        // (and Newton from it can land on a spurious solution with a negative film).
+        let rigid = !self.phys.elastic || self.domain.rigid_weight > 0.5;
+        let dry = self.phys.dry;
+        let (k, load) = (self.phys.k, self.phys.load);
+        let lh = (2.0 * h_e).sqrt();
+        let lv = &mut self.levels[0];
+        for j in 0..lv.ny {
+            for i in 0..lv.nx {
+                let c = lv.at(i, j);
+                lv.p[c] = if lv.boundary(i, j) {
+                    0.0
+                } else if dry {
+                    // Wider than Hertz (the solver has to find Hertz), same load.
+                    let (x, y) = (lv.x[i] / 1.5, lv.y[j] / (1.5 * k));
+                    (1.0 - x * x - y * y).max(0.0).sqrt() / 2.25
+                } else if rigid {
+                    let r = 1.5 * lh;
+                    let s2 = ((lv.x[i] + 0.5 * lh).powi(2) + lv.y[j].powi(2)) / (r * r);
+                    // integral of (1 - s^2) over the disc of radius r: pi r^2 / 2.
+                    load * 2.0 / (std::f64::consts::PI * r * r) * (1.0 - s2).max(0.0)
+                } else {
+                    (1.0 - lv.x[i].powi(2) - (lv.y[j] / k).powi(2))
+                        .max(0.0)
+                        .sqrt()
+                };
+            }
+        }
+        lv.update_film(&self.phys, 0.0);
+        let ic = self.centre_index(0);
+        let lv = &mut self.levels[0];
+        self.h0 = h_e - lv.film[ic];
+        lv.update_film(&self.phys, self.h0);
+    }
+
+    fn start_coarse(&mut self, with_slope: bool) -> NewtonOutcome {
+        let lv = &mut self.levels[0];
+        lv.f.fill(0.0);
+        lv.g = self.phys.load;
+        let np = NewtonParams {
+            max_iter: self.params.newton_max_iter,
+            ..NewtonParams::default()
+        };
+        let out = newton_solve(lv, &self.phys, &mut self.h0, &np);
+        self.newton_cost(out.iterations);
+        if self.trace {
+            eprintln!("coarsest start: {out:?}, H0 {}", self.h0);
+        }
+        if !(out.converged || out.residual < 1e-6) {
+            self.levels[0].update_film(&self.phys, self.h0);
+            for _ in 0..20 * self.params.coarse_sweeps {
+                self.relax_level(0);
+                let lv = &mut self.levels[0];
+                self.h0 += 0.02 * (lv.load() - lv.g);
+                lv.update_film(&self.phys, self.h0);
+            }
+        }
+        if !with_slope {
+            return out;
+        }
+        let ic = self.centre_index(0);
+        let lv = &mut self.levels[0];
+        let dh = 1e-3 * lv.film[ic].abs().max(1e-3 * self.domain.h_estimate);
+        let fallback = -lv.g / self.domain.h_estimate;
+        let (slope, iterations) = load_slope(lv, &self.phys, self.h0, dh, fallback);
+        self.load_slope = slope;
+        self.newton_cost(iterations);
+        out
+    }
+
+    fn load_slope(&self) -> f64 {
+        self.load_slope
+    }
+
+    fn fmg_interpolate(&mut self, l: usize) {
+        let (lo, hi) = self.levels.split_at_mut(l);
+        let (coarse, fine) = (&lo[l - 1], &mut hi[0]);
+        let (cnx, cny, fnx) = (coarse.nx, coarse.ny, fine.nx);
+        // Even fine rows from the coarse rows (cubic along x), then odd rows along y.
+        for jc in 0..cny {
+            let row = &coarse.p[jc * cnx..(jc + 1) * cnx];
+            let base = 2 * jc * fnx;
+            for ic in 0..cnx {
+                fine.p[base + 2 * ic] = row[ic];
+                if ic + 1 < cnx {
+                    fine.p[base + 2 * ic + 1] = mid(row, ic);
+                }
+            }
+        }
+        let mut col = vec![0.0; cny];
+        for i in 0..fnx {
+            for (jc, v) in col.iter_mut().enumerate() {
+                *v = fine.p[2 * jc * fnx + i];
+            }
+            for jc in 0..cny - 1 {
+                fine.p[(2 * jc + 1) * fnx + i] = mid(&col, jc);
+            }
+        }
+        for j in 0..fine.ny {
+            for i in 0..fnx {
+                let c = fine.at(i, j);
+                fine.p[c] = if fine.boundary(i, j) {
+                    0.0
+                } else {
+                    fine.p[c].max(0.0)
+                };
+            }
+        }
+        fine.f.fill(0.0);
+        fine.frozen.fill(false);
+        fine.g = self.phys.load;
+        fine.update_film(&self.phys, self.h0);
+    }
+
+    fn relax(&mut self, l: usize) {
+        self.relax_level(l)
+    }
+    fn cycle(&mut self, l: usize) {
+        self.fas_cycle(l)
+    }
+
+    fn record(&mut self, l: usize) -> CycleRecord {
+        let ic = self.centre_index(l);
+        let fine = &mut self.levels[l];
+        let mut r = std::mem::take(&mut fine.delta);
+        fine.residual(&self.phys, true, &mut r);
+        let active = fine.p.iter().filter(|&&p| p > 0.0).count().max(1);
+        let residual = r.iter().map(|v| v.abs()).sum::<f64>() / active as f64;
+        fine.delta = r;
+        CycleRecord {
+            residual,
+            load_error: (fine.load() - fine.g) / fine.g,
+            h_c: fine.film[ic] * self.phys.h_scale,
+            work_units: self.work_units,
+        }
+    }
+
+    fn h0(&self) -> f64 {
+        self.h0
+    }
+
+    fn set_h0(&mut self, l: usize, h0: f64) {
+        self.h0 = h0;
+        self.levels[l].update_film(&self.phys, h0);
+    }
+
+    fn centre_film(&self, l: usize) -> f64 {
+        self.levels[l].film[self.centre_index(l)]
+    }
+
+    fn h_estimate(&self) -> f64 {
+        self.domain.h_estimate
+    }
+
+    fn load_target(&self, l: usize) -> f64 {
+        self.levels[l].g
+    }
+
+    fn trace(&self) -> bool {
+        self.trace
+    }
+
+    fn finish(
+        &self,
+        start: Instant,
+        status: Status,
+        reason: String,
+        history: Vec<CycleRecord>,
+    ) -> SolveInfo {
+        let fine = self.levels.last().expect("levels");
+        SolveInfo {
+            status,
+            reason,
+            history,
+            work_units: self.work_units,
+            wall_s: start.elapsed().as_secs_f64(),
+            grid: fine.nx,
+            levels: self.levels.len(),
+        }
+    }
+}

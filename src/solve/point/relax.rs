@@ -1,0 +1,251 @@
+//! The multigrid smoother for the point contact: x-line relaxation, row by row (Gauss-Seidel in
+//! y), each row one banded solve of the exact Jacobian (kernel terms within `band` cells along x)
+//! in distributed variables where xi is small.
+//!
+//! Row j: with the change of variables dP = D dQ along the row, where D distributes dQ_i as
+//! (-1/2, 1, -1/2) at the nodes of the set J (pressurised with pressurised x-neighbours, and
+//! xi = min(eps faces along x)/hx^2 below `xi_threshold`: the high-pressure zone where the
+//! Poiseuille terms vanish and the wedge term's kernel dominates) and is the identity elsewhere,
+//! solve (J_band D) dQ = f - L(P) (see [`crate::solve::point::jacobian`]). Cavitated nodes (Newton
+//! point value P + r/J_ii <= 0) get dP = -P, frozen coarse nodes dP = 0. Then
+//! P += omega dP (each change limited to min(1, 2/alpha_bar)), projected on P >= 0. The film of rows j to
+//! j+2 (all that the next row's equations see) is corrected at once for the kernel within 2 band
+//! cells along x; after the sweep H is recomputed exactly by the FFT product.
+
+use crate::discrete::point::operator::{PointLevel, PointPhysics};
+use crate::solve::banded::solve_banded;
+use crate::solve::line::relax::RelaxParams;
+use crate::solve::point::jacobian::PointJacRow;
+
+/// Work buffers of the point smoother, reused across rows, sweeps and levels.
+#[derive(Default)]
+pub struct PointScratch {
+    rows: Vec<PointJacRow>,
+    /// 0: active, 1: cavitated, 2: frozen (boundary columns included).
+    kind: Vec<u8>,
+    jset: Vec<bool>,
+    a: Vec<f64>,
+    rhs: Vec<f64>,
+    /// Entries of one Jacobian row over the window, and the applied changes of the row.
+    ent: Vec<f64>,
+    change: Vec<f64>,
+    /// The changes of one colour in zebra order.
+    zebra: Vec<f64>,
+}
+
+/// One sweep of x-line relaxation over all interior rows: Gauss-Seidel from row to row, or, with
+/// `parallel`, zebra order (all odd rows from the same state, then all even rows; the rows of one
+/// colour solved in parallel on the current rayon pool, the film updated by the FFT product between
+/// the colours). Zebra results do not depend on the number of threads.
+pub fn point_line_sweep(
+    lv: &mut PointLevel,
+    phys: &PointPhysics,
+    h0: f64,
+    rp: &RelaxParams,
+    s: &mut PointScratch,
+    parallel: bool,
+) {
+    let (nx, ny) = (lv.nx, lv.ny);
+    if parallel {
+        use rayon::prelude::*;
+        // The changes of one colour, row after row (taken out of the scratch so the rows can
+        // fill it in parallel; each rayon job has its own row scratch).
+        let mut zebra = std::mem::take(&mut s.zebra);
+        for first in [1usize, 2] {
+            let count = (ny - 1 - first).div_ceil(2);
+            zebra.clear();
+            zebra.resize(count * nx, 0.0);
+            {
+                let lv = &*lv;
+                zebra.par_chunks_mut(nx).enumerate().for_each_init(
+                    PointScratch::default,
+                    |rs, (k, out)| {
+                        row_changes(lv, phys, rp, first + 2 * k, rs);
+                        out.copy_from_slice(&rs.change);
+                    },
+                );
+            }
+            for (k, ch) in zebra.chunks(nx).enumerate() {
+                let j = first + 2 * k;
+                for i in 1..nx - 1 {
+                    let c = lv.at(i, j);
+                    lv.p[c] += ch[i];
+                }
+            }
+            lv.update_film(phys, h0);
+        }
+        s.zebra = zebra;
+        return;
+    }
+    let reach = 2 * (rp.band + 1);
+    for j in 1..ny - 1 {
+        row_changes(lv, phys, rp, j, s);
+        for i in 1..nx - 1 {
+            let c = lv.at(i, j);
+            lv.p[c] += s.change[i];
+        }
+        local_film_update(lv, phys, j, reach, &s.change);
+    }
+    lv.update_film(phys, h0);
+}
+
+/// The relaxation changes of row j (into `s.change`, indexed by i) from the current state.
+fn row_changes(
+    lv: &PointLevel,
+    phys: &PointPhysics,
+    rp: &RelaxParams,
+    j: usize,
+    s: &mut PointScratch,
+) {
+    let nx = lv.nx;
+    let m = nx - 2;
+    let bw = rp.band + 1;
+    let w = 2 * bw + 1;
+    let hx2 = lv.hx * lv.hx;
+    // Each change is limited to one Hertz pressure, and to a viscosity change by e^2 (Barus):
+    // far from the solution a full Newton change is not to be trusted.
+    let max_dp = if phys.alpha_bar > 0.0 {
+        (2.0 / phys.alpha_bar).min(1.0)
+    } else {
+        1.0
+    };
+    let PointScratch {
+        rows,
+        kind,
+        jset,
+        a,
+        rhs,
+        ent,
+        change,
+        ..
+    } = s;
+    rows.clear();
+    rows.extend((1..nx - 1).map(|i| PointJacRow::new(lv, phys, i, j)));
+    kind.clear();
+    kind.resize(nx, 2);
+    rhs.clear();
+    rhs.resize(m, 0.0);
+    for i in 1..nx - 1 {
+        let c = lv.at(i, j);
+        let r = lv.f[c] - lv.reynolds(phys, i, j);
+        rhs[i - 1] = r;
+        let d = rows[i - 1].entry(&lv.kernel, nx, i, j);
+        kind[i] = if lv.frozen[c] {
+            2
+        } else if (d < 0.0 && lv.p[c] + r / d <= 0.0) || (d >= 0.0 && lv.p[c] <= 0.0) {
+            1
+        } else {
+            0
+        };
+    }
+    jset.clear();
+    jset.extend((0..nx).map(|i| {
+        i >= 1
+            && i + 1 < nx
+            && kind[i - 1] == 0
+            && kind[i] == 0
+            && kind[i + 1] == 0
+            && (phys.dry || {
+                let c = lv.at(i, j);
+                let e = &lv.eps;
+                0.5 * (e[c - 1] + e[c]).min(e[c] + e[c + 1]) / hx2 < rp.xi_threshold
+            })
+    }));
+    a.clear();
+    a.resize(m * w, 0.0);
+    ent.clear();
+    ent.resize(nx, 0.0);
+    for i in 1..nx - 1 {
+        let row = i - 1;
+        match kind[i] {
+            1 => {
+                a[row * w + bw] = 1.0;
+                rhs[row] = -lv.p[lv.at(i, j)];
+            }
+            2 => {
+                a[row * w + bw] = 1.0;
+                rhs[row] = 0.0;
+            }
+            _ => {
+                let lo = i.saturating_sub(bw + 1).max(1);
+                let hi = (i + bw + 1).min(nx - 2);
+                for k in lo..=hi {
+                    ent[k] = rows[row].entry(&lv.kernel, nx, k, j);
+                }
+                let get = |k: usize| if k >= lo && k <= hi { ent[k] } else { 0.0 };
+                for k in i.saturating_sub(bw).max(1)..=(i + bw).min(nx - 2) {
+                    let mut v = ent[k];
+                    if jset[k] {
+                        v -= 0.5 * (get(k - 1) + get(k + 1));
+                    }
+                    a[row * w + (k + bw - i)] = v;
+                }
+            }
+        }
+    }
+    let solved = solve_banded(a, m, bw, rhs) && rhs.iter().all(|v| v.is_finite());
+    change.clear();
+    change.resize(nx, 0.0);
+    for i in 1..nx - 1 {
+        let c = lv.at(i, j);
+        let old = lv.p[c];
+        let dp = if solved {
+            let mut dp = rhs[i - 1];
+            if jset[i - 1] {
+                dp -= 0.5 * rhs[i - 2];
+            }
+            if jset[i + 1] {
+                dp -= 0.5 * rhs[i];
+            }
+            dp
+        } else {
+            // A zero pivot: a damped point update from the diagonal alone.
+            let d = rows[i - 1].entry(&lv.kernel, nx, i, j);
+            if d < 0.0 {
+                (lv.f[c] - lv.reynolds(phys, i, j)) / d
+            } else {
+                0.0
+            }
+        };
+        let new = match kind[i] {
+            1 => 0.0,
+            2 => old,
+            _ => (old + (rp.omega_line * dp).clamp(-max_dp, max_dp)).max(0.0),
+        };
+        change[i] = new - old;
+    }
+}
+
+/// Correct the film (and rho, eps) of rows j..=j+2 for the pressure changes `change` on row j,
+/// with the kernel kept within `reach` cells along x.
+fn local_film_update(
+    lv: &mut PointLevel,
+    phys: &PointPhysics,
+    j: usize,
+    reach: usize,
+    change: &[f64],
+) {
+    let (nx, ny) = (lv.nx, lv.ny);
+    for jj in j..(j + 3).min(ny - 1) {
+        let dy = jj - j;
+        for i in 1..nx - 1 {
+            let c = lv.at(i, jj);
+            if phys.elastic {
+                let krow = &lv.kernel[dy * nx..(dy + 1) * nx];
+                let lo = i.saturating_sub(reach).max(1);
+                let hi = (i + reach).min(nx - 2);
+                let mut s = 0.0;
+                for (k, &dpk) in change.iter().enumerate().take(hi + 1).skip(lo) {
+                    if dpk != 0.0 {
+                        s += krow[i.abs_diff(k)] * dpk;
+                    }
+                }
+                lv.film[c] += phys.coef * s;
+            }
+            let p = lv.p[c];
+            let rho = phys.density.rho(p);
+            lv.rho[c] = rho;
+            lv.eps[c] = phys.eps(p, lv.film[c], rho);
+        }
+    }
+}

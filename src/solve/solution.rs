@@ -1,0 +1,198 @@
+//! What a line solve reports (PHYSICS.md section 7), in Moes units unless named otherwise.
+//!
+//! * `H_c`: film at X = 0. `H_c_pmax`: film at the global pressure maximum (dP/dX = 0 there, so
+//!   for an incompressible lubricant it is the flux thickness, exactly 3/M in the rigid-isoviscous
+//!   limit). `H_min`, `X_min`: the minimum film and where it is (parabolic refinement between
+//!   nodes). `P_max`: the maximum pressure (P = p/p_h).
+//! * `spike`: the most downstream local pressure maximum above 5 % of P_max when there are two
+//!   or more (position X and height P), else none.
+//! * `H0`: the film constant (Moes units). `f`: rolling traction F_r/w with
+//!   F_r = integral (h/2) dp/dx dx, reported as f R/b = integral (H/2) P' dX / integral P dX
+//!   (Hertzian units); multiply by b/R = sqrt(8 W'/pi) for the dimensional coefficient, which
+//!   (M, L) alone do not fix.
+//! * `load_error`: (h sum P - pi/2)/(pi/2) on the finest grid.
+
+use crate::solve::{SolveInfo, Status};
+use serde::{Deserialize, Serialize};
+
+/// A secondary pressure maximum near the outlet.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Spike {
+    pub x: f64,
+    pub p: f64,
+}
+
+/// The outputs of one solve (line or point), with the JSON field names of the CLI.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Outputs {
+    #[serde(rename = "H_c")]
+    pub h_c: f64,
+    #[serde(rename = "H_c_pmax")]
+    pub h_c_pmax: f64,
+    #[serde(rename = "H_min")]
+    pub h_min: f64,
+    #[serde(rename = "X_min")]
+    pub x_min: f64,
+    /// Point contacts: where the minimum film is across the rolling direction (Y = y/b).
+    #[serde(rename = "Y_min", skip_serializing_if = "Option::is_none", default)]
+    pub y_min: Option<f64>,
+    /// Point contacts: the ellipticity parameter D = Rx/Ry and the Hertz ratio k = a/b.
+    #[serde(rename = "D", skip_serializing_if = "Option::is_none", default)]
+    pub d: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub k: Option<f64>,
+    #[serde(rename = "P_max")]
+    pub p_max: f64,
+    pub spike: Option<Spike>,
+    #[serde(rename = "H0")]
+    pub h0: f64,
+    pub f: f64,
+    pub load_error: f64,
+    pub status: Status,
+    pub reason: String,
+    pub grid: usize,
+    pub levels: usize,
+    /// Refinement level of the finest grid: log2 of its intervals over those of the smallest
+    /// grid a solve accepts (32 line intervals, 16 point intervals per direction), so 257 / 1025
+    /// / 4097 line points are levels 3 / 5 / 7 and 33^2 / 65^2 / 129^2 point nodes 1 / 2 / 3;
+    /// none for a closed-form answer.
+    pub level: Option<usize>,
+    /// The model that answered (`crate::strategy::select`): "full" unless a simpler one was selected.
+    #[serde(default = "full_model")]
+    pub model_used: String,
+    pub work_units: f64,
+    pub wall_s: f64,
+    /// With an accuracy target only: the estimated relative discretisation error of H_c and
+    /// H_min (the larger; Richardson between this grid and the one with half the intervals).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub error_estimate: Option<f64>,
+    /// With an accuracy target only: whether the estimate met the target.
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub accuracy_met: Option<bool>,
+}
+
+/// log2((grid - 1) / base), rounded: the refinement level of a grid over `base` intervals.
+pub fn grid_level(grid: usize, base: usize) -> usize {
+    ((grid.saturating_sub(1) as f64 / base as f64).log2().round()).max(0.0) as usize
+}
+
+fn full_model() -> String {
+    "full".to_string()
+}
+
+/// Pressure and film along X on the finest grid (X, P in Hertzian units, H in Moes units).
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct Profile {
+    pub x: Vec<f64>,
+    pub p: Vec<f64>,
+    pub h: Vec<f64>,
+}
+
+/// Vertex of the parabola through (-1, a), (0, b), (1, c): offset in [-1, 1] and value.
+pub(crate) fn parabola_vertex(a: f64, b: f64, c: f64) -> (f64, f64) {
+    let den = a - 2.0 * b + c;
+    if den.abs() < 1e-300 {
+        return (0.0, b);
+    }
+    let t = (0.5 * (a - c) / den).clamp(-1.0, 1.0);
+    (t, b - 0.25 * (a - c) * t)
+}
+
+/// Linear interpolation of `v` at fractional node position `i + t` (t in [-1, 1]).
+fn interp(v: &[f64], i: usize, t: f64) -> f64 {
+    if t >= 0.0 {
+        v[i] + t * (v[(i + 1).min(v.len() - 1)] - v[i])
+    } else {
+        v[i] + t * (v[i] - v[i.saturating_sub(1)])
+    }
+}
+
+/// Extract the outputs from a finished finest level.
+/// `x`, `p`, `film` are the finest-grid arrays in Hertzian units; `h_scale` = H_Moes/H_Venner.
+pub fn line_outputs(
+    x: &[f64],
+    p: &[f64],
+    film: &[f64],
+    h0: f64,
+    h_scale: f64,
+    i_centre: usize,
+    info: &SolveInfo,
+) -> Outputs {
+    let n = x.len();
+    let h = x[1] - x[0];
+    let mut imax = 0;
+    for i in 0..n {
+        if p[i] > p[imax] {
+            imax = i;
+        }
+    }
+    let (t, p_max) = if imax > 0 && imax + 1 < n {
+        parabola_vertex(p[imax - 1], p[imax], p[imax + 1])
+    } else {
+        (0.0, p[imax])
+    };
+    let h_c_pmax = interp(film, imax, t) * h_scale;
+    let mut imin = 1;
+    for i in 1..n - 1 {
+        if film[i] < film[imin] {
+            imin = i;
+        }
+    }
+    let (tm, hm) = parabola_vertex(film[imin - 1], film[imin], film[imin + 1]);
+    let maxima: Vec<usize> = (1..n - 1)
+        .filter(|&i| p[i] > p[i - 1] && p[i] >= p[i + 1] && p[i] > 0.05 * p_max)
+        .collect();
+    let spike = if maxima.len() >= 2 {
+        let i = *maxima.last().expect("two or more maxima");
+        let (ts, ps) = parabola_vertex(p[i - 1], p[i], p[i + 1]);
+        Some(Spike {
+            x: x[i] + ts * h,
+            p: ps,
+        })
+    } else {
+        None
+    };
+    let load: f64 = h * p.iter().sum::<f64>();
+    let mut traction = 0.0;
+    for i in 0..n - 1 {
+        traction += 0.25 * (film[i] + film[i + 1]) * (p[i + 1] - p[i]);
+    }
+    let target = std::f64::consts::FRAC_PI_2;
+    Outputs {
+        h_c: film[i_centre] * h_scale,
+        h_c_pmax,
+        h_min: hm * h_scale,
+        x_min: x[imin] + tm * h,
+        y_min: None,
+        d: None,
+        k: None,
+        p_max,
+        spike,
+        h0: h0 * h_scale,
+        f: traction / load,
+        load_error: (load - target) / target,
+        status: info.status,
+        reason: info.reason.clone(),
+        grid: info.grid,
+        levels: info.levels,
+        level: Some(grid_level(info.grid, 32)),
+        model_used: full_model(),
+        work_units: info.work_units,
+        wall_s: info.wall_s,
+        error_estimate: None,
+        accuracy_met: None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parabola_vertex_is_exact_for_parabolas() {
+        // y = 2 - 3 (t - 0.3)^2 sampled at -1, 0, 1.
+        let y = |t: f64| 2.0 - 3.0 * (t - 0.3) * (t - 0.3);
+        let (t, v) = parabola_vertex(y(-1.0), y(0.0), y(1.0));
+        assert!((t - 0.3).abs() < 1e-12 && (v - 2.0).abs() < 1e-12);
+    }
+}

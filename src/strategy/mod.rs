@@ -1,0 +1,8 @@
+//! How a case is solved: Richardson accuracy estimates ([`accuracy`]), the cheapest adequate
+//! model for a target ([`select`], with the slender-ellipse line model of [`slender`]) and warm
+//! starts from a neighbouring case ([`warm`]).
+
+pub mod accuracy;
+pub mod select;
+pub mod slender;
+pub mod warm;

@@ -1,0 +1,507 @@
+//! Model selection: answer a case with the cheapest model that meets an accuracy target.
+//!
+//! Before solving, the case is placed in the (M, L) plane by the published blends, Moes 1992 for
+//! line contacts and NVM 1994 for point contacts (`crate::model::formulas`). Their asymptotes give the
+//! relative effect of what a simpler model neglects:
+//! - elasticity: e_el = |H / H_rigid - 1|, with H_rigid the blend without its elastic asymptotes
+//!   (H_EI -> 0, H_EP -> infinity, so s -> 3): `(H_RI^3 + H_RP^3)^(1/3)`;
+//! - piezoviscosity: e_pv = |H / H(L = 0) - 1|.
+//!
+//! Screening: a simplification is a candidate when its estimated effect is below the target.
+//! The blends are fits, and their *effects* can be off by an order of magnitude far from the
+//! data they were fitted to (at M = 0.05, L = 5 Moes' blend puts the piezoviscous effect at
+//! 1.5e-4; the solver measures 3.8e-3), so a candidate is then **verified**: the full and the
+//! simplified model are solved on a coarse check grid (257 line points, 33^2 point nodes, a few
+//! per cent of a fine solve) and the candidate is kept only when the measured change of H_c and
+//! H_min is below `CHECK_FRACTION` times the target; the measured effect becomes the neglected
+//! part of the error estimate. Otherwise the full model is solved. Where the full check itself
+//! fails (very small M: at M = 0.01 the elastic solve takes 52 s on 1025 points and does not
+//! converge, the rigid one 2 ms), the screen is trusted with a margin of `SCREEN_MARGIN`. The
+//! closed form is checked through its discrete twin (rigid-isoviscous on the check grid). The
+//! models, cheapest first:
+//! - `closed-form`: rigid and isoviscous line contact with incompressible lubricant: Martin's
+//!   film with the Reynolds exit condition, exactly H_c = H_min = 2.4475/M at X = 0, and the
+//!   flux thickness H(p_max) = 3/M; no solve at all.
+//! - `rigid-isoviscous`, `rigid`: no deformation integral (H = H0 + X^2/2 ...);
+//! - `isoviscous`: the case solved at L = 0 with Barus (viscosity 1 everywhere);
+//! - `slender-line` (point contacts, small D): the line contact with the same Hertz half-width
+//!   (`crate::strategy::slender`); not verified per case, since a point check precise enough to see its
+//!   1-2 % gap costs more than the point solve it would save: its neglected effect is the gap
+//!   bound of `crate::strategy::slender`, validated on a separate set in `tests/slender.rs`, and it is
+//!   tried first, whenever that bound is below `CHECK_FRACTION` times the target;
+//! - `full`: everything.
+//!
+//! The reported `error_estimate` of a simplified answer is the discretisation estimate plus the
+//! neglected effect. A simplified solve that fails is retried with the full model (and says so).
+//! Every simplification is checked against the full model in `tests/selection.rs` and
+//! `tests/slender.rs`.
+
+use crate::model::case::{Elasticity, LineCase, Models, PointCase};
+use crate::model::formulas::{
+    moes_line_asymptotes, moes_line_hc, nvm_point_asymptotes, nvm_point_hc,
+};
+use crate::model::lubricant::{Density, Viscosity};
+use crate::solve::ladder::Attempt;
+use crate::solve::line::{solve_line, solve_line_to_accuracy, LineSolution, LineSolveParams};
+use crate::solve::point::{solve_point, solve_point_to_accuracy, PointSolution, PointSolveParams};
+use crate::solve::solution::Outputs;
+use crate::solve::{SolveInfo, Status};
+use crate::strategy::slender;
+use serde::{Deserialize, Serialize};
+use std::fmt;
+
+/// Points of the line check grid and nodes per direction of the point check grid.
+pub const CHECK_GRID_LINE: usize = 257;
+pub const CHECK_GRID_POINT: usize = 33;
+/// A candidate is kept when its measured effect on the check grid is below this times the target.
+pub const CHECK_FRACTION: f64 = 0.5;
+/// When the full check solve fails (very small M), the screened effect times this margin must
+/// be below the same limit, and is reported as the neglected effect.
+pub const SCREEN_MARGIN: f64 = 10.0;
+
+/// Martin's rigid-isoviscous line film at X = 0 (Reynolds exit condition), times M.
+pub const MARTIN_CENTRAL: f64 = 2.4475;
+/// The rigid-isoviscous flux thickness (the film where dP/dX = 0), times M.
+pub const MARTIN_FLUX: f64 = 3.0;
+
+/// The models a case can be answered with, cheapest first.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ModelChoice {
+    ClosedForm,
+    RigidIsoviscous,
+    Rigid,
+    Isoviscous,
+    SlenderLine,
+    Full,
+}
+
+impl ModelChoice {
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            ModelChoice::ClosedForm => "closed-form",
+            ModelChoice::RigidIsoviscous => "rigid-isoviscous",
+            ModelChoice::Rigid => "rigid",
+            ModelChoice::Isoviscous => "isoviscous",
+            ModelChoice::SlenderLine => "slender-line",
+            ModelChoice::Full => "full",
+        }
+    }
+}
+
+impl fmt::Display for ModelChoice {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// The choice for one case and the estimates it rests on.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Selection {
+    pub model: ModelChoice,
+    /// Estimated relative effect of elasticity and of piezoviscosity on H_c.
+    pub elastic_effect: f64,
+    pub piezo_effect: f64,
+    /// The effect of what the chosen model neglects: the screening estimate, replaced by the
+    /// measured one once verified (0 for the full model).
+    pub neglected: f64,
+    /// The effect measured on the check grid, once verified.
+    pub measured: Option<f64>,
+}
+
+/// Effects (elastic, piezoviscous) from Moes 1992 (line) or NVM 1994 (point, `Some(D)`).
+pub fn effects(m: f64, l: f64, d: Option<f64>) -> (f64, f64) {
+    let (full, iso, ri, rp) = match d {
+        None => {
+            let [ri, _, rp, _] = moes_line_asymptotes(m, l);
+            (moes_line_hc(m, l), moes_line_hc(m, 0.0), ri, rp)
+        }
+        Some(d) => {
+            let [ri, _, rp, _, _] = nvm_point_asymptotes(m, l, d);
+            (nvm_point_hc(m, l, d), nvm_point_hc(m, 0.0, d), ri, rp)
+        }
+    };
+    let rigid = if l > 0.0 {
+        (ri.powi(3) + rp.powi(3)).cbrt()
+    } else {
+        ri
+    };
+    ((full / rigid - 1.0).abs(), (full / iso - 1.0).abs())
+}
+
+/// Screen: the cheapest model whose estimated neglected effects are below `target`. Only what the
+/// case has can be switched off: a rigid case or an L = 0 case is "full" unless a further
+/// simplification applies (a rigid, L = 0 line case with incompressible lubricant is the closed
+/// form).
+pub fn select(m: f64, l: f64, d: Option<f64>, models: &Models, target: f64) -> Selection {
+    let (e_el, e_pv) = effects(m, l, d);
+    let limit = target;
+    // What switching a model off would neglect; a case that has it off already loses nothing.
+    let has_el = models.elasticity != Elasticity::Rigid;
+    let has_pv = l > 0.0;
+    let el = if has_el { e_el } else { 0.0 };
+    let pv = if has_pv { e_pv } else { 0.0 };
+    let (drop_el, drop_pv) = if el + pv < limit {
+        (has_el, has_pv)
+    } else if el < limit {
+        (has_el, false)
+    } else {
+        (false, has_pv && pv < limit)
+    };
+    let rigid_iso = (drop_el || !has_el) && (drop_pv || !has_pv);
+    let closed = rigid_iso && d.is_none() && models.density == Density::Incompressible;
+    let model = match (closed, drop_el, drop_pv) {
+        (true, _, _) => ModelChoice::ClosedForm,
+        (false, true, true) => ModelChoice::RigidIsoviscous,
+        (false, true, false) => ModelChoice::Rigid,
+        (false, false, true) => ModelChoice::Isoviscous,
+        (false, false, false) => ModelChoice::Full,
+    };
+    let neglected = if drop_el { el } else { 0.0 } + if drop_pv { pv } else { 0.0 };
+    Selection {
+        model,
+        elastic_effect: e_el,
+        piezo_effect: e_pv,
+        neglected,
+        measured: None,
+    }
+}
+
+/// The models and L of the simplified problem.
+fn simplified(model: ModelChoice, l: f64, models: &Models) -> (f64, Models) {
+    let mut mm = *models;
+    let mut ll = l;
+    if matches!(model, ModelChoice::Rigid | ModelChoice::RigidIsoviscous) {
+        mm.elasticity = Elasticity::Rigid;
+    }
+    if matches!(
+        model,
+        ModelChoice::Isoviscous | ModelChoice::RigidIsoviscous
+    ) {
+        ll = 0.0;
+        mm.viscosity = Viscosity::Barus;
+    }
+    (ll, mm)
+}
+
+/// Mark a simplified answer: model, note, and the neglected effect added to the estimate.
+fn annotate(o: &mut Outputs, info: &mut SolveInfo, sel: &Selection) {
+    o.model_used = sel.model.as_str().to_string();
+    if sel.model == ModelChoice::Full {
+        return;
+    }
+    o.error_estimate = o.error_estimate.map(|e| e + sel.neglected);
+    let how = if sel.model == ModelChoice::SlenderLine {
+        "the slender-contact gap bound"
+    } else if sel.measured.is_some() {
+        "measured on the check grid"
+    } else {
+        "screened x 10: the full check did not converge"
+    };
+    let note = format!(
+        "; model {} (neglected effect {:.1e}, {how}; screened elastic {:.1e}, piezoviscous {:.1e})",
+        sel.model, sel.neglected, sel.elastic_effect, sel.piezo_effect
+    );
+    o.reason.push_str(&note);
+    info.reason.push_str(&note);
+}
+
+/// The closed-form rigid-isoviscous line answer (no discretisation error: its estimate is 0
+/// until [`finish`] adds the neglected effect).
+pub fn closed_form_line(m: f64) -> LineSolution {
+    let reason = "closed form: rigid-isoviscous line contact, H_c = H_min = 2.4475/M (Martin, \
+                  Reynolds exit condition)"
+        .to_string();
+    let h = MARTIN_CENTRAL / m;
+    let outputs = Outputs {
+        h_c: h,
+        h_c_pmax: MARTIN_FLUX / m,
+        h_min: h,
+        x_min: 0.0,
+        y_min: None,
+        d: None,
+        k: None,
+        p_max: f64::NAN,
+        spike: None,
+        h0: h,
+        f: f64::NAN,
+        load_error: 0.0,
+        status: Status::Converged,
+        reason: reason.clone(),
+        grid: 0,
+        levels: 0,
+        level: None,
+        model_used: ModelChoice::ClosedForm.as_str().to_string(),
+        work_units: 0.0,
+        wall_s: 0.0,
+        error_estimate: Some(0.0),
+        accuracy_met: Some(true),
+    };
+    let info = SolveInfo {
+        status: Status::Converged,
+        reason,
+        history: vec![],
+        work_units: 0.0,
+        wall_s: 0.0,
+        grid: 0,
+        levels: 0,
+    };
+    LineSolution {
+        outputs,
+        info,
+        profile: None,
+        attempt: 1,
+    }
+}
+
+/// The relative change of H_c and H_min (the larger) from `full` to `simple`, both converged.
+fn measured_effect(full: &Outputs, simple: &Outputs) -> Option<f64> {
+    let ok = full.status == Status::Converged && simple.status == Status::Converged;
+    let rel = |a: f64, b: f64| (a / b - 1.0).abs();
+    let e = rel(simple.h_c, full.h_c).max(rel(simple.h_min, full.h_min));
+    (ok && e.is_finite()).then_some(e)
+}
+
+/// Verify a screened candidate with the check-grid solves (`check(model)`); returns the kept
+/// selection and the cost (work units, seconds) of the checks.
+fn verify(
+    sel: Selection,
+    target: f64,
+    check: impl Fn(ModelChoice) -> Outputs,
+) -> (Selection, f64, f64) {
+    if sel.model == ModelChoice::Full {
+        return (sel, 0.0, 0.0);
+    }
+    let full = check(ModelChoice::Full);
+    // The closed form is checked through its discrete twin, so that the coarse grid's
+    // discretisation error cancels in the comparison.
+    let twin = match sel.model {
+        ModelChoice::ClosedForm => ModelChoice::RigidIsoviscous,
+        m => m,
+    };
+    let simple = check(twin);
+    let cost = (
+        full.work_units + simple.work_units,
+        full.wall_s + simple.wall_s,
+    );
+    let limit = CHECK_FRACTION * target;
+    let screened = sel.neglected * SCREEN_MARGIN;
+    let measured = measured_effect(&full, &simple);
+    let neglected = match measured {
+        Some(e) => (e < limit).then_some(e),
+        // The full check did not converge: trust the screen with a margin.
+        None => (simple.status == Status::Converged && screened < limit).then_some(screened),
+    };
+    let sel = match neglected {
+        Some(neglected) => Selection {
+            neglected,
+            measured,
+            ..sel
+        },
+        None => Selection {
+            model: ModelChoice::Full,
+            neglected: 0.0,
+            measured,
+            ..sel
+        },
+    };
+    (sel, cost.0, cost.1)
+}
+
+/// Finish a selected solve `s`: a simplified model that did not converge is replaced by the full
+/// model (`full()`, noted in the reason); the answer is annotated with its model, and the cost
+/// of the checks (`check` = work units, seconds) and of a failed simplified solve is added.
+fn finish<S: Attempt>(
+    mut s: S,
+    sel: Selection,
+    full: impl FnOnce() -> S,
+    check: (f64, f64),
+) -> (S, Selection) {
+    let (mut wu, mut wall) = check;
+    let sel = if sel.model != ModelChoice::Full && s.info().status != Status::Converged {
+        wu += s.info().work_units;
+        wall += s.info().wall_s;
+        s = full();
+        let note = format!(" ({} model did not converge; full model solved)", sel.model);
+        let (info, o) = s.parts();
+        o.reason.push_str(&note);
+        info.reason.push_str(&note);
+        Selection {
+            model: ModelChoice::Full,
+            neglected: 0.0,
+            ..sel
+        }
+    } else {
+        sel
+    };
+    let (info, o) = s.parts();
+    annotate(o, info, &sel);
+    o.work_units += wu;
+    o.wall_s += wall;
+    info.work_units += wu;
+    info.wall_s += wall;
+    (s, sel)
+}
+
+/// Solve a line case with the cheapest verified model to `target` (refining up to `max_grid`);
+/// a failed simplified solve is redone with the full model.
+pub fn solve_line_selected(
+    case: &LineCase,
+    params: &LineSolveParams,
+    target: f64,
+    max_grid: usize,
+) -> (LineSolution, Selection) {
+    let screened = select(case.m, case.l, None, &case.models, target);
+    let mut cp = *params;
+    cp.mg.grid = CHECK_GRID_LINE;
+    cp.keep_profile = false;
+    let (sel, wu, wall) = verify(screened, target, |model| solve_line_model(case, &cp, model));
+    let full = |p: &LineSolveParams| solve_line_to_accuracy(case, p, target, max_grid);
+    let s = match sel.model {
+        ModelChoice::Full => full(params),
+        ModelChoice::ClosedForm => closed_form_line(case.m),
+        model => {
+            let (l, models) = simplified(model, case.l, &case.models);
+            match LineCase::with_models(case.m, l, models) {
+                Ok(simple) => solve_line_to_accuracy(&simple, params, target, max_grid),
+                Err(_) => full(params),
+            }
+        }
+    };
+    finish(s, sel, || full(params), (wu, wall))
+}
+
+/// [`solve_line_selected`] for point contacts (no closed form).
+pub fn solve_point_selected(
+    case: &PointCase,
+    params: &PointSolveParams,
+    target: f64,
+    max_grid: usize,
+) -> (PointSolution, Selection) {
+    let screened = select(case.m, case.l, Some(case.d), &case.models, target);
+    let full = |p: &PointSolveParams| solve_point_to_accuracy(case, p, target, max_grid);
+    if let Some(bound) = slender::gap_bound(case).filter(|b| *b < CHECK_FRACTION * target) {
+        let sel = Selection {
+            model: ModelChoice::SlenderLine,
+            neglected: bound,
+            measured: None,
+            ..screened
+        };
+        let lp = LineSolveParams {
+            fallback: params.fallback,
+            ..Default::default()
+        };
+        let lc = slender::equivalent_line(case);
+        let line = solve_line_to_accuracy(&lc, &lp, target, slender::LINE_MAX_GRID);
+        let s = slender::point_solution(case, line);
+        return finish(s, sel, || full(params), (0.0, 0.0));
+    }
+    let mut cp = *params;
+    cp.mg.grid = CHECK_GRID_POINT;
+    cp.keep_fields = false;
+    let (sel, wu, wall) = verify(screened, target, |model| {
+        solve_point_model(case, &cp, model)
+    });
+    let s = match sel.model {
+        ModelChoice::Full => full(params),
+        model => {
+            let (l, models) = simplified(model, case.l, &case.models);
+            match PointCase::with_models(case.m, l, case.d, models) {
+                Ok(simple) => solve_point_to_accuracy(&simple, params, target, max_grid),
+                Err(_) => full(params),
+            }
+        }
+    };
+    finish(s, sel, || full(params), (wu, wall))
+}
+
+/// Solve with a fixed model (no selection) on one grid: the reference the selection is checked
+/// against.
+pub fn solve_line_model(case: &LineCase, params: &LineSolveParams, model: ModelChoice) -> Outputs {
+    if model == ModelChoice::ClosedForm {
+        return closed_form_line(case.m).outputs;
+    }
+    let (l, models) = simplified(model, case.l, &case.models);
+    match LineCase::with_models(case.m, l, models) {
+        Ok(c) => solve_line(&c, params).outputs,
+        Err(_) => solve_line(case, params).outputs,
+    }
+}
+
+/// [`solve_line_model`] for point contacts.
+pub fn solve_point_model(
+    case: &PointCase,
+    params: &PointSolveParams,
+    model: ModelChoice,
+) -> Outputs {
+    if model == ModelChoice::SlenderLine {
+        let lc = slender::equivalent_line(case);
+        return slender::point_outputs(case, &solve_line(&lc, &LineSolveParams::default()).outputs);
+    }
+    let (l, models) = simplified(model, case.l, &case.models);
+    match PointCase::with_models(case.m, l, case.d, models) {
+        Ok(c) => solve_point(&c, params).outputs,
+        Err(_) => solve_point(case, params).outputs,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn effects_vanish_in_their_limits_and_order_the_models() {
+        // Deep rigid-isoviscous: both effects tiny; line -> closed form, point -> rigid (an
+        // L = 0 case is isoviscous already), and rigid-isoviscous at small L > 0.
+        let m = Models::default();
+        let s = select(0.01, 0.0, None, &m, 0.01);
+        assert_eq!(s.model, ModelChoice::ClosedForm, "{s:?}");
+        assert!(s.elastic_effect < 1e-3 && s.piezo_effect == 0.0);
+        let s = select(0.01, 0.0, Some(1.0), &m, 0.01);
+        assert_eq!(s.model, ModelChoice::Rigid, "{s:?}");
+        let s = select(0.01, 0.01, Some(1.0), &m, 0.01);
+        assert_eq!(s.model, ModelChoice::RigidIsoviscous, "{s:?}");
+        // Typical EHL: nothing can be dropped.
+        let s = select(20.0, 10.0, None, &m, 0.01);
+        assert_eq!(s.model, ModelChoice::Full);
+        assert!(s.elastic_effect > 0.1 && s.piezo_effect > 0.3, "{s:?}");
+        // Elastic but isoviscous at small L and large M.
+        let s = select(100.0, 0.001, None, &m, 0.01);
+        assert_eq!(s.model, ModelChoice::Isoviscous, "{s:?}");
+        // Dowson-Higginson density rules out the closed form.
+        let dh = Models {
+            density: Density::DowsonHigginson { ph_pa: 1e9 },
+            ..m
+        };
+        assert_eq!(select(0.01, 0.0, None, &dh, 0.01).model, ModelChoice::Rigid);
+        // A rigid L = 0 case is the closed form; a rigid case with L > 0 only drops L.
+        let rigid = Models {
+            elasticity: Elasticity::Rigid,
+            ..m
+        };
+        assert_eq!(
+            select(50.0, 0.0, None, &rigid, 0.01).model,
+            ModelChoice::ClosedForm
+        );
+        assert_eq!(
+            select(0.01, 0.01, None, &rigid, 0.01).model,
+            ModelChoice::ClosedForm
+        );
+        // The elastic effect grows with M; the piezoviscous one with L.
+        let (a, _) = effects(0.1, 0.0, None);
+        let (b, _) = effects(1.0, 0.0, None);
+        let (_, c) = effects(10.0, 1.0, None);
+        let (_, e) = effects(10.0, 5.0, None);
+        assert!(a < b && c < e, "{a} {b} {c} {e}");
+    }
+
+    #[test]
+    fn closed_form_is_martins_film() {
+        let s = closed_form_line(0.01);
+        assert!((s.outputs.h_c * 0.01 - 2.4475).abs() < 1e-12);
+        assert_eq!(s.outputs.h_c, s.outputs.h_min);
+        assert_eq!(s.outputs.model_used, "closed-form");
+        assert!(s.outputs.error_estimate.unwrap() < 0.01);
+        assert!(s.outputs.reason.contains("closed form"));
+    }
+}

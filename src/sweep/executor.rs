@@ -1,0 +1,412 @@
+//! The executor: solve the cases of one shard on a rayon pool and write them to the dataset in
+//! batches.
+//!
+//! `threads` workers of a dedicated rayon pool take cases from a shared queue in plan order
+//! (largest cost first) and send finished rows to the calling thread, which owns the part file:
+//! after `batch` rows, or `flush_seconds` after the previous flush, it rewrites the file with all
+//! rows of this run through a temporary file and an atomic rename. A solve that panics becomes a
+//! row with status `panic` instead of ending the sweep.
+
+use crate::solve::Status;
+use crate::store::results::{self, CaseRow};
+use crate::sweep::plan::{Case, Shard};
+use crate::sweep::row::solve_guarded;
+pub use crate::sweep::row::{input_row, solve_case};
+use crate::sweep::spec::SweepSpec;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::mpsc;
+use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
+
+/// How progress is shown on stderr.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Progress {
+    /// A bar when stderr is a terminal, else log lines.
+    Auto,
+    Bar,
+    Log,
+    None,
+}
+
+/// Where and how to run.
+#[derive(Clone, Debug)]
+pub struct RunOptions {
+    /// The dataset directory `<out>/<name>`.
+    pub dataset: PathBuf,
+    pub threads: usize,
+    pub shard: Shard,
+    pub progress: Progress,
+}
+
+/// What a run did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RunReport {
+    /// Cases of the whole sweep, of this shard, and of this shard already stored before the run.
+    pub total: usize,
+    pub in_shard: usize,
+    pub already_stored: usize,
+    /// Cases solved and written by this run, and how many of them failed (status other than
+    /// converged, or not valid).
+    pub solved: usize,
+    pub failed: usize,
+    /// Cases solved by this run per `model_used` (see `crate::strategy::select`).
+    pub models: std::collections::BTreeMap<String, usize>,
+    /// Their summed solve time (s) per `model_used`, check solves included.
+    pub model_seconds: std::collections::BTreeMap<String, f64>,
+    /// The part file this run wrote (none when there was nothing to do).
+    pub file: Option<PathBuf>,
+    pub wall_s: f64,
+}
+
+fn is_failure(r: &CaseRow) -> bool {
+    r.status != Status::Converged.as_str() || !r.valid
+}
+
+/// ISO 8601 UTC time of `t`, e.g. `2025-01-31T12:00:00Z`.
+pub fn iso8601(t: SystemTime) -> String {
+    let secs = t.duration_since(UNIX_EPOCH).map_or(0, |d| d.as_secs()) as i64;
+    let (days, rem) = (secs.div_euclid(86_400), secs.rem_euclid(86_400));
+    // Civil date from days since 1970-01-01 (H. Hinnant's algorithm).
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + (m <= 2) as i64;
+    format!(
+        "{y:04}-{m:02}-{d:02}T{:02}:{:02}:{:02}Z",
+        rem / 3600,
+        rem % 3600 / 60,
+        rem % 60
+    )
+}
+
+/// The run number of `part-<label>-<run>.parquet`, when `name` is such a part.
+fn run_number(name: &str, label: &str) -> Option<u32> {
+    let rest = name.strip_prefix(&format!("part-{label}-"))?;
+    rest.strip_suffix(".parquet")?.parse().ok()
+}
+
+/// The directory that holds the temporary files of `dir`'s parts, and their name prefix.
+fn temp_dir_and_prefix(dir: &Path) -> (PathBuf, String) {
+    let probe = results::temp_path(&dir.join("part-x.parquet"));
+    let tdir = probe.parent().map(Path::to_path_buf).unwrap_or_default();
+    let name = probe
+        .file_name()
+        .map_or(String::new(), |n| n.to_string_lossy().into_owned());
+    let prefix = name
+        .strip_suffix("part-x.parquet.tmp")
+        .unwrap_or("")
+        .to_string();
+    (tdir, prefix)
+}
+
+/// The temporary files of this shard's parts that exist now, with their run numbers.
+fn shard_temps(dir: &Path, shard: &Shard) -> Vec<(PathBuf, u32)> {
+    let (tdir, prefix) = temp_dir_and_prefix(dir);
+    let label = shard.label();
+    let list = if tdir.as_os_str().is_empty() {
+        std::fs::read_dir(".")
+    } else {
+        std::fs::read_dir(&tdir)
+    };
+    let mut v = vec![];
+    for ent in list.into_iter().flatten().flatten() {
+        let name = ent.file_name().to_string_lossy().into_owned();
+        let run = name
+            .strip_prefix(prefix.as_str())
+            .and_then(|r| r.strip_suffix(".tmp"))
+            .and_then(|r| run_number(r, &label));
+        if let Some(run) = run {
+            v.push((tdir.join(&name), run));
+        }
+    }
+    v
+}
+
+/// Claim the next run number of this shard: the part file path, whose temporary file now exists
+/// (created exclusively, so two processes never get the same file).
+fn claim_part(dir: &Path, shard: &Shard) -> Result<PathBuf, String> {
+    let label = shard.label();
+    let mut next = 1;
+    let rd = std::fs::read_dir(dir).map_err(|e| format!("cannot read {}: {e}", dir.display()))?;
+    for ent in rd.flatten() {
+        if let Some(n) = run_number(&ent.file_name().to_string_lossy(), &label) {
+            next = next.max(n + 1);
+        }
+    }
+    for (_, n) in shard_temps(dir, shard) {
+        next = next.max(n + 1);
+    }
+    loop {
+        let path = dir.join(format!("part-{label}-{next:04}.parquet"));
+        let tmp = results::temp_path(&path);
+        if path.exists() {
+            next += 1;
+            continue;
+        }
+        match std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&tmp)
+        {
+            Ok(_) => return Ok(path),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => next += 1,
+            Err(e) => return Err(format!("cannot create {}: {e}", tmp.display())),
+        }
+    }
+}
+
+/// Remove temporary files that killed runs of this shard left behind.
+fn remove_stale_temps(dir: &Path, shard: &Shard) {
+    for (p, _) in shard_temps(dir, shard) {
+        let _ = std::fs::remove_file(p);
+    }
+}
+
+struct Reporter {
+    bar: Option<ProgressBar>,
+    log: bool,
+    prefix: String,
+    total: usize,
+    start: Instant,
+    last_log: Instant,
+    last_logged_decile: usize,
+}
+
+impl Reporter {
+    fn new(mode: Progress, prefix: String, total: usize) -> Self {
+        let tty = std::io::stderr().is_terminal();
+        let (bar, log) = match mode {
+            Progress::None => (false, false),
+            Progress::Bar => (true, false),
+            Progress::Log => (false, true),
+            Progress::Auto => (tty, !tty),
+        };
+        let bar = bar.then(|| {
+            let pb =
+                ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr());
+            let style = ProgressStyle::with_template(
+                "{prefix} [{bar:30}] {pos}/{len} {msg} elapsed {elapsed} ETA {eta}",
+            )
+            .map(|s| s.progress_chars("=> "))
+            .unwrap_or_else(|_| ProgressStyle::default_bar());
+            pb.set_style(style);
+            pb.set_prefix(prefix.clone());
+            pb.set_message("failures 0");
+            pb
+        });
+        Reporter {
+            bar,
+            log,
+            prefix,
+            total,
+            start: Instant::now(),
+            last_log: Instant::now(),
+            last_logged_decile: 0,
+        }
+    }
+
+    fn update(&mut self, done: usize, failed: usize) {
+        if let Some(pb) = &self.bar {
+            pb.set_position(done as u64);
+            pb.set_message(format!("failures {failed}"));
+        }
+        if self.log {
+            let decile = done * 10 / self.total.max(1);
+            let due = self.last_log.elapsed() >= Duration::from_secs(30);
+            if decile > self.last_logged_decile || due || done == self.total {
+                self.last_logged_decile = decile;
+                self.last_log = Instant::now();
+                let el = self.start.elapsed().as_secs_f64();
+                let eta = if done > 0 {
+                    el / done as f64 * (self.total - done) as f64
+                } else {
+                    f64::NAN
+                };
+                eprintln!(
+                    "{}: {done}/{} done, {failed} failures, {el:.1} s elapsed, ETA {eta:.1} s",
+                    self.prefix, self.total
+                );
+            }
+        }
+    }
+
+    fn finish(&self) {
+        if let Some(pb) = &self.bar {
+            pb.finish();
+        }
+    }
+}
+
+/// Run the cases of `opts.shard` that the dataset does not hold yet. `cases` is the whole plan
+/// (largest cost first). Returns an error message on an I/O failure; numerical failures are
+/// rows.
+pub fn execute(spec: &SweepSpec, cases: &[Case], opts: &RunOptions) -> Result<RunReport, String> {
+    let start = Instant::now();
+    let dir = &opts.dataset;
+    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    let stored = results::stored_ids(dir)?;
+    let shard_cases: Vec<&Case> = cases.iter().filter(|c| opts.shard.contains(c.id)).collect();
+    let todo: Vec<&Case> = shard_cases
+        .iter()
+        .copied()
+        .filter(|c| !stored.contains(&c.id_hex()))
+        .collect();
+    let mut report = RunReport {
+        total: cases.len(),
+        in_shard: shard_cases.len(),
+        already_stored: shard_cases.len() - todo.len(),
+        ..RunReport::default()
+    };
+    if todo.is_empty() {
+        report.wall_s = start.elapsed().as_secs_f64();
+        return Ok(report);
+    }
+    remove_stale_temps(dir, &opts.shard);
+    let threads = opts.threads.max(1);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .thread_name(|i| format!("ehlmap-sweep-{i}"))
+        .build()
+        .map_err(|e| format!("cannot start {threads} threads: {e}"))?;
+    let created = iso8601(SystemTime::now());
+    let meta_base = vec![
+        (
+            "git_commit".to_string(),
+            env!("EHLMAP_GIT_COMMIT").to_string(),
+        ),
+        ("sweep".to_string(), spec.name.clone()),
+        ("spec_file".to_string(), spec.file.clone()),
+        ("spec".to_string(), spec.text.clone()),
+        ("created".to_string(), created),
+        ("shard".to_string(), opts.shard.to_string()),
+        ("cases_total".to_string(), cases.len().to_string()),
+        ("cases_shard".to_string(), shard_cases.len().to_string()),
+    ];
+    let mut reporter = Reporter::new(
+        opts.progress,
+        format!("sweep {} [shard {}]", spec.name, opts.shard),
+        todo.len(),
+    );
+
+    let next = AtomicUsize::new(0);
+    let stop = AtomicBool::new(false);
+    let (tx, rx) = mpsc::channel::<CaseRow>();
+    let flush_every = Duration::from_secs_f64(spec.output.flush_seconds);
+    let batch = spec.output.batch.max(1);
+    let mut rows: Vec<CaseRow> = vec![];
+    let mut part: Option<PathBuf> = None;
+    let mut failure: Option<String> = None;
+
+    std::thread::scope(|ts| {
+        let (next, stop, todo, pool) = (&next, &stop, &todo, &pool);
+        let sweep = spec.name.as_str();
+        ts.spawn(move || {
+            pool.scope(|s| {
+                for _ in 0..threads {
+                    let tx = tx.clone();
+                    s.spawn(move |_| loop {
+                        if stop.load(Ordering::Relaxed) {
+                            break;
+                        }
+                        let i = next.fetch_add(1, Ordering::Relaxed);
+                        let Some(case) = todo.get(i) else { break };
+                        if tx.send(solve_guarded(case, sweep)).is_err() {
+                            break;
+                        }
+                    });
+                }
+            });
+            drop(tx);
+        });
+
+        let mut pending = 0usize;
+        let mut last_flush = Instant::now();
+        let flush = |rows: &mut Vec<CaseRow>, part: &mut Option<PathBuf>| -> Result<(), String> {
+            if part.is_none() {
+                *part = Some(claim_part(dir, &opts.shard)?);
+            }
+            let path = part.as_ref().expect("claimed");
+            let run = path
+                .file_name()
+                .and_then(|n| run_number(&n.to_string_lossy(), &opts.shard.label()))
+                .unwrap_or(0);
+            rows.sort_by(|a, b| a.case_id.cmp(&b.case_id));
+            let mut meta = meta_base.clone();
+            meta.push(("run".to_string(), run.to_string()));
+            meta.push(("rows".to_string(), rows.len().to_string()));
+            results::write_part(path, rows, &meta)
+        };
+        loop {
+            let wait = flush_every.saturating_sub(last_flush.elapsed());
+            match rx.recv_timeout(wait.max(Duration::from_millis(1))) {
+                Ok(row) => {
+                    report.solved += 1;
+                    report.failed += is_failure(&row) as usize;
+                    *report.models.entry(row.model_used.clone()).or_default() += 1;
+                    *report
+                        .model_seconds
+                        .entry(row.model_used.clone())
+                        .or_default() += row.wall_s.unwrap_or(0.0);
+                    rows.push(row);
+                    pending += 1;
+                    reporter.update(report.solved, report.failed);
+                }
+                Err(mpsc::RecvTimeoutError::Timeout) => {}
+                Err(mpsc::RecvTimeoutError::Disconnected) => break,
+            }
+            if pending > 0 && (pending >= batch || last_flush.elapsed() >= flush_every) {
+                if let Err(e) = flush(&mut rows, &mut part) {
+                    failure = Some(e);
+                    stop.store(true, Ordering::Relaxed);
+                    break;
+                }
+                pending = 0;
+                last_flush = Instant::now();
+            }
+        }
+        if failure.is_none() && pending > 0 {
+            if let Err(e) = flush(&mut rows, &mut part) {
+                failure = Some(e);
+            }
+        }
+        // Dropping the receiver ends the workers after their current case on an error.
+        drop(rx);
+    });
+    reporter.finish();
+    if let Some(e) = failure {
+        return Err(e);
+    }
+    report.file = part;
+    report.wall_s = start.elapsed().as_secs_f64();
+    Ok(report)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn iso8601_known_dates() {
+        assert_eq!(iso8601(UNIX_EPOCH), "1970-01-01T00:00:00Z");
+        let t = UNIX_EPOCH + Duration::from_secs(951_782_400 + 3661); // 2000-02-29 01:01:01
+        assert_eq!(iso8601(t), "2000-02-29T01:01:01Z");
+    }
+
+    #[test]
+    fn run_numbers_parse() {
+        assert_eq!(run_number("part-1of2-0003.parquet", "1of2"), Some(3));
+        let (tdir, prefix) = temp_dir_and_prefix(Path::new("out/smoke"));
+        assert_eq!(
+            (tdir.as_path(), prefix.as_str()),
+            (Path::new("out"), ".smoke.")
+        );
+        assert_eq!(run_number("part-2of2-0003.parquet", "1of2"), None);
+    }
+}
