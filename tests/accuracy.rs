@@ -2,9 +2,10 @@
 //! much finer solve (Richardson over 4097 and 8193 points) is below the estimate.
 
 use ehlmap::model::case::LineCase;
-use ehlmap::solve::line::{solve_line, solve_line_to_accuracy, LineSolveParams};
+use ehlmap::solve::line::{solve_line, LineSolveParams};
 use ehlmap::solve::Status;
 use ehlmap::strategy::accuracy::richardson2;
+use ehlmap::strategy::accuracy::solve_line_to_accuracy;
 
 fn reference(case: &LineCase) -> (f64, f64) {
     let run = |g: usize| {
@@ -62,7 +63,8 @@ fn error_estimates_are_honest_on_a_validation_set() {
 #[test]
 fn point_error_estimates_are_honest_on_a_validation_set() {
     use ehlmap::model::case::PointCase;
-    use ehlmap::solve::point::{solve_point, solve_point_to_accuracy, PointSolveParams};
+    use ehlmap::solve::point::{solve_point, PointSolveParams};
+    use ehlmap::strategy::accuracy::solve_point_to_accuracy;
     let run = |c: &PointCase, g: usize| {
         let mut p = PointSolveParams::default();
         p.mg.grid = g;

@@ -276,7 +276,7 @@ fn domain_bias_estimate_matches_a_doubled_domain() {
 #[test]
 fn accuracy_target_counts_the_domain_truncation() {
     use ehlmap::discrete::point::domain::PointDomain;
-    use ehlmap::solve::point::solve_point_to_accuracy;
+    use ehlmap::strategy::accuracy::solve_point_to_accuracy;
     let case = PointCase::new(5.0, 0.0, 1.0).unwrap();
     let t = PointDomain::of_case(&case, &Default::default()).truncation_error();
     assert!(t > 0.2 && t < 0.3, "{t}");

@@ -8,8 +8,9 @@ use common::point_reference;
 use ehlmap::model::case::{LineCase, PointCase};
 use ehlmap::solve::line::{solve_line, LineSolveParams};
 use ehlmap::solve::point::PointSolveParams;
+use ehlmap::solve::solution::ModelUsed;
 use ehlmap::solve::Status;
-use ehlmap::strategy::select::{solve_line_selected, solve_point_selected, ModelChoice};
+use ehlmap::strategy::select::{solve_line_selected, solve_point_selected};
 
 const TARGET: f64 = 0.01;
 
@@ -45,9 +46,9 @@ fn check(label: &str, got: (f64, f64), est: f64, reference: (f64, f64)) {
 fn line_simplifications_match_the_full_model() {
     // (M, L, the model the selection must pick)
     let cases = [
-        (0.05, 1.0, ModelChoice::ClosedForm),
-        (0.1, 0.0, ModelChoice::ClosedForm),
-        (100.0, 0.001, ModelChoice::Isoviscous),
+        (0.05, 1.0, ModelUsed::ClosedForm),
+        (0.1, 0.0, ModelUsed::ClosedForm),
+        (100.0, 0.001, ModelUsed::Isoviscous),
     ];
     for (m, l, want) in cases {
         let c = LineCase::new(m, l).unwrap();
@@ -74,17 +75,17 @@ fn the_check_grid_rejects_what_the_screen_gets_wrong() {
     let c = LineCase::new(0.05, 5.0).unwrap();
     let (s, sel) = solve_line_selected(&c, &LineSolveParams::default(), TARGET, 4097);
     assert!(sel.piezo_effect < 1e-3, "{sel:?}");
-    assert_eq!(sel.model, ModelChoice::Full, "{}", s.outputs.reason);
+    assert_eq!(sel.model, ModelUsed::Full, "{}", s.outputs.reason);
     assert!(sel.measured.unwrap() > 0.5 * TARGET, "{sel:?}");
     // A typical EHL case needs everything and pays for no check.
     let c = LineCase::new(20.0, 10.0).unwrap();
     let (s, sel) = solve_line_selected(&c, &LineSolveParams::default(), TARGET, 4097);
-    assert_eq!(sel.model, ModelChoice::Full);
+    assert_eq!(sel.model, ModelUsed::Full);
     assert!(sel.measured.is_none() && s.outputs.model_used == "full");
     // The closed form where even the full check fails (M = 0.01): Martin's film exactly.
     let c = LineCase::new(0.01, 0.0).unwrap();
     let (s, sel) = solve_line_selected(&c, &LineSolveParams::default(), TARGET, 4097);
-    assert_eq!(sel.model, ModelChoice::ClosedForm, "{}", s.outputs.reason);
+    assert_eq!(sel.model, ModelUsed::ClosedForm, "{}", s.outputs.reason);
     assert!((s.outputs.h_c * 0.01 / 2.4475 - 1.0).abs() < 1e-12);
     assert!(s.outputs.level.is_none() && s.outputs.error_estimate.unwrap() < TARGET);
 }
@@ -94,7 +95,7 @@ fn point_isoviscous_selection_matches_the_full_model() {
     let c = PointCase::new(100.0, 0.001, 1.0).unwrap();
     let (s, sel) = solve_point_selected(&c, &PointSolveParams::default(), TARGET, 257);
     let o = &s.outputs;
-    assert_eq!(sel.model, ModelChoice::Isoviscous, "{}", o.reason);
+    assert_eq!(sel.model, ModelUsed::Isoviscous, "{}", o.reason);
     assert_eq!(o.status, Status::Converged, "{}", o.reason);
     assert!(o.level.is_some());
     check(

@@ -9,8 +9,9 @@ use common::point_reference;
 use ehlmap::model::case::PointCase;
 use ehlmap::solve::line::{solve_line, LineSolveParams};
 use ehlmap::solve::point::PointSolveParams;
+use ehlmap::solve::solution::ModelUsed;
 use ehlmap::solve::Status;
-use ehlmap::strategy::select::{solve_point_selected, ModelChoice};
+use ehlmap::strategy::select::solve_point_selected;
 use ehlmap::strategy::slender::{equivalent_line, gap_bound, point_outputs};
 
 fn gap(got: (f64, f64), reference: (f64, f64)) -> f64 {
@@ -54,7 +55,7 @@ fn selection_uses_the_line_model_only_inside_its_gate() {
     let pc = PointCase::new(120.0, 10.0, 0.02).unwrap();
     let (s, sel) = solve_point_selected(&pc, &PointSolveParams::default(), target, 129);
     let o = &s.outputs;
-    assert_eq!(sel.model, ModelChoice::SlenderLine, "{}", o.reason);
+    assert_eq!(sel.model, ModelUsed::SlenderLine, "{}", o.reason);
     assert_eq!(o.model_used, "slender-line");
     assert_eq!(o.status, Status::Converged);
     assert!(
@@ -73,7 +74,7 @@ fn selection_uses_the_line_model_only_inside_its_gate() {
     for (m, d, t) in [(120.0, 0.02, 0.01), (1000.0, 0.2, 0.2), (10.0, 0.02, 0.2)] {
         let pc = PointCase::new(m, 10.0, d).unwrap();
         let (s, sel) = solve_point_selected(&pc, &PointSolveParams::default(), t, 65);
-        assert_ne!(sel.model, ModelChoice::SlenderLine, "M={m} D={d}");
+        assert_ne!(sel.model, ModelUsed::SlenderLine, "M={m} D={d}");
         assert_ne!(s.outputs.model_used, "slender-line");
     }
 }

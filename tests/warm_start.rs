@@ -86,7 +86,10 @@ fn sweep_rows_count_the_warm_start_chain() {
     // The cost is the cold ladder's plus the whole chain's (recomputed here: deterministic).
     let mut spent = (0.0, 0.0);
     let p = solve_params(&failing, 257);
-    assert!(ehlmap::strategy::warm::warm_start_line(&failing, &p, &mut spent).is_none());
+    assert!(
+        ehlmap::strategy::warm::warm_start_line(&failing.line_case().unwrap(), &p, &mut spent)
+            .is_none()
+    );
     assert!(spent.0 > 0.5 * c.info.work_units, "{spent:?}");
     let expect = c.info.work_units + spent.0;
     let got = row.work_units.unwrap();

@@ -13,8 +13,10 @@ pub mod sweep;
 use crate::model::case::{Elasticity, LineCase, Models, ParamError, PointCase};
 use crate::model::lubricant::{Density, Viscosity};
 use crate::solve::line::multigrid::CycleType;
-use crate::solve::line::{solve_line, solve_line_to_accuracy, LineSolveParams, Method};
-use crate::solve::point::{solve_point, solve_point_to_accuracy, PointSolveParams};
+use crate::solve::line::{solve_line, LineSolveParams, Method};
+use crate::solve::point::{solve_point, PointSolveParams};
+use crate::strategy::accuracy::solve_line_to_accuracy;
+use crate::strategy::accuracy::solve_point_to_accuracy;
 use crate::strategy::select::{solve_line_selected, solve_point_selected};
 use clap::{Parser, Subcommand, ValueEnum};
 use std::path::PathBuf;
@@ -531,7 +533,7 @@ fn point_summary(case: &PointCase, o: &crate::solve::solution::Outputs) -> Strin
         o.h0,
         o.f,
         o.load_error,
-        if o.model_used == crate::strategy::select::ModelChoice::SlenderLine.as_str() {
+        if o.model_used == crate::solve::solution::ModelUsed::SlenderLine.as_str() {
             format!("{} points (line solve)", o.grid)
         } else {
             format!("{} x {} points", o.grid, o.grid)

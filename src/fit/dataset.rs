@@ -19,8 +19,8 @@
 use crate::discrete::point::domain::PointDomain;
 use crate::model::case::{Elasticity, PointCase};
 use crate::report::{FitInput, FitPoint};
+use crate::solve::solution::ModelUsed;
 use crate::store::results::{read_dataset, CaseRow};
-use crate::strategy::select::ModelChoice;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
@@ -125,7 +125,7 @@ fn label(row: &CaseRow) -> String {
 /// The domain-truncation error estimate of a point row solved on a point grid (0 otherwise).
 fn domain_truncation(row: &CaseRow) -> f64 {
     let Some(d) = row.d else { return 0.0 };
-    if row.contact != "point" || row.model_used == ModelChoice::SlenderLine.as_str() {
+    if row.contact != "point" || row.model_used == ModelUsed::SlenderLine.as_str() {
         return 0.0;
     }
     let Ok(mut case) = PointCase::new(row.m, row.l, d) else {

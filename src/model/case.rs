@@ -44,29 +44,8 @@ pub struct Models {
     pub density: Density,
 }
 
-/// Invalid case input; the message names the offending value.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum ParamError {
-    #[error("{name} = {value} is invalid: {why}")]
-    Invalid {
-        name: &'static str,
-        value: f64,
-        why: &'static str,
-    },
-}
-
-pub(crate) fn check(
-    name: &'static str,
-    value: f64,
-    ok: bool,
-    why: &'static str,
-) -> Result<(), ParamError> {
-    if value.is_finite() && ok {
-        Ok(())
-    } else {
-        Err(ParamError::Invalid { name, value, why })
-    }
-}
+pub(crate) use crate::model::error::check;
+pub use crate::model::error::ParamError;
 
 /// A steady isothermal line contact in Moes parameters.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]

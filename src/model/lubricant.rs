@@ -10,7 +10,7 @@
 //! The exponent is capped at 700 so that eta stays finite (eps = rho H^3/(eta lambda) then simply
 //! underflows to zero); negative P (never stored, but possible in a trial step) is treated as 0.
 
-use crate::model::case::{check, ParamError};
+use crate::model::error::{check, ParamError};
 use serde::{Deserialize, Serialize};
 
 /// Roelands' reference pressure p0 in Pa.

@@ -26,7 +26,7 @@ use crate::limits::rigid_point;
 use crate::model::formulas::{
     dowson_toyoda_line_hc_moes, hamrock_dowson_hc_moes, moes_line_hc, nvm_point_hc,
 };
-use crate::strategy::select::MARTIN_FLUX;
+use crate::strategy::closed_form::MARTIN_FLUX;
 use serde::{Deserialize, Serialize};
 
 /// The exact rigid-isoviscous constant of the line film at X = 0 (Martin, Reynolds exit condition).

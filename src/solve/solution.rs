@@ -15,6 +15,65 @@
 use crate::solve::{SolveInfo, Status};
 use serde::{Deserialize, Serialize};
 
+/// The model that answered a case, cheapest first ([`crate::strategy::select`] picks it).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ModelUsed {
+    ClosedForm,
+    RigidIsoviscous,
+    Rigid,
+    Isoviscous,
+    SlenderLine,
+    #[default]
+    Full,
+}
+
+impl ModelUsed {
+    /// Every model, cheapest first.
+    pub const ALL: [ModelUsed; 6] = [
+        ModelUsed::ClosedForm,
+        ModelUsed::RigidIsoviscous,
+        ModelUsed::Rigid,
+        ModelUsed::Isoviscous,
+        ModelUsed::SlenderLine,
+        ModelUsed::Full,
+    ];
+
+    /// The name stored in JSON and Parquet.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            ModelUsed::ClosedForm => "closed-form",
+            ModelUsed::RigidIsoviscous => "rigid-isoviscous",
+            ModelUsed::Rigid => "rigid",
+            ModelUsed::Isoviscous => "isoviscous",
+            ModelUsed::SlenderLine => "slender-line",
+            ModelUsed::Full => "full",
+        }
+    }
+}
+
+impl std::fmt::Display for ModelUsed {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+impl std::str::FromStr for ModelUsed {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        ModelUsed::ALL
+            .into_iter()
+            .find(|m| m.as_str() == s)
+            .ok_or_else(|| format!("unknown model {s:?}"))
+    }
+}
+
+impl PartialEq<&str> for ModelUsed {
+    fn eq(&self, other: &&str) -> bool {
+        self.as_str() == *other
+    }
+}
+
 /// A secondary pressure maximum near the outlet.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Spike {
@@ -57,9 +116,9 @@ pub struct Outputs {
     /// / 4097 line points are levels 3 / 5 / 7 and 33^2 / 65^2 / 129^2 point nodes 1 / 2 / 3;
     /// none for a closed-form answer.
     pub level: Option<usize>,
-    /// The model that answered (`crate::strategy::select`): "full" unless a simpler one was selected.
-    #[serde(default = "full_model")]
-    pub model_used: String,
+    /// The model that answered: full unless a simpler one was selected.
+    #[serde(default)]
+    pub model_used: ModelUsed,
     pub work_units: f64,
     pub wall_s: f64,
     /// With an accuracy target only: the estimated relative discretisation error of H_c and
@@ -74,10 +133,6 @@ pub struct Outputs {
 /// log2((grid - 1) / base), rounded: the refinement level of a grid over `base` intervals.
 pub fn grid_level(grid: usize, base: usize) -> usize {
     ((grid.saturating_sub(1) as f64 / base as f64).log2().round()).max(0.0) as usize
-}
-
-fn full_model() -> String {
-    "full".to_string()
 }
 
 /// Pressure and film along X on the finest grid (X, P in Hertzian units, H in Moes units).
@@ -176,7 +231,7 @@ pub fn line_outputs(
         grid: info.grid,
         levels: info.levels,
         level: Some(grid_level(info.grid, 32)),
-        model_used: full_model(),
+        model_used: ModelUsed::Full,
         work_units: info.work_units,
         wall_s: info.wall_s,
         error_estimate: None,

@@ -3,6 +3,7 @@
 //! starts from a neighbouring case ([`warm`]).
 
 pub mod accuracy;
+pub mod closed_form;
 pub mod select;
 pub mod slender;
 pub mod warm;

@@ -42,13 +42,15 @@ use crate::model::formulas::{
 };
 use crate::model::lubricant::{Density, Viscosity};
 use crate::solve::ladder::Attempt;
-use crate::solve::line::{solve_line, solve_line_to_accuracy, LineSolution, LineSolveParams};
-use crate::solve::point::{solve_point, solve_point_to_accuracy, PointSolution, PointSolveParams};
-use crate::solve::solution::Outputs;
+use crate::solve::line::{solve_line, LineSolution, LineSolveParams};
+use crate::solve::point::{solve_point, PointSolution, PointSolveParams};
+use crate::solve::solution::{ModelUsed, Outputs};
 use crate::solve::{SolveInfo, Status};
+use crate::strategy::accuracy::solve_line_to_accuracy;
+use crate::strategy::accuracy::solve_point_to_accuracy;
+use crate::strategy::closed_form::closed_form_line;
 use crate::strategy::slender;
 use serde::{Deserialize, Serialize};
-use std::fmt;
 
 /// Points of the line check grid and nodes per direction of the point check grid.
 pub const CHECK_GRID_LINE: usize = 257;
@@ -59,46 +61,10 @@ pub const CHECK_FRACTION: f64 = 0.5;
 /// be below the same limit, and is reported as the neglected effect.
 pub const SCREEN_MARGIN: f64 = 10.0;
 
-/// Martin's rigid-isoviscous line film at X = 0 (Reynolds exit condition), times M.
-pub const MARTIN_CENTRAL: f64 = 2.4475;
-/// The rigid-isoviscous flux thickness (the film where dP/dX = 0), times M.
-pub const MARTIN_FLUX: f64 = 3.0;
-
-/// The models a case can be answered with, cheapest first.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum ModelChoice {
-    ClosedForm,
-    RigidIsoviscous,
-    Rigid,
-    Isoviscous,
-    SlenderLine,
-    Full,
-}
-
-impl ModelChoice {
-    pub fn as_str(&self) -> &'static str {
-        match self {
-            ModelChoice::ClosedForm => "closed-form",
-            ModelChoice::RigidIsoviscous => "rigid-isoviscous",
-            ModelChoice::Rigid => "rigid",
-            ModelChoice::Isoviscous => "isoviscous",
-            ModelChoice::SlenderLine => "slender-line",
-            ModelChoice::Full => "full",
-        }
-    }
-}
-
-impl fmt::Display for ModelChoice {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(self.as_str())
-    }
-}
-
 /// The choice for one case and the estimates it rests on.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Selection {
-    pub model: ModelChoice,
+    pub model: ModelUsed,
     /// Estimated relative effect of elasticity and of piezoviscosity on H_c.
     pub elastic_effect: f64,
     pub piezo_effect: f64,
@@ -151,11 +117,11 @@ pub fn select(m: f64, l: f64, d: Option<f64>, models: &Models, target: f64) -> S
     let rigid_iso = (drop_el || !has_el) && (drop_pv || !has_pv);
     let closed = rigid_iso && d.is_none() && models.density == Density::Incompressible;
     let model = match (closed, drop_el, drop_pv) {
-        (true, _, _) => ModelChoice::ClosedForm,
-        (false, true, true) => ModelChoice::RigidIsoviscous,
-        (false, true, false) => ModelChoice::Rigid,
-        (false, false, true) => ModelChoice::Isoviscous,
-        (false, false, false) => ModelChoice::Full,
+        (true, _, _) => ModelUsed::ClosedForm,
+        (false, true, true) => ModelUsed::RigidIsoviscous,
+        (false, true, false) => ModelUsed::Rigid,
+        (false, false, true) => ModelUsed::Isoviscous,
+        (false, false, false) => ModelUsed::Full,
     };
     let neglected = if drop_el { el } else { 0.0 } + if drop_pv { pv } else { 0.0 };
     Selection {
@@ -168,16 +134,13 @@ pub fn select(m: f64, l: f64, d: Option<f64>, models: &Models, target: f64) -> S
 }
 
 /// The models and L of the simplified problem.
-fn simplified(model: ModelChoice, l: f64, models: &Models) -> (f64, Models) {
+fn simplified(model: ModelUsed, l: f64, models: &Models) -> (f64, Models) {
     let mut mm = *models;
     let mut ll = l;
-    if matches!(model, ModelChoice::Rigid | ModelChoice::RigidIsoviscous) {
+    if matches!(model, ModelUsed::Rigid | ModelUsed::RigidIsoviscous) {
         mm.elasticity = Elasticity::Rigid;
     }
-    if matches!(
-        model,
-        ModelChoice::Isoviscous | ModelChoice::RigidIsoviscous
-    ) {
+    if matches!(model, ModelUsed::Isoviscous | ModelUsed::RigidIsoviscous) {
         ll = 0.0;
         mm.viscosity = Viscosity::Barus;
     }
@@ -186,12 +149,12 @@ fn simplified(model: ModelChoice, l: f64, models: &Models) -> (f64, Models) {
 
 /// Mark a simplified answer: model, note, and the neglected effect added to the estimate.
 fn annotate(o: &mut Outputs, info: &mut SolveInfo, sel: &Selection) {
-    o.model_used = sel.model.as_str().to_string();
-    if sel.model == ModelChoice::Full {
+    o.model_used = sel.model;
+    if sel.model == ModelUsed::Full {
         return;
     }
     o.error_estimate = o.error_estimate.map(|e| e + sel.neglected);
-    let how = if sel.model == ModelChoice::SlenderLine {
+    let how = if sel.model == ModelUsed::SlenderLine {
         "the slender-contact gap bound"
     } else if sel.measured.is_some() {
         "measured on the check grid"
@@ -204,54 +167,6 @@ fn annotate(o: &mut Outputs, info: &mut SolveInfo, sel: &Selection) {
     );
     o.reason.push_str(&note);
     info.reason.push_str(&note);
-}
-
-/// The closed-form rigid-isoviscous line answer (no discretisation error: its estimate is 0
-/// until [`finish`] adds the neglected effect).
-pub fn closed_form_line(m: f64) -> LineSolution {
-    let reason = "closed form: rigid-isoviscous line contact, H_c = H_min = 2.4475/M (Martin, \
-                  Reynolds exit condition)"
-        .to_string();
-    let h = MARTIN_CENTRAL / m;
-    let outputs = Outputs {
-        h_c: h,
-        h_c_pmax: MARTIN_FLUX / m,
-        h_min: h,
-        x_min: 0.0,
-        y_min: None,
-        d: None,
-        k: None,
-        p_max: f64::NAN,
-        spike: None,
-        h0: h,
-        f: f64::NAN,
-        load_error: 0.0,
-        status: Status::Converged,
-        reason: reason.clone(),
-        grid: 0,
-        levels: 0,
-        level: None,
-        model_used: ModelChoice::ClosedForm.as_str().to_string(),
-        work_units: 0.0,
-        wall_s: 0.0,
-        error_estimate: Some(0.0),
-        accuracy_met: Some(true),
-    };
-    let info = SolveInfo {
-        status: Status::Converged,
-        reason,
-        history: vec![],
-        work_units: 0.0,
-        wall_s: 0.0,
-        grid: 0,
-        levels: 0,
-    };
-    LineSolution {
-        outputs,
-        info,
-        profile: None,
-        attempt: 1,
-    }
 }
 
 /// The relative change of H_c and H_min (the larger) from `full` to `simple`, both converged.
@@ -267,16 +182,16 @@ fn measured_effect(full: &Outputs, simple: &Outputs) -> Option<f64> {
 fn verify(
     sel: Selection,
     target: f64,
-    check: impl Fn(ModelChoice) -> Outputs,
+    check: impl Fn(ModelUsed) -> Outputs,
 ) -> (Selection, f64, f64) {
-    if sel.model == ModelChoice::Full {
+    if sel.model == ModelUsed::Full {
         return (sel, 0.0, 0.0);
     }
-    let full = check(ModelChoice::Full);
+    let full = check(ModelUsed::Full);
     // The closed form is checked through its discrete twin, so that the coarse grid's
     // discretisation error cancels in the comparison.
     let twin = match sel.model {
-        ModelChoice::ClosedForm => ModelChoice::RigidIsoviscous,
+        ModelUsed::ClosedForm => ModelUsed::RigidIsoviscous,
         m => m,
     };
     let simple = check(twin);
@@ -299,7 +214,7 @@ fn verify(
             ..sel
         },
         None => Selection {
-            model: ModelChoice::Full,
+            model: ModelUsed::Full,
             neglected: 0.0,
             measured,
             ..sel
@@ -318,7 +233,7 @@ fn finish<S: Attempt>(
     check: (f64, f64),
 ) -> (S, Selection) {
     let (mut wu, mut wall) = check;
-    let sel = if sel.model != ModelChoice::Full && s.info().status != Status::Converged {
+    let sel = if sel.model != ModelUsed::Full && s.info().status != Status::Converged {
         wu += s.info().work_units;
         wall += s.info().wall_s;
         s = full();
@@ -327,7 +242,7 @@ fn finish<S: Attempt>(
         o.reason.push_str(&note);
         info.reason.push_str(&note);
         Selection {
-            model: ModelChoice::Full,
+            model: ModelUsed::Full,
             neglected: 0.0,
             ..sel
         }
@@ -358,8 +273,8 @@ pub fn solve_line_selected(
     let (sel, wu, wall) = verify(screened, target, |model| solve_line_model(case, &cp, model));
     let full = |p: &LineSolveParams| solve_line_to_accuracy(case, p, target, max_grid);
     let s = match sel.model {
-        ModelChoice::Full => full(params),
-        ModelChoice::ClosedForm => closed_form_line(case.m),
+        ModelUsed::Full => full(params),
+        ModelUsed::ClosedForm => closed_form_line(case.m),
         model => {
             let (l, models) = simplified(model, case.l, &case.models);
             match LineCase::with_models(case.m, l, models) {
@@ -382,7 +297,7 @@ pub fn solve_point_selected(
     let full = |p: &PointSolveParams| solve_point_to_accuracy(case, p, target, max_grid);
     if let Some(bound) = slender::gap_bound(case).filter(|b| *b < CHECK_FRACTION * target) {
         let sel = Selection {
-            model: ModelChoice::SlenderLine,
+            model: ModelUsed::SlenderLine,
             neglected: bound,
             measured: None,
             ..screened
@@ -403,7 +318,7 @@ pub fn solve_point_selected(
         solve_point_model(case, &cp, model)
     });
     let s = match sel.model {
-        ModelChoice::Full => full(params),
+        ModelUsed::Full => full(params),
         model => {
             let (l, models) = simplified(model, case.l, &case.models);
             match PointCase::with_models(case.m, l, case.d, models) {
@@ -417,8 +332,8 @@ pub fn solve_point_selected(
 
 /// Solve with a fixed model (no selection) on one grid: the reference the selection is checked
 /// against.
-pub fn solve_line_model(case: &LineCase, params: &LineSolveParams, model: ModelChoice) -> Outputs {
-    if model == ModelChoice::ClosedForm {
+pub fn solve_line_model(case: &LineCase, params: &LineSolveParams, model: ModelUsed) -> Outputs {
+    if model == ModelUsed::ClosedForm {
         return closed_form_line(case.m).outputs;
     }
     let (l, models) = simplified(model, case.l, &case.models);
@@ -429,12 +344,8 @@ pub fn solve_line_model(case: &LineCase, params: &LineSolveParams, model: ModelC
 }
 
 /// [`solve_line_model`] for point contacts.
-pub fn solve_point_model(
-    case: &PointCase,
-    params: &PointSolveParams,
-    model: ModelChoice,
-) -> Outputs {
-    if model == ModelChoice::SlenderLine {
+pub fn solve_point_model(case: &PointCase, params: &PointSolveParams, model: ModelUsed) -> Outputs {
+    if model == ModelUsed::SlenderLine {
         let lc = slender::equivalent_line(case);
         return slender::point_outputs(case, &solve_line(&lc, &LineSolveParams::default()).outputs);
     }
@@ -455,25 +366,25 @@ mod tests {
         // L = 0 case is isoviscous already), and rigid-isoviscous at small L > 0.
         let m = Models::default();
         let s = select(0.01, 0.0, None, &m, 0.01);
-        assert_eq!(s.model, ModelChoice::ClosedForm, "{s:?}");
+        assert_eq!(s.model, ModelUsed::ClosedForm, "{s:?}");
         assert!(s.elastic_effect < 1e-3 && s.piezo_effect == 0.0);
         let s = select(0.01, 0.0, Some(1.0), &m, 0.01);
-        assert_eq!(s.model, ModelChoice::Rigid, "{s:?}");
+        assert_eq!(s.model, ModelUsed::Rigid, "{s:?}");
         let s = select(0.01, 0.01, Some(1.0), &m, 0.01);
-        assert_eq!(s.model, ModelChoice::RigidIsoviscous, "{s:?}");
+        assert_eq!(s.model, ModelUsed::RigidIsoviscous, "{s:?}");
         // Typical EHL: nothing can be dropped.
         let s = select(20.0, 10.0, None, &m, 0.01);
-        assert_eq!(s.model, ModelChoice::Full);
+        assert_eq!(s.model, ModelUsed::Full);
         assert!(s.elastic_effect > 0.1 && s.piezo_effect > 0.3, "{s:?}");
         // Elastic but isoviscous at small L and large M.
         let s = select(100.0, 0.001, None, &m, 0.01);
-        assert_eq!(s.model, ModelChoice::Isoviscous, "{s:?}");
+        assert_eq!(s.model, ModelUsed::Isoviscous, "{s:?}");
         // Dowson-Higginson density rules out the closed form.
         let dh = Models {
             density: Density::DowsonHigginson { ph_pa: 1e9 },
             ..m
         };
-        assert_eq!(select(0.01, 0.0, None, &dh, 0.01).model, ModelChoice::Rigid);
+        assert_eq!(select(0.01, 0.0, None, &dh, 0.01).model, ModelUsed::Rigid);
         // A rigid L = 0 case is the closed form; a rigid case with L > 0 only drops L.
         let rigid = Models {
             elasticity: Elasticity::Rigid,
@@ -481,11 +392,11 @@ mod tests {
         };
         assert_eq!(
             select(50.0, 0.0, None, &rigid, 0.01).model,
-            ModelChoice::ClosedForm
+            ModelUsed::ClosedForm
         );
         assert_eq!(
             select(0.01, 0.01, None, &rigid, 0.01).model,
-            ModelChoice::ClosedForm
+            ModelUsed::ClosedForm
         );
         // The elastic effect grows with M; the piezoviscous one with L.
         let (a, _) = effects(0.1, 0.0, None);

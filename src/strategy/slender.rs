@@ -136,7 +136,7 @@ mod tests {
     #[test]
     fn pressures_convert_to_the_ellipse_hertz_scale() {
         let pc = PointCase::new(1000.0, 0.0, 0.05).unwrap();
-        let mut line = crate::strategy::select::closed_form_line(3.0).outputs;
+        let mut line = crate::strategy::closed_form::closed_form_line(3.0).outputs;
         line.p_max = 1.0;
         let o = point_outputs(&pc, &line);
         let el = pc.ellipse();

@@ -6,36 +6,29 @@
 //! walked back up to M, each solve starting its finest-level cycles from the previous
 //! solution's pressure ([`crate::solve::line::warm_guess`]). The neighbour chain is a
 //! function of the case alone, never of what other tasks have finished, so results do not
-//! depend on the thread count, the order of work or the shard split. The row records the case
-//! id of the neighbour at M/2 in `warm_start`; the cost of every solve is counted. The warm
+//! depend on the thread count, the order of work or the shard split. The sweep row records the
+//! case id of the neighbour at M/2 in `warm_start`; the cost of every solve is counted. The warm
 //! result is kept only when it converged; otherwise the cold result stands.
 
 use crate::model::case::LineCase;
 use crate::solve::line::{solve_line, solve_line_from, warm_guess, LineSolution, LineSolveParams};
 use crate::solve::Status;
-use crate::sweep::plan::Case;
 
 /// Most halvings of M tried for a converged neighbour.
 pub const WARM_DEPTH: u32 = 2;
 
-/// What a warm-start chain did: the solution (when it converged) and the neighbour id.
-pub struct WarmStart {
-    pub solution: LineSolution,
-    /// Case id (hex) of the neighbour at M/2 the case started from.
-    pub neighbour: String,
-}
-
 /// Try to rescue a failed cold solve of `case` (see the module docs). `spent` receives the work
 /// units and seconds of every solve of the chain, whether it succeeds or not.
 pub fn warm_start_line(
-    case: &Case,
+    case: &LineCase,
     params: &LineSolveParams,
     spent: &mut (f64, f64),
-) -> Option<WarmStart> {
+) -> Option<LineSolution> {
     let mut keep = *params;
     keep.keep_profile = true;
-    let at =
-        |k: u32| -> Option<LineCase> { case.with_m(case.m / 2f64.powi(k as i32)).line_case().ok() };
+    let at = |k: u32| -> Option<LineCase> {
+        LineCase::with_models(case.m / 2f64.powi(k as i32), case.l, case.models).ok()
+    };
     let count = |s: &LineSolution, spent: &mut (f64, f64)| {
         spent.0 += s.info.work_units;
         spent.1 += s.info.wall_s;
@@ -67,10 +60,7 @@ pub fn warm_start_line(
             );
             s.info.reason.push_str(&note);
             s.outputs.reason.push_str(&note);
-            return Some(WarmStart {
-                solution: s,
-                neighbour: case.with_m(case.m / 2.0).id_hex(),
-            });
+            return Some(s);
         }
         (prev_case, prev) = (lc, s);
     }

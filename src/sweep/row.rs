@@ -6,13 +6,15 @@
 use crate::model::case::ParamError;
 use crate::model::lubricant::{Density, Viscosity};
 use crate::solve::line::multigrid::CycleType;
-use crate::solve::line::{solve_line, LineSolveParams, ESTIMATE_ORDER};
+use crate::solve::line::{solve_line, LineSolveParams};
 use crate::solve::point::{solve_point, PointSolveParams};
+use crate::solve::solution::ModelUsed;
 use crate::solve::solution::Outputs;
 use crate::solve::Status;
 use crate::store::results::{finite, larger_error, CaseRow};
 use crate::strategy::accuracy::relative_error;
-use crate::strategy::select::{solve_line_selected, solve_point_selected, ModelChoice};
+use crate::strategy::accuracy::ESTIMATE_ORDER;
+use crate::strategy::select::{solve_line_selected, solve_point_selected};
 use crate::strategy::warm::warm_start_line;
 use crate::sweep::plan::Case;
 use crate::sweep::spec::Contact;
@@ -146,12 +148,12 @@ fn half_grid_errors(fine: &Outputs, coarse: &Outputs) -> (Option<f64>, Option<f6
 
 /// Copy a solve's outputs into `row` (non-finite values become null and clear `valid`).
 fn fill_outputs(row: &mut CaseRow, o: &Outputs, attempt: usize, valid: &mut bool) {
-    row.model_used = o.model_used.clone();
+    row.model_used = o.model_used.as_str().to_string();
     row.level = o.level.map(|l| l as i64);
     // A closed-form answer has no grid, pressure maximum or traction, a slender-line one no
     // point film constant or traction: null, not invalid.
-    let partial = o.model_used == ModelChoice::ClosedForm.as_str()
-        || o.model_used == ModelChoice::SlenderLine.as_str();
+    let partial = o.model_used == ModelUsed::ClosedForm.as_str()
+        || o.model_used == ModelUsed::SlenderLine.as_str();
     let opt = |v: f64, valid: &mut bool| {
         if partial && v.is_nan() {
             None
@@ -196,9 +198,9 @@ fn solve_line_row(case: &Case, sweep: &str) -> CaseRow {
     {
         let mut spent = (0.0, 0.0);
         let (wu, wall) = (s.outputs.work_units, s.outputs.wall_s);
-        if let Some(w) = warm_start_line(case, &params, &mut spent) {
-            s = w.solution;
-            warm = Some(w.neighbour);
+        if let Some(w) = warm_start_line(&lc, &params, &mut spent) {
+            s = w;
+            warm = Some(case.with_m(case.m / 2.0).id_hex());
         }
         s.outputs.work_units = wu + spent.0;
         s.outputs.wall_s = wall + spent.1;
@@ -314,7 +316,7 @@ mod tests {
             grid: 129,
             levels: 4,
             level: Some(3),
-            model_used: "full".into(),
+            model_used: ModelUsed::Full,
             work_units: 1.0,
             wall_s: 0.0,
             error_estimate: None,

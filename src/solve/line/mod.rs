@@ -21,7 +21,7 @@ pub mod relax;
 
 use crate::model::case::LineCase;
 use crate::model::formulas::moes_line_hc;
-use crate::solve::ladder::{refine_to_accuracy, run_ladder, Attempt, COARSE_LADDER_CYCLES};
+use crate::solve::ladder::{run_ladder, Attempt};
 use crate::solve::line::multigrid::{CycleType, LineMgParams, LineMultigrid, WarmGuess};
 use crate::solve::single_grid::solve_relax;
 use crate::solve::solution::{line_outputs, Outputs, Profile};
@@ -214,31 +214,4 @@ impl Attempt for LineSolution {
     fn attempt(&self) -> usize {
         self.attempt
     }
-}
-
-/// The convergence order assumed by the accuracy-target error estimate.
-pub const ESTIMATE_ORDER: f64 = 1.5;
-
-/// Solve to a target relative accuracy of H_c and H_min: solve on 257, 513, ... points (up to
-/// `max_grid`) until the error estimate between the last two grids is below `target`. The
-/// estimate is Richardson's with a conservative order p = 1.5, |Q_h - Q_2h| / ((2^p - 1) |Q_h|),
-/// max over H_c and H_min: H_c converges at order 2 but H_min at about 1.7, and the p = 2
-/// estimate was below the true error in half of the validation cases (tests/accuracy.rs).
-/// Returns the finest solution with `error_estimate` and `accuracy_met` set; the cost of all
-/// grids is counted.
-pub fn solve_line_to_accuracy(
-    case: &LineCase,
-    params: &LineSolveParams,
-    target: f64,
-    max_grid: usize,
-) -> LineSolution {
-    refine_to_accuracy(257, max_grid, target, ESTIMATE_ORDER, |grid, last| {
-        let mut p = *params;
-        p.mg.grid = grid;
-        p.fallback = params.fallback && last;
-        if !last {
-            p.mg.max_cycles = p.mg.max_cycles.min(COARSE_LADDER_CYCLES);
-        }
-        solve_line(case, &p)
-    })
 }

@@ -15,72 +15,18 @@ pub mod jacobian;
 pub mod multigrid;
 pub mod relax;
 
-use crate::discrete::point::domain::{PointDomain, PointDomainParams, BIAS_CAUTION};
+use crate::discrete::point::domain::BIAS_CAUTION;
 use crate::model::case::PointCase;
 use crate::solve::fmg::fmg_solve;
-use crate::solve::ladder::{refine_to_accuracy, run_ladder, Attempt, COARSE_LADDER_CYCLES};
+use crate::solve::ladder::{run_ladder, Attempt};
 use crate::solve::line::multigrid::CycleType;
-use crate::solve::line::relax::RelaxParams;
 use crate::solve::line::Method;
+pub use crate::solve::point::multigrid::PointMgParams;
 use crate::solve::point::multigrid::PointMultigrid;
 use crate::solve::single_grid::solve_relax;
 use crate::solve::solution::grid_level;
 use crate::solve::solution::{line_outputs, parabola_vertex, Outputs};
 use crate::solve::SolveInfo;
-
-/// Multigrid settings of a point solve; `Default` gives the settings the stability map supports.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PointMgParams {
-    /// Points per direction of the finest level (rounded up to 2^k n0 + 1).
-    pub grid: usize,
-    pub cycle: CycleType,
-    pub pre: usize,
-    pub post: usize,
-    /// Cycles on each FMG level before moving on.
-    pub fmg_cycles: usize,
-    /// Cycles allowed on the finest level after FMG.
-    pub max_cycles: usize,
-    pub tol_load: f64,
-    pub tol_h: f64,
-    pub tol_load_fmg: f64,
-    pub load_factor: Option<f64>,
-    pub relax: RelaxParams,
-    /// Relaxations of the coarsest level when its Newton solve fails.
-    pub coarse_sweeps: usize,
-    pub newton_max_iter: usize,
-    pub second_order: bool,
-    pub domain: PointDomainParams,
-    /// Relax the rows of each colour in parallel (zebra order) on the current rayon pool, on
-    /// levels of 65 rows or more. Off by default: a sweep already runs one solve per thread, and
-    /// the default Gauss-Seidel row order converges faster per sweep.
-    pub parallel: bool,
-    /// Deformation by the O(N^2) direct sum on every level instead of the FFT (baseline).
-    pub direct_deformation: bool,
-}
-
-impl Default for PointMgParams {
-    fn default() -> Self {
-        PointMgParams {
-            grid: 129,
-            cycle: CycleType::V,
-            pre: 2,
-            post: 1,
-            fmg_cycles: 2,
-            max_cycles: 40,
-            tol_load: 1e-6,
-            tol_h: 1e-5,
-            tol_load_fmg: 1e-4,
-            load_factor: None,
-            relax: RelaxParams::default(),
-            coarse_sweeps: 20,
-            newton_max_iter: 40,
-            second_order: true,
-            domain: PointDomainParams::default(),
-            parallel: false,
-            direct_deformation: false,
-        }
-    }
-}
 
 /// Parameters of a point solve.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -290,55 +236,5 @@ pub fn solve_point(case: &PointCase, params: &PointSolveParams) -> PointSolution
     };
     run_ladder(&ATTEMPT_NAMES[..list.len()], |k| {
         run(case, &list[k], params.keep_fields)
-    })
-}
-
-/// The convergence order assumed by the point solve's accuracy-target estimate (H_c converges at
-/// order 2 on the circular reference case; H_min more slowly, as for the line contact).
-pub const POINT_ESTIMATE_ORDER: f64 = 1.5;
-
-/// Solve to a target relative accuracy of H_c and H_min on 33, 65, 129, ... points per direction
-/// (up to `max_grid`); see [`refine_to_accuracy`]. The grid refinement stops on the
-/// discretisation estimate; the domain-truncation estimate (`PointDomain::truncation_error`,
-/// rigid-like cases) is then added to `error_estimate`, and a target it breaks is reported as
-/// not met.
-pub fn solve_point_to_accuracy(
-    case: &PointCase,
-    params: &PointSolveParams,
-    target: f64,
-    max_grid: usize,
-) -> PointSolution {
-    let mut s = refine_point(case, params, target, max_grid);
-    let t = PointDomain::of_case(case, &params.mg.domain).truncation_error();
-    let o = &mut s.outputs;
-    if let Some(e) = o.error_estimate {
-        o.error_estimate = Some(e + t);
-        if o.accuracy_met == Some(true) && e + t > target {
-            o.accuracy_met = Some(false);
-            let note = format!(
-                "; accuracy target {target:.1e} NOT met with the domain-truncation estimate \
-                 {t:.1e} added"
-            );
-            o.reason.push_str(&note);
-            s.info.reason.push_str(&note);
-        }
-    }
-    s
-}
-
-fn refine_point(
-    case: &PointCase,
-    params: &PointSolveParams,
-    target: f64,
-    max_grid: usize,
-) -> PointSolution {
-    refine_to_accuracy(33, max_grid, target, POINT_ESTIMATE_ORDER, |grid, last| {
-        let mut p = *params;
-        p.mg.grid = grid;
-        p.fallback = params.fallback && last;
-        if !last {
-            p.mg.max_cycles = p.mg.max_cycles.min(COARSE_LADDER_CYCLES);
-        }
-        solve_point(case, &p)
     })
 }

@@ -12,14 +12,70 @@
 //! and interpolates each level's result to the next (cubic along each direction).
 
 use crate::discrete::point::domain::PointDomain;
+use crate::discrete::point::domain::PointDomainParams;
 use crate::discrete::point::operator::{PointLevel, PointPhysics};
 use crate::model::case::{Elasticity, PointCase};
 use crate::solve::fmg::{Fas, FmgControl};
+use crate::solve::line::multigrid::CycleType;
+use crate::solve::line::relax::RelaxParams;
 use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
 use crate::solve::point::relax::{point_line_sweep, PointScratch};
-use crate::solve::point::PointMgParams;
 use crate::solve::{CycleRecord, SolveInfo, Status};
 use std::time::Instant;
+
+/// Multigrid settings of a point solve; `Default` gives the settings the stability map supports.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointMgParams {
+    /// Points per direction of the finest level (rounded up to 2^k n0 + 1).
+    pub grid: usize,
+    pub cycle: CycleType,
+    pub pre: usize,
+    pub post: usize,
+    /// Cycles on each FMG level before moving on.
+    pub fmg_cycles: usize,
+    /// Cycles allowed on the finest level after FMG.
+    pub max_cycles: usize,
+    pub tol_load: f64,
+    pub tol_h: f64,
+    pub tol_load_fmg: f64,
+    pub load_factor: Option<f64>,
+    pub relax: RelaxParams,
+    /// Relaxations of the coarsest level when its Newton solve fails.
+    pub coarse_sweeps: usize,
+    pub newton_max_iter: usize,
+    pub second_order: bool,
+    pub domain: PointDomainParams,
+    /// Relax the rows of each colour in parallel (zebra order) on the current rayon pool, on
+    /// levels of 65 rows or more. Off by default: a sweep already runs one solve per thread, and
+    /// the default Gauss-Seidel row order converges faster per sweep.
+    pub parallel: bool,
+    /// Deformation by the O(N^2) direct sum on every level instead of the FFT (baseline).
+    pub direct_deformation: bool,
+}
+
+impl Default for PointMgParams {
+    fn default() -> Self {
+        PointMgParams {
+            grid: 129,
+            cycle: CycleType::V,
+            pre: 2,
+            post: 1,
+            fmg_cycles: 2,
+            max_cycles: 40,
+            tol_load: 1e-6,
+            tol_h: 1e-5,
+            tol_load_fmg: 1e-4,
+            load_factor: None,
+            relax: RelaxParams::default(),
+            coarse_sweeps: 20,
+            newton_max_iter: 40,
+            second_order: true,
+            domain: PointDomainParams::default(),
+            parallel: false,
+            direct_deformation: false,
+        }
+    }
+}
 
 /// The state of a point multigrid solve.
 pub struct PointMultigrid {

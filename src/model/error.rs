@@ -1,0 +1,25 @@
+//! The model layer's error: an input value out of its domain, named with the reason.
+
+/// Invalid case input; the message names the offending value.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ParamError {
+    #[error("{name} = {value} is invalid: {why}")]
+    Invalid {
+        name: &'static str,
+        value: f64,
+        why: &'static str,
+    },
+}
+
+pub(crate) fn check(
+    name: &'static str,
+    value: f64,
+    ok: bool,
+    why: &'static str,
+) -> Result<(), ParamError> {
+    if value.is_finite() && ok {
+        Ok(())
+    } else {
+        Err(ParamError::Invalid { name, value, why })
+    }
+}
