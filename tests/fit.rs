@@ -230,23 +230,23 @@ fn a_film_with_a_large_error_estimate_is_left_out_of_its_fit_only() {
         h_c_err: Some(0.012),
         h_min_err: Some(0.035),
     };
-    assert_eq!(Film::Centre.of_point(&p), Some(0.98));
-    assert_eq!(Film::Minimum.of_point(&p), None);
+    assert_eq!(p.film(Film::Centre), Some(0.98));
+    assert_eq!(p.film(Film::Minimum), None);
     // H_pm has no estimate of its own: it needs both.
-    assert_eq!(Film::PressureMax.of_point(&p), None);
+    assert_eq!(p.film(Film::PressureMax), None);
     let q = FitPoint {
         h_min_err: Some(0.02),
         ..p
     };
-    assert_eq!(Film::Minimum.of_point(&q), Some(0.59));
-    assert_eq!(Film::PressureMax.of_point(&q), Some(0.97));
+    assert_eq!(q.film(Film::Minimum), Some(0.59));
+    assert_eq!(q.film(Film::PressureMax), Some(0.97));
     // No estimate (a dataset solved without one): every film is used.
     let r = FitPoint {
         h_c_err: None,
         h_min_err: None,
         ..p
     };
-    assert!(Film::ALL.iter().all(|f| f.of_point(&r).is_some()));
+    assert!(Film::ALL.iter().all(|f| r.film(*f).is_some()));
 }
 
 /// The report states where a film's fit meets the 2 % target: on the committed smoke data the

@@ -3,7 +3,7 @@
 //! (line / point; a mixed dataset gives both); failed rows and duplicates are counted for the
 //! report. A film whose Richardson error estimate (H_c_err, H_min_err) exceeds
 //! [`MAX_ERROR_ESTIMATE`] is left out of its film's fit as grid-unconverged (a fit to 2 % cannot
-//! use data that are themselves uncertain by more; [`crate::report::Film::of_point`]); rows
+//! use data that are themselves uncertain by more; [`FitPoint::film`]); rows
 //! where both exceed it are left out, each listed with its estimate in the report; rows used for
 //! one film only are listed too (on the 513^2 nightly point sweep H_c is converged to 2 % at
 //! M = 1000, D = 1, H_min at the exit constriction is not). So are point rows
@@ -18,14 +18,74 @@
 
 use crate::discrete::point::domain::PointDomain;
 use crate::model::case::{Elasticity, PointCase};
-use crate::report::{FitInput, FitPoint};
+use crate::solve::film::Film;
 use crate::solve::solution::ModelUsed;
 use crate::store::results::{read_dataset, CaseRow};
+use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 /// Largest Richardson error estimate (H_c_err, H_min_err) of a film used by the fit.
 pub const MAX_ERROR_ESTIMATE: f64 = 0.02;
+
+/// One converged case of a dataset (`d` is None for line contacts, `g` = alpha E' when the
+/// dataset carries it, `h_pm` the film at the pressure maximum when it does).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FitPoint {
+    pub m: f64,
+    pub l: f64,
+    pub d: Option<f64>,
+    pub h_c: f64,
+    pub h_min: f64,
+    pub g: Option<f64>,
+    #[serde(default)]
+    pub h_pm: Option<f64>,
+    /// Points per direction of the solve (the limit checks solve point cases on at least this).
+    #[serde(default)]
+    pub grid: Option<usize>,
+    /// Richardson error estimates of H_c and H_min (None: not estimated). A film whose estimate
+    /// exceeds [`MAX_ERROR_ESTIMATE`] is left out of that film's fit
+    /// ([`FitPoint::film`]); H_pm, which has no estimate of its own, needs both within it.
+    #[serde(default)]
+    pub h_c_err: Option<f64>,
+    #[serde(default)]
+    pub h_min_err: Option<f64>,
+}
+
+impl FitPoint {
+    /// `film` of this case (None when the dataset does not carry it, or when its error
+    /// estimate exceeds [`MAX_ERROR_ESTIMATE`]).
+    pub fn film(&self, film: Film) -> Option<f64> {
+        let p = self;
+        let ok = |e: Option<f64>| e.is_none_or(|e| e <= MAX_ERROR_ESTIMATE);
+        match film {
+            Film::Centre => ok(p.h_c_err).then_some(p.h_c),
+            Film::PressureMax => p.h_pm.filter(|_| ok(p.h_c_err) && ok(p.h_min_err)),
+            Film::Minimum => ok(p.h_min_err).then_some(p.h_min),
+        }
+    }
+
+    /// D, or 1 for a line contact.
+    pub(crate) fn dd(&self) -> f64 {
+        self.d.unwrap_or(1.0)
+    }
+}
+
+/// What the fit reads: converged points per contact plus counts of what was left out.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct FitInput {
+    pub datasets: Vec<String>,
+    pub line: Vec<FitPoint>,
+    pub point: Vec<FitPoint>,
+    pub failed_line: usize,
+    pub failed_point: usize,
+    pub duplicates: usize,
+    /// Rows left out with the reason (e.g. an error estimate above the threshold).
+    pub excluded: Vec<String>,
+    /// Rows used for one film only (the other film's error estimate is above the threshold).
+    #[serde(default)]
+    pub one_film: Vec<String>,
+}
 
 /// Load the fit input from one or more dataset directories.
 pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, String> {

@@ -3,12 +3,11 @@
 //! [`model`] (line, Moes 1992 form) and [`point_model`] (point, NVM 1994 form) define the
 //! blended-asymptote formulas, [`lsq`] fits either in log space by Levenberg-Marquardt with
 //! parameter uncertainties, [`stats`] turns formula-vs-data errors into tables (overall and per
-//! region of the (M, L) plane, and the M range that meets a target), [`film`] names the films
-//! fitted, [`checks`] compares the fitted asymptotes with the solver's limit solves, [`report`]
-//! and [`markdown`] assemble the report, [`charts`] draws it.
+//! region of the (M, L) plane, and the M range that meets a target), [`dataset`] reads the
+//! sweep rows a fit uses, [`fitted`] holds what a fit returns.
 
 pub mod dataset;
-pub mod film;
+pub mod fitted;
 pub mod lsq;
 pub mod model;
 pub mod point_model;

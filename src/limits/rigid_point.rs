@@ -27,7 +27,7 @@
 //! D = 1, 0.5, 0.25, 0.1 (H_pm over C_RI_PMAX f_RI(D): 0.9954, 0.9848, 0.9687, 0.9479).
 
 use crate::model::case::{Elasticity, Models, PointCase};
-use crate::report::Film;
+use crate::solve::film::Film;
 use crate::solve::point::{solve_point, PointSolveParams};
 use crate::solve::solution::Outputs;
 use crate::solve::Status;

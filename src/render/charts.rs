@@ -299,7 +299,7 @@ pub fn write_charts(
     // The charts show H_c: the cases whose H_c is within the fit's error limit.
     let pts: &[FitPoint] = &pts
         .iter()
-        .filter(|p| Film::Centre.of_point(p).is_some())
+        .filter(|p| p.film(Film::Centre).is_some())
         .copied()
         .collect::<Vec<_>>();
     if pts.is_empty() {

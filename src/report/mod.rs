@@ -1,7 +1,7 @@
 //! The fit report: for each contact present in the data (line, point) fits three films ([`Film`]:
 //! H_c at X = 0, H_pm at the pressure maximum, H_min), compares them and the published formulas
 //! with the data, and checks each fitted asymptote against the solver's own limit solves
-//! ([`crate::limits::checks`]). Markdown rendering is in [`crate::report::markdown`].
+//! ([`crate::report::checks`]). Markdown rendering is in [`crate::report::markdown`].
 //!
 //! Why two central films: Moes' H_RI = 3/M is the rigid-isoviscous flux thickness, the film at
 //! the pressure maximum; the film at X = 0 tends to 2.4475/M instead. Where the pressure peak
@@ -12,20 +12,21 @@
 //! A contact with fewer converged cases than its model needs (free parameters + 5) is reported as
 //! "skipped: N cases, need at least K"; the report fails only when no contact could be fitted.
 
+pub mod checks;
 pub mod markdown;
 
-pub use crate::fit::film::Film;
+pub use crate::fit::dataset::{FitInput, FitPoint};
+pub use crate::fit::fitted::{FittedModel, Param, QuantityFit};
 use crate::fit::lsq::{fit, LsqFit, Sample};
 use crate::fit::model::{FilmModel, LineModel, PARAM_NAMES};
 use crate::fit::point_model::{PointModel, POINT_PARAM_NAMES};
-use crate::fit::stats::{
-    d_table, err_stats, region_table, target_range, ErrStats, RegionStats, TargetRange,
-};
-use crate::limits::checks::{line_checks, point_checks, AsymptoteCheck};
+use crate::fit::stats::{d_table, err_stats, region_table, target_range, ErrStats, RegionStats};
 use crate::limits::rigid_point;
 use crate::model::formulas::{
     dowson_toyoda_line_hc_moes, hamrock_dowson_hc_moes, moes_line_hc, nvm_point_hc,
 };
+use crate::report::checks::{line_checks, point_checks, AsymptoteCheck};
+pub use crate::solve::film::Film;
 use crate::strategy::closed_form::MARTIN_FLUX;
 use serde::{Deserialize, Serialize};
 
@@ -35,7 +36,7 @@ pub const C_RI_CENTRAL: f64 = 2.4475;
 /// The rigid-piezoviscous constant of the line film at X = 0: H_RP = (c L)^(2/3), c = alpha p_max
 /// H^(3/2)/L of the rigid isoviscous solution (the Barus reduced pressure reaches 1/alpha). From
 /// the solver's rigid L = 0 solve at 4097 points, c = 1.0753, (c)^(2/3) = 1.0496; the report
-/// re-derives it from a fresh solve ([`crate::limits::checks`]).
+/// re-derives it from a fresh solve ([`crate::report::checks`]).
 pub const B_RP_CENTRAL: f64 = 1.0496;
 
 /// Datasets with at least this many converged cases of a contact also fit the blending law (and,
@@ -51,95 +52,6 @@ pub const ASYMPTOTE_TARGET: f64 = 0.01;
 
 /// Extra cases required beyond the number of free parameters.
 pub const SPARE_CASES: usize = 5;
-
-/// One converged case of a dataset (`d` is None for line contacts, `g` = alpha E' when the
-/// dataset carries it, `h_pm` the film at the pressure maximum when it does).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct FitPoint {
-    pub m: f64,
-    pub l: f64,
-    pub d: Option<f64>,
-    pub h_c: f64,
-    pub h_min: f64,
-    pub g: Option<f64>,
-    #[serde(default)]
-    pub h_pm: Option<f64>,
-    /// Points per direction of the solve (the limit checks solve point cases on at least this).
-    #[serde(default)]
-    pub grid: Option<usize>,
-    /// Richardson error estimates of H_c and H_min (None: not estimated). A film whose estimate
-    /// exceeds [`crate::fit::dataset::MAX_ERROR_ESTIMATE`] is left out of that film's fit
-    /// ([`Film::of_point`]); H_pm, which has no estimate of its own, needs both within it.
-    #[serde(default)]
-    pub h_c_err: Option<f64>,
-    #[serde(default)]
-    pub h_min_err: Option<f64>,
-}
-
-impl FitPoint {
-    fn dd(&self) -> f64 {
-        self.d.unwrap_or(1.0)
-    }
-}
-
-/// What the fit reads: converged points per contact plus counts of what was left out.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct FitInput {
-    pub datasets: Vec<String>,
-    pub line: Vec<FitPoint>,
-    pub point: Vec<FitPoint>,
-    pub failed_line: usize,
-    pub failed_point: usize,
-    pub duplicates: usize,
-    /// Rows left out with the reason (e.g. an error estimate above the threshold).
-    pub excluded: Vec<String>,
-    /// Rows used for one film only (the other film's error estimate is above the threshold).
-    #[serde(default)]
-    pub one_film: Vec<String>,
-}
-
-/// A fitted parameter with its one-sigma uncertainty (0: held fixed).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Param {
-    pub name: String,
-    pub value: f64,
-    pub sigma: f64,
-}
-
-/// A fitted model of either contact.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "kind", rename_all = "lowercase")]
-pub enum FittedModel {
-    Line(LineModel),
-    Point(PointModel),
-}
-
-impl FittedModel {
-    pub fn eval(&self, m: f64, l: f64, d: f64) -> f64 {
-        match self {
-            FittedModel::Line(x) => x.eval(m, l),
-            FittedModel::Point(x) => x.eval(m, l, d),
-        }
-    }
-}
-
-/// The fit of one quantity.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct QuantityFit {
-    pub quantity: String,
-    pub model: FittedModel,
-    pub params: Vec<Param>,
-    pub rms_log: f64,
-    pub converged: bool,
-    pub overall: ErrStats,
-    pub regions: Vec<RegionStats>,
-    /// Per D (point contacts).
-    pub per_d: Vec<RegionStats>,
-    /// The M range over which the fit meets the 2 % target ([`MAX_ERROR_TARGET`]); None when no
-    /// M value of the data has all its cases within it.
-    #[serde(default)]
-    pub within_target: Option<TargetRange>,
-}
 
 fn h_c_name() -> String {
     Film::Centre.name().to_string()
@@ -194,7 +106,7 @@ pub struct FitReport {
 fn samples(pts: &[FitPoint], film: Film) -> Vec<Sample> {
     pts.iter()
         .filter_map(|p| {
-            film.of_point(p).map(|h| Sample {
+            p.film(film).map(|h| Sample {
                 m: p.m,
                 l: p.l,
                 d: p.dd(),
@@ -254,7 +166,7 @@ fn quantity<Mo: FilmModel>(
     let model = wrap(f.model.clone());
     let data: Vec<_> = pts
         .iter()
-        .filter_map(|p| film.of_point(p).map(|h| (p, h)))
+        .filter_map(|p| p.film(film).map(|h| (p, h)))
         .collect();
     let tuples: Vec<_> = data
         .iter()
@@ -289,11 +201,11 @@ fn quantity<Mo: FilmModel>(
 fn published(name: &str, pts: &[FitPoint], f: impl Fn(&FitPoint) -> f64) -> Vec<Published> {
     [Film::Centre, Film::PressureMax]
         .into_iter()
-        .filter(|film| pts.iter().any(|p| film.of_point(p).is_some()))
+        .filter(|film| pts.iter().any(|p| p.film(*film).is_some()))
         .map(|film| {
             let t: Vec<_> = pts
                 .iter()
-                .filter_map(|p| film.of_point(p).map(|h| (p.m, p.l, f(p), h)))
+                .filter_map(|p| p.film(film).map(|h| (p.m, p.l, f(p), h)))
                 .collect();
             Published {
                 name: name.to_string(),

@@ -18,17 +18,16 @@
 //!   H_RP = (c L)^(2/3) with c = alpha_bar(L = 1) P_max H_c^(3/2) from the solver's rigid L = 0
 //!   solve; that is the "solver" value of the RP row.
 
-use crate::discrete::point::domain::PointDomain;
+use crate::fit::dataset::FitPoint;
 use crate::fit::dataset::MAX_ERROR_ESTIMATE;
 use crate::fit::model::LineModel;
 use crate::fit::point_model::PointModel;
 use crate::limits::rigid_point::{extrapolate, RigidPointSolves, DOMAIN_SCALES};
-use crate::model::case::{Elasticity, LineCase, Models, PointCase};
-use crate::report::{Film, FitPoint};
-use crate::solve::line::{solve_line, LineSolveParams};
-use crate::solve::point::{solve_point, PointSolveParams};
-use crate::solve::solution::Outputs;
-use crate::solve::Status;
+use crate::limits::solves::{
+    line_solve, point_alpha_bar_1, point_solve, LimitSolves, Solve, POINT_CHECK_GRID,
+};
+use crate::model::case::Elasticity;
+use crate::solve::film::Film;
 use serde::{Deserialize, Serialize};
 
 /// One asymptote compared with a limit solve of the solver.
@@ -75,144 +74,6 @@ fn m_name() -> String {
 
 fn h_c_name() -> String {
     Film::Centre.name().to_string()
-}
-
-/// The elastic checks are solved at these fractions of the largest M of the data, to show the
-/// ratio approaching its limit.
-pub const TREND_FRACTIONS: [f64; 3] = [0.1, 0.316_227_766_016_837_94, 1.0];
-
-fn models(elasticity: Elasticity) -> Models {
-    Models {
-        elasticity,
-        ..Models::default()
-    }
-}
-
-/// Line limit grids: 4097 points, else 2049 (a safety net: until the solver's fallback ladder
-/// gained V(4, 4) cycles the smoother stalled on 4097 points at L = 20 for M = 103 and 326).
-const LINE_CHECK_GRIDS: [usize; 2] = [4097, 2049];
-
-fn line_solve(m: f64, l: f64, el: Elasticity) -> Option<(Outputs, f64)> {
-    let case = LineCase::with_models(m, l, models(el)).ok()?;
-    let ab1 = LineCase::with_models(m, 1.0, models(el))
-        .ok()?
-        .venner()
-        .alpha_bar;
-    LINE_CHECK_GRIDS.iter().find_map(|&grid| {
-        let mut p = LineSolveParams::default();
-        p.mg.grid = grid;
-        let s = solve_line(&case, &p);
-        (s.outputs.status == Status::Converged).then_some((s.outputs, ab1))
-    })
-}
-
-/// Smallest point limit grid; the checks solve on the data's finest grid when that is finer.
-/// (129^2 under-resolves the elastic solves at the largest M of a 257^2 sweep: at M = 1000,
-/// D = 1 its H_min came out negative.)
-const POINT_CHECK_GRID: usize = 257;
-
-/// A point limit solve on `grid` points per direction; an elastic one in the rigid-like range
-/// (domain-truncation error above 2 %) is not trusted and not solved.
-fn point_solve(m: f64, l: f64, d: f64, el: Elasticity, grid: usize) -> Option<(Outputs, f64)> {
-    let case = PointCase::with_models(m, l, d, models(el)).ok()?;
-    let truncation = PointDomain::of_case(&case, &Default::default()).truncation_error();
-    if el == Elasticity::Elastic && truncation > MAX_ERROR_ESTIMATE {
-        return None;
-    }
-    let mut p = PointSolveParams::default();
-    p.mg.grid = grid;
-    let s = solve_point(&case, &p);
-    let ab1 = point_alpha_bar_1(m, d, el)?;
-    (s.outputs.status == Status::Converged).then_some((s.outputs, ab1))
-}
-
-/// alpha_bar of a point case at L = 1 (the rigid-piezoviscous row scales it by L).
-fn point_alpha_bar_1(m: f64, d: f64, el: Elasticity) -> Option<f64> {
-    let case = PointCase::with_models(m, 1.0, d, models(el)).ok()?;
-    Some(case.venner().alpha_bar)
-}
-
-/// H_RP at `l` from a rigid isoviscous solve: (c L)^(2/3), c = alpha_bar(L=1) P_max H^(3/2)
-/// with H the film checked (the rigid-piezoviscous film has the rigid-isoviscous shape).
-fn rp_from_rigid(o: &Outputs, alpha_bar_1: f64, l: f64, film: Film) -> f64 {
-    let c = alpha_bar_1 * o.p_max * film.of_outputs(o).powf(1.5);
-    (c * l).powf(2.0 / 3.0)
-}
-
-fn max_of<'a>(pts: impl Iterator<Item = &'a FitPoint>, f: fn(&FitPoint) -> f64) -> f64 {
-    pts.map(f).fold(0.0, f64::max)
-}
-
-/// A limit solve: (M, outputs), None where it did not converge or was not trusted.
-type Solve = (f64, Option<Outputs>);
-
-/// The limit solves of one contact: rigid L = 0 at M = 1 (given by the caller); elastic at L = 0
-/// up to the largest M of the data's L = 0 cases, and at the largest L up to the largest M of
-/// those cases (each at [`TREND_FRACTIONS`] of that M), and at twice that L.
-struct LimitSolves {
-    m_ei: f64,
-    m_ep: f64,
-    l_max: f64,
-    rigid: Option<(Outputs, f64)>,
-    ei: Vec<Solve>,
-    ep: Vec<Solve>,
-    /// Elastic at the largest M of the EP trend and twice the largest L (L > 0 data only).
-    ep_beyond: Option<Solve>,
-}
-
-impl LimitSolves {
-    fn new(
-        pts: &[FitPoint],
-        rigid: Option<(Outputs, f64)>,
-        solve: impl Fn(f64, f64, Elasticity) -> Option<(Outputs, f64)>,
-    ) -> Self {
-        let l_max = max_of(pts.iter(), |p| p.l);
-        let m_at = |l: f64| {
-            let m = max_of(pts.iter().filter(|p| p.l == l), |p| p.m);
-            if m > 0.0 {
-                m
-            } else {
-                max_of(pts.iter(), |p| p.m)
-            }
-        };
-        let (m_ei, m_ep) = (m_at(0.0), m_at(l_max));
-        let trend = |m_top: f64, l: f64| -> Vec<Solve> {
-            TREND_FRACTIONS
-                .iter()
-                .map(|f| {
-                    let m = f * m_top;
-                    (m, solve(m, l, Elasticity::Elastic).map(|o| o.0))
-                })
-                .collect()
-        };
-        LimitSolves {
-            m_ei,
-            m_ep,
-            l_max,
-            rigid,
-            ei: trend(m_ei, 0.0),
-            ep: if l_max > 0.0 {
-                trend(m_ep, l_max)
-            } else {
-                vec![]
-            },
-            ep_beyond: (l_max > 0.0).then(|| {
-                let l2 = 2.0 * l_max;
-                (l2, solve(m_ep, l2, Elasticity::Elastic).map(|o| o.0))
-            }),
-        }
-    }
-
-    /// The solve at the largest M.
-    fn top(solves: &[Solve]) -> Option<&Outputs> {
-        solves.last().and_then(|(_, o)| o.as_ref())
-    }
-
-    fn rp(&self, film: Film) -> Option<f64> {
-        self.rigid
-            .as_ref()
-            .map(|(o, ab)| rp_from_rigid(o, *ab, self.l_max, film))
-    }
 }
 
 /// The fitted laws of one film: their text and the four asymptotes [RI, EI, RP, EP] at (M, L).
@@ -306,7 +167,8 @@ const RP_NOTE: &str =
 /// The line checks (seven solves at 4097 points, or 2049 should 4097 fail; a few seconds) of
 /// each fitted film.
 pub fn line_checks(fits: &[(Film, LineModel)], pts: &[FitPoint]) -> Vec<AsymptoteCheck> {
-    let s = LimitSolves::new(pts, line_solve(1.0, 0.0, Elasticity::Rigid), line_solve);
+    let cases: Vec<(f64, f64)> = pts.iter().map(|p| (p.m, p.l)).collect();
+    let s = LimitSolves::new(&cases, line_solve(1.0, 0.0, Elasticity::Rigid), line_solve);
     let mut out = vec![];
     for (film, fit) in fits {
         let x = &fit.x;
@@ -351,7 +213,12 @@ pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<Asympt
     // The enlarged-domain rigid solves (about 60 s for the 1025^2 one) beside the elastic ones;
     // their default-domain solve is the plain rigid solve of the rigid-piezoviscous row.
     let (mut s, domains) = rayon::join(
-        || LimitSolves::new(&at_d, None, |m, l, el| point_solve(m, l, d, el, grid)),
+        || {
+            let cases: Vec<(f64, f64)> = at_d.iter().map(|p| (p.m, p.l)).collect();
+            LimitSolves::new(&cases, None, |m, l, el| {
+                point_solve(m, l, d, el, grid, MAX_ERROR_ESTIMATE)
+            })
+        },
         || RigidPointSolves::run(d),
     );
     let ab1 = point_alpha_bar_1(1.0, d, Elasticity::Rigid);
@@ -403,7 +270,7 @@ pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<Asympt
 
 const RIGID_POINT_NOTE: &str = "rigid solves, L = 0 (H M^2 is exact for any M) on the default \
      domain enlarged 1, 2, 4 times, extrapolated to an unbounded one (the pressure decays like \
-     r^-3: H is low by about 1/R; src/fit/rigid_point.rs)";
+     r^-3: H is low by about 1/R; src/limits/rigid_point.rs)";
 const RIGID_POINT_FAILED: &str = "rigid solve, L = 0, default domain only (an enlarged-domain \
      solve did not converge): biased low by its truncation, about 30 %";
 

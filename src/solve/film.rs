@@ -1,9 +1,6 @@
-//! Which film a fit describes: H_c at X = 0, H_pm at the pressure maximum on the centre line
-//! (Moes' central film), H_min; how each is read from a dataset row (with its error-estimate
-//! filter) and from a solve.
+//! The films a solve reports and a fit describes: H_c at X = 0, H_pm at the pressure maximum on
+//! the centre line (Moes' central film), H_min; how each is read from a solve.
 
-use crate::fit::dataset::MAX_ERROR_ESTIMATE;
-use crate::report::FitPoint;
 use crate::solve::solution::Outputs;
 
 /// The film a fit describes.
@@ -21,6 +18,7 @@ pub enum Film {
 }
 
 impl Film {
+    /// The three films, in report order.
     pub const ALL: [Film; 3] = [Film::Centre, Film::PressureMax, Film::Minimum];
 
     /// The name used in reports and `fit.json` (H_c, H_pm, H_min).
@@ -29,17 +27,6 @@ impl Film {
             Film::Centre => "H_c",
             Film::PressureMax => "H_pm",
             Film::Minimum => "H_min",
-        }
-    }
-
-    /// This film of a dataset case (None when the dataset does not carry it, or when its error
-    /// estimate exceeds [`MAX_ERROR_ESTIMATE`]).
-    pub fn of_point(self, p: &FitPoint) -> Option<f64> {
-        let ok = |e: Option<f64>| e.is_none_or(|e| e <= MAX_ERROR_ESTIMATE);
-        match self {
-            Film::Centre => ok(p.h_c_err).then_some(p.h_c),
-            Film::PressureMax => p.h_pm.filter(|_| ok(p.h_c_err) && ok(p.h_min_err)),
-            Film::Minimum => ok(p.h_min_err).then_some(p.h_min),
         }
     }
 

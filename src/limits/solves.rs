@@ -1,0 +1,154 @@
+//! The solver's own limit solves of one contact: rigid L = 0, and elastic solves at the largest
+//! M of the data at L = 0 and at the largest L (each at [`TREND_FRACTIONS`] of that M), and at
+//! twice the largest L. Failed or untrusted solves are None, never a panic.
+
+use crate::discrete::point::domain::PointDomain;
+use crate::model::case::{Elasticity, LineCase, Models, PointCase};
+use crate::solve::film::Film;
+use crate::solve::line::{solve_line, LineSolveParams};
+use crate::solve::point::{solve_point, PointSolveParams};
+use crate::solve::solution::Outputs;
+use crate::solve::Status;
+
+/// The elastic checks are solved at these fractions of the largest M of the data, to show the
+/// ratio approaching its limit.
+pub const TREND_FRACTIONS: [f64; 3] = [0.1, 0.316_227_766_016_837_94, 1.0];
+
+pub fn models(elasticity: Elasticity) -> Models {
+    Models {
+        elasticity,
+        ..Models::default()
+    }
+}
+
+/// Line limit grids: 4097 points, else 2049 (a safety net: until the solver's fallback ladder
+/// gained V(4, 4) cycles the smoother stalled on 4097 points at L = 20 for M = 103 and 326).
+pub const LINE_CHECK_GRIDS: [usize; 2] = [4097, 2049];
+
+pub fn line_solve(m: f64, l: f64, el: Elasticity) -> Option<(Outputs, f64)> {
+    let case = LineCase::with_models(m, l, models(el)).ok()?;
+    let ab1 = LineCase::with_models(m, 1.0, models(el))
+        .ok()?
+        .venner()
+        .alpha_bar;
+    LINE_CHECK_GRIDS.iter().find_map(|&grid| {
+        let mut p = LineSolveParams::default();
+        p.mg.grid = grid;
+        let s = solve_line(&case, &p);
+        (s.outputs.status == Status::Converged).then_some((s.outputs, ab1))
+    })
+}
+
+/// Smallest point limit grid; the checks solve on the data's finest grid when that is finer.
+/// (129^2 under-resolves the elastic solves at the largest M of a 257^2 sweep: at M = 1000,
+/// D = 1 its H_min came out negative.)
+pub const POINT_CHECK_GRID: usize = 257;
+
+/// A point limit solve on `grid` points per direction; an elastic one in the rigid-like range
+/// (domain-truncation error above `max_truncation`) is not trusted and not solved.
+pub fn point_solve(
+    m: f64,
+    l: f64,
+    d: f64,
+    el: Elasticity,
+    grid: usize,
+    max_truncation: f64,
+) -> Option<(Outputs, f64)> {
+    let case = PointCase::with_models(m, l, d, models(el)).ok()?;
+    let truncation = PointDomain::of_case(&case, &Default::default()).truncation_error();
+    if el == Elasticity::Elastic && truncation > max_truncation {
+        return None;
+    }
+    let mut p = PointSolveParams::default();
+    p.mg.grid = grid;
+    let s = solve_point(&case, &p);
+    let ab1 = point_alpha_bar_1(m, d, el)?;
+    (s.outputs.status == Status::Converged).then_some((s.outputs, ab1))
+}
+
+/// alpha_bar of a point case at L = 1 (the rigid-piezoviscous row scales it by L).
+pub fn point_alpha_bar_1(m: f64, d: f64, el: Elasticity) -> Option<f64> {
+    let case = PointCase::with_models(m, 1.0, d, models(el)).ok()?;
+    Some(case.venner().alpha_bar)
+}
+
+/// H_RP at `l` from a rigid isoviscous solve: (c L)^(2/3), c = alpha_bar(L=1) P_max H^(3/2)
+/// with H the film checked (the rigid-piezoviscous film has the rigid-isoviscous shape).
+pub fn rp_from_rigid(o: &Outputs, alpha_bar_1: f64, l: f64, film: Film) -> f64 {
+    let c = alpha_bar_1 * o.p_max * film.of_outputs(o).powf(1.5);
+    (c * l).powf(2.0 / 3.0)
+}
+
+/// A limit solve: (M, outputs), None where it did not converge or was not trusted.
+pub type Solve = (f64, Option<Outputs>);
+
+/// The limit solves of one contact: rigid L = 0 at M = 1 (given by the caller); elastic at L = 0
+/// up to the largest M of the data's L = 0 cases, and at the largest L up to the largest M of
+/// those cases (each at [`TREND_FRACTIONS`] of that M), and at twice that L.
+pub struct LimitSolves {
+    pub m_ei: f64,
+    pub m_ep: f64,
+    pub l_max: f64,
+    pub rigid: Option<(Outputs, f64)>,
+    pub ei: Vec<Solve>,
+    pub ep: Vec<Solve>,
+    /// Elastic at the largest M of the EP trend and twice the largest L (L > 0 data only).
+    pub ep_beyond: Option<Solve>,
+}
+
+impl LimitSolves {
+    /// `cases`: the (M, L) of the data's cases.
+    pub fn new(
+        cases: &[(f64, f64)],
+        rigid: Option<(Outputs, f64)>,
+        solve: impl Fn(f64, f64, Elasticity) -> Option<(Outputs, f64)>,
+    ) -> Self {
+        let max_of = |it: &mut dyn Iterator<Item = f64>| it.fold(0.0, f64::max);
+        let l_max = max_of(&mut cases.iter().map(|c| c.1));
+        let m_at = |l: f64| {
+            let m = max_of(&mut cases.iter().filter(|c| c.1 == l).map(|c| c.0));
+            if m > 0.0 {
+                m
+            } else {
+                max_of(&mut cases.iter().map(|c| c.0))
+            }
+        };
+        let (m_ei, m_ep) = (m_at(0.0), m_at(l_max));
+        let trend = |m_top: f64, l: f64| -> Vec<Solve> {
+            TREND_FRACTIONS
+                .iter()
+                .map(|f| {
+                    let m = f * m_top;
+                    (m, solve(m, l, Elasticity::Elastic).map(|o| o.0))
+                })
+                .collect()
+        };
+        LimitSolves {
+            m_ei,
+            m_ep,
+            l_max,
+            rigid,
+            ei: trend(m_ei, 0.0),
+            ep: if l_max > 0.0 {
+                trend(m_ep, l_max)
+            } else {
+                vec![]
+            },
+            ep_beyond: (l_max > 0.0).then(|| {
+                let l2 = 2.0 * l_max;
+                (l2, solve(m_ep, l2, Elasticity::Elastic).map(|o| o.0))
+            }),
+        }
+    }
+
+    /// The solve at the largest M.
+    pub fn top(solves: &[Solve]) -> Option<&Outputs> {
+        solves.last().and_then(|(_, o)| o.as_ref())
+    }
+
+    pub fn rp(&self, film: Film) -> Option<f64> {
+        self.rigid
+            .as_ref()
+            .map(|(o, ab)| rp_from_rigid(o, *ab, self.l_max, film))
+    }
+}
