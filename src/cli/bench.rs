@@ -4,7 +4,7 @@ use crate::bench::selection;
 use crate::bench::speed::{self, BenchCase, BenchRow, Reference};
 use crate::bench::stability::{self, Cell};
 use crate::bench::COLORS;
-use crate::cli::InputError;
+use crate::cli::error::InputError;
 use crate::model::case::{LineCase, PointCase};
 use crate::store::table::{write_table, Column};
 use plotters::prelude::*;

@@ -2,7 +2,7 @@
 //! per contact (line charts `parity.png` ..., point charts `point_parity.png` ...); a contact with
 //! too few cases is reported as skipped; exit 2 only when nothing could be fitted.
 
-use crate::cli::InputError;
+use crate::cli::error::InputError;
 use crate::fit::dataset::load_fit_input;
 use crate::render::charts::write_charts;
 use crate::report::fit_report;

@@ -11,7 +11,7 @@
 //! * `--dry-run`: print the planned cases of the shard (id, M, L, D for point contacts, estimated
 //!   cost, stored or not) and exit.
 
-use crate::cli::InputError;
+use crate::cli::error::InputError;
 use crate::store::results;
 use crate::sweep::executor::{self, Progress, RunOptions};
 use crate::sweep::plan::{self, Shard};

@@ -290,3 +290,122 @@ mod tests {
         assert!(PointCase::new(20.0, 10.0, 1.5).is_err());
     }
 }
+
+/// Which contact a case is: a line contact (infinitely long cylinders) or a point contact of
+/// ellipticity D. Stored by name (`line`, `point`) in JSON, TOML and Parquet.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Contact {
+    Line,
+    Point,
+}
+
+impl Contact {
+    /// Both contacts.
+    pub const ALL: [Contact; 2] = [Contact::Line, Contact::Point];
+
+    /// The stored name.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Contact::Line => "line",
+            Contact::Point => "point",
+        }
+    }
+
+    /// Smallest and largest finest grid a solve accepts (points per direction for point
+    /// contacts).
+    pub fn grid_range(&self) -> (usize, usize) {
+        match self {
+            Contact::Line => (33, (1 << 20) + 1),
+            Contact::Point => (17, 2049),
+        }
+    }
+}
+
+impl std::fmt::Display for Contact {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+impl std::str::FromStr for Contact {
+    type Err = ParamError;
+    fn from_str(s: &str) -> Result<Self, ParamError> {
+        Contact::ALL
+            .into_iter()
+            .find(|c| c.as_str() == s)
+            .ok_or_else(|| ParamError::Unknown {
+                what: "contact",
+                name: s.to_string(),
+                expected: "line or point",
+            })
+    }
+}
+
+impl PartialEq<&str> for Contact {
+    fn eq(&self, other: &&str) -> bool {
+        self.as_str() == *other
+    }
+}
+
+/// A case in Moes' parameters, line or point contact: what [`crate::strategy::solve_case::solve`] solves.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "contact", rename_all = "lowercase")]
+pub enum Case {
+    Line(LineCase),
+    Point(PointCase),
+}
+
+impl Case {
+    /// Which contact.
+    pub fn contact(&self) -> Contact {
+        match self {
+            Case::Line(_) => Contact::Line,
+            Case::Point(_) => Contact::Point,
+        }
+    }
+
+    /// Moes' load parameter M.
+    pub fn m(&self) -> f64 {
+        match self {
+            Case::Line(c) => c.m,
+            Case::Point(c) => c.m,
+        }
+    }
+
+    /// Moes' lubricant parameter L.
+    pub fn l(&self) -> f64 {
+        match self {
+            Case::Line(c) => c.l,
+            Case::Point(c) => c.l,
+        }
+    }
+
+    /// The ellipticity D = Rx/Ry of a point contact.
+    pub fn d(&self) -> Option<f64> {
+        match self {
+            Case::Line(_) => None,
+            Case::Point(c) => Some(c.d),
+        }
+    }
+
+    /// The lubricant and elasticity models.
+    pub fn models(&self) -> Models {
+        match self {
+            Case::Line(c) => c.models,
+            Case::Point(c) => c.models,
+        }
+    }
+}
+
+impl From<LineCase> for Case {
+    fn from(c: LineCase) -> Self {
+        Case::Line(c)
+    }
+}
+
+impl From<PointCase> for Case {
+    fn from(c: PointCase) -> Self {
+        Case::Point(c)
+    }
+}

@@ -9,6 +9,13 @@ pub enum ParamError {
         value: f64,
         why: &'static str,
     },
+    /// A name (of a contact, model, status ...) that is not one of the known ones.
+    #[error("unknown {what} {name:?}: expected {expected}")]
+    Unknown {
+        what: &'static str,
+        name: String,
+        expected: &'static str,
+    },
 }
 
 pub(crate) fn check(

@@ -63,7 +63,8 @@ pub trait Fas {
     fn h_estimate(&self) -> f64;
     /// Right-hand side of level l's load equation.
     fn load_target(&self, l: usize) -> f64;
-    fn trace(&self) -> bool;
+    /// Who receives every cycle (None: nobody).
+    fn observer(&self) -> Option<crate::solve::Observer>;
     /// Install a warm-start guess (pressure and H0 from a solved neighbour) on level `l`, the
     /// finest; true when there was one. The FMG ascent is then skipped: the coarse start only
     /// supplies the load slope, and the finest-level cycles start from the guess.
@@ -141,15 +142,13 @@ pub fn fmg_solve<S: Fas>(s: &mut S) -> SolveInfo {
         for k in 0..max {
             s.cycle(l);
             let rec = s.record(l);
-            if s.trace() {
-                eprintln!(
-                    "level {l} cycle {k} res {:.3e} load {:.3e} hc {:.7} wu {:.1} h0 {:.8}",
-                    rec.residual,
-                    rec.load_error,
-                    rec.h_c,
-                    rec.work_units,
-                    s.h0()
-                );
+            if let Some(o) = s.observer() {
+                o.notify(&crate::solve::CycleEvent {
+                    level: l,
+                    cycle: k,
+                    record: rec,
+                    h0: s.h0(),
+                });
             }
             if final_level {
                 history.push(rec);

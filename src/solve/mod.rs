@@ -68,3 +68,50 @@ pub struct SolveInfo {
     pub grid: usize,
     pub levels: usize,
 }
+
+/// One multigrid cycle as an observer sees it: the FMG level (0 the coarsest), the cycle's index
+/// on that level, its record and the film constant after it. Its `Display` is one line of
+/// `ehlmap solve --trace`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CycleEvent {
+    pub level: usize,
+    pub cycle: usize,
+    pub record: CycleRecord,
+    pub h0: f64,
+}
+
+impl fmt::Display for CycleEvent {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let r = &self.record;
+        write!(
+            f,
+            "level {} cycle {} res {:.3e} load {:.3e} hc {:.7} wu {:.1} h0 {:.8}",
+            self.level, self.cycle, r.residual, r.load_error, r.h_c, r.work_units, self.h0
+        )
+    }
+}
+
+/// A callback that receives every multigrid cycle of a solve (the solver itself never prints).
+/// A plain function, so that solver parameters stay `Copy`. Observers never change a solve, so
+/// any two compare equal.
+#[derive(Clone, Copy)]
+pub struct Observer(pub fn(&CycleEvent));
+
+impl Observer {
+    /// Tell the observer about one cycle.
+    pub fn notify(&self, event: &CycleEvent) {
+        (self.0)(event)
+    }
+}
+
+impl PartialEq for Observer {
+    fn eq(&self, _: &Observer) -> bool {
+        true
+    }
+}
+
+impl fmt::Debug for Observer {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("Observer")
+    }
+}

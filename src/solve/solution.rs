@@ -251,3 +251,26 @@ mod tests {
         assert!((t - 0.3).abs() < 1e-12 && (v - 2.0).abs() < 1e-12);
     }
 }
+
+/// The finest-grid fields: node coordinates and, row-major with X fastest (node (i, j) at
+/// j * x.len() + i), P (Hertzian units) and H (Moes units).
+#[derive(Clone, Debug, PartialEq, Default)]
+pub struct PointFields {
+    pub x: Vec<f64>,
+    pub y: Vec<f64>,
+    pub p: Vec<f64>,
+    pub h: Vec<f64>,
+}
+
+/// Everything a solve returns, line or point contact.
+#[derive(Clone, Debug)]
+pub struct Solution {
+    pub outputs: Outputs,
+    pub info: SolveInfo,
+    /// Which attempt of the fallback ladder (1-based) produced the result.
+    pub attempt: usize,
+    /// Line contacts, when asked for: the P(X), H(X) profile on the finest grid.
+    pub profile: Option<Profile>,
+    /// Point contacts, when asked for: the P(X, Y), H(X, Y) fields on the finest grid.
+    pub fields: Option<PointFields>,
+}

@@ -6,4 +6,5 @@ pub mod accuracy;
 pub mod closed_form;
 pub mod select;
 pub mod slender;
+pub mod solve_case;
 pub mod warm;

@@ -24,7 +24,7 @@ use crate::model::formulas::moes_line_hc;
 use crate::solve::ladder::{run_ladder, Attempt};
 use crate::solve::line::multigrid::{CycleType, LineMgParams, LineMultigrid, WarmGuess};
 use crate::solve::single_grid::solve_relax;
-use crate::solve::solution::{line_outputs, Outputs, Profile};
+use crate::solve::solution::{line_outputs, Outputs, Profile, Solution};
 use crate::solve::SolveInfo;
 
 /// Which solver.
@@ -213,5 +213,17 @@ impl Attempt for LineSolution {
     }
     fn attempt(&self) -> usize {
         self.attempt
+    }
+}
+
+impl From<LineSolution> for Solution {
+    fn from(s: LineSolution) -> Self {
+        Solution {
+            outputs: s.outputs,
+            info: s.info,
+            attempt: s.attempt,
+            profile: s.profile,
+            fields: None,
+        }
     }
 }

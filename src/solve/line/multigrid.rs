@@ -13,7 +13,7 @@
 //!
 //! Load balance: on each level, cycles at fixed H0 until the load error has settled, then a
 //! safeguarded secant step on H0 ([`LoadBalance`]); the slope comes from the coarsest Newton and
-//! is refined level by level. Set `EHLMAP_TRACE=1` to print every cycle to stderr.
+//! is refined level by level.
 
 use crate::discrete::line::domain::{DomainParams, LineDomain};
 use crate::discrete::line::operator::{LineLevel, LinePhysics};
@@ -75,6 +75,8 @@ pub struct LineMgParams {
     pub newton_max_iter: usize,
     /// Deformation by the O(N^2) direct sum on every level instead of the FFT (baseline).
     pub direct_deformation: bool,
+    /// Receives every cycle of the solve.
+    pub observer: Option<crate::solve::Observer>,
 }
 
 impl Default for LineMgParams {
@@ -97,6 +99,7 @@ impl Default for LineMgParams {
             second_order: true,
             newton_max_iter: 40,
             direct_deformation: false,
+            observer: None,
         }
     }
 }
@@ -115,8 +118,6 @@ pub struct LineMultigrid {
     load_slope: f64,
     /// Work buffers of the smoother, shared by all levels.
     scratch: LineScratch,
-    /// Print every cycle to stderr (`EHLMAP_TRACE` set when the solver was built).
-    trace: bool,
     fine_intervals: usize,
     /// A warm-start guess for the finest level ([`LineMultigrid::set_guess`]).
     guess: Option<WarmGuess>,
@@ -185,7 +186,6 @@ impl LineMultigrid {
             work_units: 0.0,
             load_slope: -1.0,
             scratch: LineScratch::default(),
-            trace: std::env::var_os("EHLMAP_TRACE").is_some(),
             fine_intervals: fine,
             guess: None,
         }
@@ -511,8 +511,8 @@ impl Fas for LineMultigrid {
     fn load_target(&self, l: usize) -> f64 {
         self.levels[l].g
     }
-    fn trace(&self) -> bool {
-        self.trace
+    fn observer(&self) -> Option<crate::solve::Observer> {
+        self.params.observer
     }
     fn install_guess(&mut self, l: usize) -> bool {
         LineMultigrid::install_guess(self, l)

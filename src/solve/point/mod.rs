@@ -25,7 +25,8 @@ pub use crate::solve::point::multigrid::PointMgParams;
 use crate::solve::point::multigrid::PointMultigrid;
 use crate::solve::single_grid::solve_relax;
 use crate::solve::solution::grid_level;
-use crate::solve::solution::{line_outputs, parabola_vertex, Outputs};
+pub use crate::solve::solution::PointFields;
+use crate::solve::solution::{line_outputs, parabola_vertex, Outputs, Solution};
 use crate::solve::SolveInfo;
 
 /// Parameters of a point solve.
@@ -54,16 +55,6 @@ impl Default for PointSolveParams {
             keep_fields: false,
         }
     }
-}
-
-/// The finest-grid fields: node coordinates and, row-major with X fastest (node (i, j) at
-/// j * x.len() + i), P (Hertzian units) and H (Moes units).
-#[derive(Clone, Debug, PartialEq, Default)]
-pub struct PointFields {
-    pub x: Vec<f64>,
-    pub y: Vec<f64>,
-    pub p: Vec<f64>,
-    pub h: Vec<f64>,
 }
 
 /// Everything a point solve returns.
@@ -237,4 +228,16 @@ pub fn solve_point(case: &PointCase, params: &PointSolveParams) -> PointSolution
     run_ladder(&ATTEMPT_NAMES[..list.len()], |k| {
         run(case, &list[k], params.keep_fields)
     })
+}
+
+impl From<PointSolution> for Solution {
+    fn from(s: PointSolution) -> Self {
+        Solution {
+            outputs: s.outputs,
+            info: s.info,
+            attempt: s.attempt,
+            profile: None,
+            fields: s.fields,
+        }
+    }
 }

@@ -51,6 +51,8 @@ pub struct PointMgParams {
     pub parallel: bool,
     /// Deformation by the O(N^2) direct sum on every level instead of the FFT (baseline).
     pub direct_deformation: bool,
+    /// Receives every cycle of the solve.
+    pub observer: Option<crate::solve::Observer>,
 }
 
 impl Default for PointMgParams {
@@ -73,6 +75,7 @@ impl Default for PointMgParams {
             domain: PointDomainParams::default(),
             parallel: false,
             direct_deformation: false,
+            observer: None,
         }
     }
 }
@@ -88,7 +91,6 @@ pub struct PointMultigrid {
     pub work_units: f64,
     load_slope: f64,
     scratch: PointScratch,
-    trace: bool,
     fine_cells: f64,
 }
 
@@ -135,7 +137,6 @@ impl PointMultigrid {
             work_units: 0.0,
             load_slope: -1.0,
             scratch: PointScratch::default(),
-            trace: std::env::var_os("EHLMAP_TRACE").is_some(),
             fine_cells: (n * n) as f64,
         }
     }
@@ -351,9 +352,6 @@ impl Fas for PointMultigrid {
         };
         let out = newton_solve(lv, &self.phys, &mut self.h0, &np);
         self.newton_cost(out.iterations);
-        if self.trace {
-            eprintln!("coarsest start: {out:?}, H0 {}", self.h0);
-        }
         if !(out.converged || out.residual < 1e-6) {
             self.levels[0].update_film(&self.phys, self.h0);
             for _ in 0..20 * self.params.coarse_sweeps {
@@ -464,8 +462,8 @@ impl Fas for PointMultigrid {
         self.levels[l].g
     }
 
-    fn trace(&self) -> bool {
-        self.trace
+    fn observer(&self) -> Option<crate::solve::Observer> {
+        self.params.observer
     }
 
     fn finish(

@@ -1,0 +1,175 @@
+//! One solve for both contacts: [`solve`] takes a [`Case`] (line or point) and one
+//! [`SolveParams`], and returns a [`Solution`].
+//!
+//! Contract: with no accuracy target the case is solved on one grid (`grid`, or the contact's
+//! default) by the chosen method, with the fallback ladder when `fallback` is set; with
+//! `accuracy = Some(t)` the grid is refined until the Richardson estimate of H_c and H_min meets
+//! `t` (up to `max_grid`), and unless `full_model` is set the cheapest verified model answers
+//! ([`crate::strategy::select`]). Every solve ends with a status and a reason; numerical failure
+//! is a result, never a panic. The shared controls here override the contact's defaults; what
+//! they leave as `None` keeps the contact's own value (grid 2049 points for a line contact, 129
+//! per direction for a point contact; 60 or 40 cycles on the finest level).
+
+use crate::discrete::line::domain::DomainParams;
+use crate::discrete::point::domain::PointDomainParams;
+use crate::model::case::{Case, Contact};
+use crate::solve::line::multigrid::CycleType;
+use crate::solve::line::{solve_line, LineSolveParams, Method};
+use crate::solve::point::{solve_point, PointSolveParams};
+use crate::solve::solution::Solution;
+use crate::solve::Observer;
+use crate::strategy::accuracy::{solve_line_to_accuracy, solve_point_to_accuracy};
+use crate::strategy::select::{solve_line_selected, solve_point_selected};
+
+/// Largest grid of the accuracy ladder by default: points (line) or points per direction (point).
+pub const fn default_max_grid(contact: Contact) -> usize {
+    match contact {
+        Contact::Line => 16385,
+        Contact::Point => 513,
+    }
+}
+
+/// The controls of one solve, shared by line and point contacts, plus each contact's domain
+/// options. `Default` is the library's default solve.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SolveParams {
+    /// Full multigrid (default), or a baseline (dense Newton, single-grid relaxation).
+    pub method: Method,
+    /// Points of the finest grid (per direction for point contacts); `None`: the contact's
+    /// default.
+    pub grid: Option<usize>,
+    /// Multigrid cycle type.
+    pub cycle: CycleType,
+    /// Cycles allowed on the finest level; `None`: the contact's default.
+    pub max_cycles: Option<usize>,
+    /// Convergence tolerances on the load error and the change of H_c and H_min per cycle;
+    /// `None`: the contact's defaults.
+    pub tol_load: Option<f64>,
+    pub tol_h: Option<f64>,
+    /// Retry a failed solve with conservative settings (the fallback ladder).
+    pub fallback: bool,
+    /// Target relative accuracy of H_c and H_min: refine the grid until the estimate meets it.
+    pub accuracy: Option<f64>,
+    /// With `accuracy`: the largest grid the ladder may use; `None`: [`default_max_grid`].
+    pub max_grid: Option<usize>,
+    /// With `accuracy`: always solve the full model (no model selection).
+    pub full_model: bool,
+    /// Return the line profile or the point fields.
+    pub keep_fields: bool,
+    /// Point contacts: relax the rows of each colour in parallel on the current rayon pool
+    /// (zebra order); off, one thread in Gauss-Seidel row order.
+    pub parallel: bool,
+    /// Receives every multigrid cycle (`ehlmap solve --trace` prints them).
+    pub observer: Option<Observer>,
+    /// Line contacts: the domain rule.
+    pub line_domain: DomainParams,
+    /// Point contacts: the domain rule.
+    pub point_domain: PointDomainParams,
+}
+
+impl Default for SolveParams {
+    fn default() -> Self {
+        let line = LineSolveParams::default();
+        SolveParams {
+            method: line.method,
+            grid: None,
+            cycle: line.mg.cycle,
+            max_cycles: None,
+            tol_load: None,
+            tol_h: None,
+            fallback: line.fallback,
+            accuracy: None,
+            max_grid: None,
+            full_model: false,
+            keep_fields: false,
+            parallel: false,
+            observer: None,
+            line_domain: line.mg.domain,
+            point_domain: PointSolveParams::default().mg.domain,
+        }
+    }
+}
+
+impl SolveParams {
+    /// The line solver's parameters: its defaults with these controls over them.
+    pub fn line_params(&self) -> LineSolveParams {
+        let mut p = LineSolveParams {
+            method: self.method,
+            fallback: self.fallback,
+            keep_profile: self.keep_fields,
+            ..LineSolveParams::default()
+        };
+        p.mg.cycle = self.cycle;
+        p.mg.domain = self.line_domain;
+        p.mg.observer = self.observer;
+        if let Some(g) = self.grid {
+            p.mg.grid = g;
+        }
+        if let Some(n) = self.max_cycles {
+            p.mg.max_cycles = n;
+        }
+        if let Some(t) = self.tol_load {
+            p.mg.tol_load = t;
+        }
+        if let Some(t) = self.tol_h {
+            p.mg.tol_h = t;
+        }
+        p
+    }
+
+    /// The point solver's parameters: its defaults with these controls over them.
+    pub fn point_params(&self) -> PointSolveParams {
+        let mut p = PointSolveParams {
+            method: self.method,
+            fallback: self.fallback,
+            keep_fields: self.keep_fields,
+            ..PointSolveParams::default()
+        };
+        p.mg.cycle = self.cycle;
+        p.mg.domain = self.point_domain;
+        p.mg.observer = self.observer;
+        p.mg.parallel = self.parallel;
+        if let Some(g) = self.grid {
+            p.mg.grid = g;
+        }
+        if let Some(n) = self.max_cycles {
+            p.mg.max_cycles = n;
+        }
+        if let Some(t) = self.tol_load {
+            p.mg.tol_load = t;
+        }
+        if let Some(t) = self.tol_h {
+            p.mg.tol_h = t;
+        }
+        p
+    }
+
+    /// The finest grid this solve starts from for `contact`.
+    pub fn grid_for(&self, contact: Contact) -> usize {
+        match contact {
+            Contact::Line => self.line_params().mg.grid,
+            Contact::Point => self.point_params().mg.grid,
+        }
+    }
+}
+
+/// Solve a line or point case (see the module docs).
+pub fn solve(case: &Case, params: &SolveParams) -> Solution {
+    let max_grid = params.max_grid.unwrap_or(default_max_grid(case.contact()));
+    match (case, params.accuracy) {
+        (Case::Line(c), None) => solve_line(c, &params.line_params()).into(),
+        (Case::Point(c), None) => solve_point(c, &params.point_params()).into(),
+        (Case::Line(c), Some(t)) if params.full_model => {
+            solve_line_to_accuracy(c, &params.line_params(), t, max_grid).into()
+        }
+        (Case::Point(c), Some(t)) if params.full_model => {
+            solve_point_to_accuracy(c, &params.point_params(), t, max_grid).into()
+        }
+        (Case::Line(c), Some(t)) => solve_line_selected(c, &params.line_params(), t, max_grid)
+            .0
+            .into(),
+        (Case::Point(c), Some(t)) => solve_point_selected(c, &params.point_params(), t, max_grid)
+            .0
+            .into(),
+    }
+}
