@@ -72,7 +72,7 @@ fn sweep_rows_count_the_warm_start_chain() {
             .remove(0)
     };
     let cold =
-        |c: &ehlmap::sweep::plan::Case| solve_line(&c.line_case().unwrap(), &solve_params(c, 257));
+        |c: &ehlmap::sweep::plan::Case| solve_line(&c.line_case().unwrap(), &solve_params(c, 257).line_params());
     let failing = spec(1);
     let c = cold(&failing);
     assert_ne!(
@@ -85,7 +85,7 @@ fn sweep_rows_count_the_warm_start_chain() {
     assert_eq!(row.warm_start, None);
     // The cost is the cold ladder's plus the whole chain's (recomputed here: deterministic).
     let mut spent = (0.0, 0.0);
-    let p = solve_params(&failing, 257);
+    let p = solve_params(&failing, 257).line_params();
     assert!(
         ehlmap::strategy::warm::warm_start_line(&failing.line_case().unwrap(), &p, &mut spent)
             .is_none()

@@ -106,6 +106,14 @@ impl Case {
         LineCase::with_models(self.m, self.l, self.models)
     }
 
+    /// The case to hand to the solver, line or point.
+    pub fn case(&self) -> Result<crate::model::case::Case, ParamError> {
+        match self.contact {
+            Contact::Line => self.line_case().map(crate::model::case::Case::Line),
+            Contact::Point => self.point_case().map(crate::model::case::Case::Point),
+        }
+    }
+
     /// The point case to hand to the solver (an error when the case has no D).
     pub fn point_case(&self) -> Result<PointCase, ParamError> {
         let d = self.d.unwrap_or(f64::NAN);

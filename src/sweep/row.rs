@@ -3,21 +3,18 @@
 //! spec asks for it, and copy every output into a [`CaseRow`]. Non-finite outputs become nulls
 //! with `valid = false`; a panicking solve becomes a row with status `panic`.
 
-use crate::model::case::ParamError;
+use crate::model::case::{Case as ModelCase, ParamError};
 use crate::model::lubricant::{Density, Viscosity};
 use crate::solve::line::multigrid::CycleType;
-use crate::solve::line::{solve_line, LineSolveParams};
-use crate::solve::point::{solve_point, PointSolveParams};
 use crate::solve::solution::ModelUsed;
-use crate::solve::solution::Outputs;
+use crate::solve::solution::{Outputs, Solution};
 use crate::solve::Status;
 use crate::store::results::{finite, larger_error, CaseRow};
 use crate::strategy::accuracy::relative_error;
 use crate::strategy::accuracy::ESTIMATE_ORDER;
-use crate::strategy::select::{solve_line_selected, solve_point_selected};
+use crate::strategy::solve_case::{solve, SolveParams};
 use crate::strategy::warm::warm_start_line;
 use crate::sweep::plan::Case;
-use crate::sweep::spec::Contact;
 
 /// The input columns of a case; outputs empty, status "not-run".
 pub fn input_row(case: &Case, sweep: &str) -> CaseRow {
@@ -85,31 +82,68 @@ pub fn input_row(case: &Case, sweep: &str) -> CaseRow {
     }
 }
 
-/// The line-solve parameters of a planned case on `grid` (its numerics over the defaults).
-pub fn solve_params(case: &Case, grid: usize) -> LineSolveParams {
+/// The solve parameters of a planned case on `grid` (its numerics over the defaults; no accuracy
+/// target).
+pub fn solve_params(case: &Case, grid: usize) -> SolveParams {
     let n = &case.numerics;
-    let mut p = LineSolveParams::default();
-    p.mg.grid = grid;
-    p.mg.cycle = n.cycle;
-    p.mg.max_cycles = n.max_cycles;
-    p.mg.tol_load = n.tol_load;
-    p.mg.tol_h = n.tol_h;
-    p.fallback = n.fallback;
-    p.keep_profile = false;
-    p
+    SolveParams {
+        grid: Some(grid),
+        cycle: n.cycle,
+        max_cycles: Some(n.max_cycles),
+        tol_load: Some(n.tol_load),
+        tol_h: Some(n.tol_h),
+        fallback: n.fallback,
+        ..SolveParams::default()
+    }
 }
 
-/// Solve one case and turn it into a row (line cases with [`solve_line`], point cases with
-/// [`solve_point`]). With `error_estimate` the case is also solved on the half grid and
+/// Solve one case (line or point, [`solve`]) and turn it into a row. With `error_estimate` the case is also solved on the half grid and
 /// `H_c_err`, `H_min_err` hold relative error estimates (both solves converged): Richardson with
 /// the conservative order [`ESTIMATE_ORDER`] of the accuracy targets, the same estimate
 /// `ehlmap solve --accuracy` reports; `work_units`, `wall_s` are the cost of both solves.
 /// Every float goes through [`finite`]: a non-finite output is null and the row not `valid`.
 pub fn solve_case(case: &Case, sweep: &str) -> CaseRow {
-    match case.contact {
-        Contact::Line => solve_line_row(case, sweep),
-        Contact::Point => solve_point_row(case, sweep),
+    let c = match case.case() {
+        Ok(c) => c,
+        Err(e) => return invalid_row(case, sweep, e),
+    };
+    let params = SolveParams {
+        accuracy: case.numerics.accuracy,
+        max_grid: Some(case.numerics.grid),
+        ..solve_params(case, case.numerics.grid)
+    };
+    let mut s = solve(&c, &params);
+    // D and k are inputs (k from the exact Hertz ellipse, set by input_row); a solver that
+    // reports them must agree.
+    debug_assert!(s.outputs.d.is_none_or(|d| Some(d) == c.d()));
+    let warm = warm_start(case, &c, &params, &mut s);
+    let mut row = build_row(case, sweep, &s.outputs, s.attempt, |g| {
+        solve(&c, &solve_params(case, g)).outputs
+    });
+    row.warm_start = warm;
+    row
+}
+
+/// A line case whose cold solve failed (no accuracy target, fallback on) is continued in M
+/// ([`warm_start_line`]); returns the case id of the neighbour it started from when that
+/// converged, and counts the chain's cost either way.
+fn warm_start(case: &Case, c: &ModelCase, params: &SolveParams, s: &mut Solution) -> Option<String> {
+    let ModelCase::Line(lc) = c else {
+        return None;
+    };
+    if !params.fallback || params.accuracy.is_some() || s.info.status == Status::Converged {
+        return None;
     }
+    let mut spent = (0.0, 0.0);
+    let (wu, wall) = (s.outputs.work_units, s.outputs.wall_s);
+    let mut warm = None;
+    if let Some(w) = warm_start_line(lc, &params.line_params(), &mut spent) {
+        *s = w.into();
+        warm = Some(case.with_m(case.m / 2.0).id_hex());
+    }
+    s.outputs.work_units = wu + spent.0;
+    s.outputs.wall_s = wall + spent.1;
+    warm
 }
 
 /// A row for a case that is not a valid case.
@@ -181,37 +215,6 @@ fn fill_outputs(row: &mut CaseRow, o: &Outputs, attempt: usize, valid: &mut bool
     row.attempt = Some(attempt as i64);
 }
 
-fn solve_line_row(case: &Case, sweep: &str) -> CaseRow {
-    let lc = match case.line_case() {
-        Ok(lc) => lc,
-        Err(e) => return invalid_row(case, sweep, e),
-    };
-    let params = solve_params(case, case.numerics.grid);
-    let mut s = match case.numerics.accuracy {
-        Some(target) => solve_line_selected(&lc, &params, target, case.numerics.grid).0,
-        None => solve_line(&lc, &params),
-    };
-    let mut warm = None;
-    if case.numerics.fallback
-        && case.numerics.accuracy.is_none()
-        && s.info.status != Status::Converged
-    {
-        let mut spent = (0.0, 0.0);
-        let (wu, wall) = (s.outputs.work_units, s.outputs.wall_s);
-        if let Some(w) = warm_start_line(&lc, &params, &mut spent) {
-            s = w;
-            warm = Some(case.with_m(case.m / 2.0).id_hex());
-        }
-        s.outputs.work_units = wu + spent.0;
-        s.outputs.wall_s = wall + spent.1;
-    }
-    let mut row = build_row(case, sweep, &s.outputs, s.attempt, |g| {
-        solve_line(&lc, &solve_params(case, g)).outputs
-    });
-    row.warm_start = warm;
-    row
-}
-
 /// The row of a finished solve: its outputs, the error columns (the accuracy target's estimate,
 /// or Richardson against `half(grid)`, a solve on the half grid, when the spec asks for it), the
 /// cost of every solve, `error_estimate` and `valid`.
@@ -241,38 +244,6 @@ fn build_row(
     row.error_estimate = larger_error(row.h_c_err, row.h_min_err);
     row.valid = valid;
     row
-}
-
-fn point_params(case: &Case, grid: usize) -> PointSolveParams {
-    let n = &case.numerics;
-    // Field by field over the defaults: settings the point solver gains later keep theirs.
-    let mut p = PointSolveParams::default();
-    p.mg.grid = grid;
-    p.mg.cycle = n.cycle;
-    p.mg.max_cycles = n.max_cycles;
-    p.mg.tol_load = n.tol_load;
-    p.mg.tol_h = n.tol_h;
-    p.fallback = n.fallback;
-    p.keep_fields = false;
-    p
-}
-
-fn solve_point_row(case: &Case, sweep: &str) -> CaseRow {
-    let pc = match case.point_case() {
-        Ok(pc) => pc,
-        Err(e) => return invalid_row(case, sweep, e),
-    };
-    let params = point_params(case, case.numerics.grid);
-    let s = match case.numerics.accuracy {
-        Some(target) => solve_point_selected(&pc, &params, target, case.numerics.grid).0,
-        None => solve_point(&pc, &params),
-    };
-    // D and k are inputs (k from the exact Hertz ellipse, set by input_row); a solver that
-    // reports them must agree.
-    debug_assert!(s.outputs.d.is_none_or(|d| d == pc.d));
-    build_row(case, sweep, &s.outputs, s.attempt, |g| {
-        solve_point(&pc, &point_params(case, g)).outputs
-    })
 }
 
 pub(crate) fn solve_guarded(case: &Case, sweep: &str) -> CaseRow {
