@@ -6,7 +6,9 @@ through any chain (no cycle in the file graph; a `pub use` re-export counts as a
 Layers, earliest first (the order in docs/method.md):
   model -> discrete -> solve -> strategy -> cases -> store -> sweep -> limits -> fit -> report
   -> render -> bench -> cli -> main.rs
-lib.rs may re-export anything. Exit 1 with one line per violation."""
+lib.rs may re-export anything. The command line (src/cli/, src/main.rs) is the binary crate: its
+`ehlmap::` paths are the library's, its `crate::cli::` paths its own. Exit 1 with one line per
+violation."""
 import os
 import re
 import sys
@@ -39,7 +41,7 @@ def strip_comments(src):
     return "\n".join(line.split("//")[0] for line in src.splitlines())
 
 
-PATH = re.compile(r"\b(crate|super|self)((?:::[A-Za-z_][A-Za-z0-9_]*)*)(::\{[^;]*?\})?")
+PATH = re.compile(r"\b(crate|ehlmap|super|self)((?:::[A-Za-z_][A-Za-z0-9_]*)*)(::\{[^;]*?\})?")
 
 
 def targets(mod, text, mods):
@@ -51,7 +53,7 @@ def targets(mod, text, mods):
             continue
         parts = [p for p in rest.split("::") if p]
         here = [] if mod in (("lib",), ("main",)) else list(mod)
-        if head == "crate":
+        if head in ("crate", "ehlmap"):
             base = []
         elif head == "self":
             base = here

@@ -5,7 +5,6 @@
 
 pub mod bench;
 pub mod cases;
-pub mod cli;
 pub mod discrete;
 pub mod fit;
 pub mod limits;

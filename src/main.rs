@@ -1,5 +1,9 @@
+//! The `ehlmap` command: [`cli`] parses the arguments and runs a subcommand over the library.
+
+mod cli;
+
 use clap::Parser;
 
 fn main() {
-    std::process::exit(ehlmap::cli::run(&ehlmap::cli::Cli::parse()));
+    std::process::exit(cli::run(&cli::Cli::parse()));
 }

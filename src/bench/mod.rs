@@ -9,15 +9,3 @@
 pub mod selection;
 pub mod speed;
 pub mod stability;
-
-use plotters::style::RGBColor;
-
-/// Series colours shared by the bench charts.
-pub(crate) const COLORS: [RGBColor; 6] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(255, 127, 14),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-];

@@ -1,13 +1,12 @@
 //! `ehlmap bench` and `ehlmap stability`: tables (Parquet), summaries (Markdown) and charts.
 
-use crate::bench::selection;
-use crate::bench::speed::{self, BenchCase, BenchRow, Reference};
-use crate::bench::stability::{self, Cell};
-use crate::bench::COLORS;
 use crate::cli::error::InputError;
-use crate::model::case::{LineCase, PointCase};
-use crate::store::table::{write_table, Column};
-use plotters::prelude::*;
+use ehlmap::bench::selection;
+use ehlmap::bench::speed::{self, BenchCase, BenchRow};
+use ehlmap::bench::stability::{self, Cell};
+use ehlmap::model::case::{LineCase, PointCase};
+use ehlmap::render::bench_charts::{self, MapCell, Outcome, Series};
+use ehlmap::store::table::{write_table, Column};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -46,144 +45,6 @@ pub struct StabilityArgs {
     /// (`--grid` then counts points per direction; give e.g. 129).
     #[arg(long = "point-D")]
     pub point_d: Option<f64>,
-}
-
-fn e<T: std::fmt::Debug>(x: T) -> InputError {
-    InputError(format!("{x:?}"))
-}
-
-fn err_vs_time(path: &Path, refs: &[Reference], rows: &[BenchRow]) -> Result<(), InputError> {
-    crate::render::charts::ensure_font();
-    let root = BitMapBackend::new(path, (560 * refs.len() as u32, 480)).into_drawing_area();
-    root.fill(&WHITE).map_err(e)?;
-    let panels = root.split_evenly((1, refs.len()));
-    for (panel, r) in panels.iter().zip(refs) {
-        let sel: Vec<&BenchRow> = rows
-            .iter()
-            .filter(|x| x.case == r.case && x.status == "converged")
-            .collect();
-        let tmin = sel
-            .iter()
-            .map(|x| x.wall_s)
-            .fold(f64::INFINITY, f64::min)
-            .max(1e-5)
-            * 0.5;
-        let tmax = sel.iter().map(|x| x.wall_s).fold(1e-4, f64::max) * 2.0;
-        let emin = sel
-            .iter()
-            .map(|x| x.err_h_c.max(1e-7))
-            .fold(f64::INFINITY, f64::min)
-            * 0.5;
-        let emax = sel.iter().map(|x| x.err_h_c).fold(1e-6, f64::max) * 2.0;
-        let mut ch = ChartBuilder::on(panel)
-            .caption(
-                format!("{}: error of H_c vs time", r.case),
-                ("sans-serif", 18),
-            )
-            .margin(10)
-            .x_label_area_size(36)
-            .y_label_area_size(56)
-            .build_cartesian_2d((tmin..tmax).log_scale(), (emin..emax).log_scale())
-            .map_err(e)?;
-        ch.configure_mesh()
-            .x_desc("wall time (s)")
-            .y_desc("|H_c/H_ref - 1|")
-            .x_label_formatter(&|v| format!("{v:.2e}"))
-            .y_label_formatter(&|v| format!("{v:.1e}"))
-            .draw()
-            .map_err(e)?;
-        for (k, m) in speed::methods().iter().enumerate() {
-            let pts: Vec<(f64, f64)> = sel
-                .iter()
-                .filter(|x| x.method == m.label)
-                .map(|x| (x.wall_s, x.err_h_c.max(1e-7)))
-                .collect();
-            let c = COLORS[k % COLORS.len()];
-            ch.draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))
-                .map_err(e)?
-                .label(m.label)
-                .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], c.stroke_width(2)));
-            ch.draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled())))
-                .map_err(e)?;
-        }
-        ch.configure_series_labels()
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .draw()
-            .map_err(e)?;
-    }
-    root.present().map_err(e)
-}
-
-fn slope(pts: &[(f64, f64)]) -> f64 {
-    let n = pts.len() as f64;
-    if pts.len() < 2 {
-        return f64::NAN;
-    }
-    let (sx, sy) = pts
-        .iter()
-        .fold((0.0, 0.0), |a, p| (a.0 + p.0.ln(), a.1 + p.1.ln()));
-    let (mx, my) = (sx / n, sy / n);
-    let num: f64 = pts.iter().map(|p| (p.0.ln() - mx) * (p.1.ln() - my)).sum();
-    let den: f64 = pts.iter().map(|p| (p.0.ln() - mx).powi(2)).sum();
-    num / den
-}
-
-fn time_vs_n(path: &Path, case: &str, rows: &[BenchRow]) -> Result<Vec<(String, f64)>, InputError> {
-    crate::render::charts::ensure_font();
-    let sel: Vec<&BenchRow> = rows
-        .iter()
-        .filter(|x| x.case == case && x.status == "converged")
-        .collect();
-    let root = BitMapBackend::new(path, (760, 520)).into_drawing_area();
-    root.fill(&WHITE).map_err(e)?;
-    let nmax = sel.iter().map(|x| x.grid as f64).fold(100.0, f64::max) * 1.5;
-    let tmin = sel
-        .iter()
-        .map(|x| x.wall_s)
-        .fold(f64::INFINITY, f64::min)
-        .max(1e-5)
-        * 0.5;
-    let tmax = sel.iter().map(|x| x.wall_s).fold(1e-4, f64::max) * 2.0;
-    let mut ch = ChartBuilder::on(&root)
-        .caption(
-            format!("{case}: time vs grid points (fitted slopes in the legend)"),
-            ("sans-serif", 18),
-        )
-        .margin(10)
-        .x_label_area_size(36)
-        .y_label_area_size(56)
-        .build_cartesian_2d((150.0..nmax).log_scale(), (tmin..tmax).log_scale())
-        .map_err(e)?;
-    ch.configure_mesh()
-        .x_desc("grid points N")
-        .y_desc("wall time (s)")
-        .draw()
-        .map_err(e)?;
-    let mut slopes = vec![];
-    for (k, m) in speed::methods().iter().enumerate() {
-        let pts: Vec<(f64, f64)> = sel
-            .iter()
-            .filter(|x| x.method == m.label)
-            .map(|x| (x.grid as f64, x.wall_s))
-            .collect();
-        let s = slope(&pts);
-        slopes.push((m.label.to_string(), s));
-        let c = COLORS[k % COLORS.len()];
-        ch.draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))
-            .map_err(e)?
-            .label(format!("{} (slope {s:.2})", m.label))
-            .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], c.stroke_width(2)));
-        ch.draw_series(pts.iter().map(|&p| Circle::new(p, 3, c.filled())))
-            .map_err(e)?;
-    }
-    ch.configure_series_labels()
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()
-        .map_err(e)?;
-    root.present().map_err(e)?;
-    Ok(slopes)
 }
 
 /// Run `ehlmap bench`.
@@ -239,17 +100,27 @@ pub fn run_bench(a: &BenchArgs) -> Result<i32, InputError> {
         )],
     )
     .map_err(InputError)?;
-    err_vs_time(&a.out.join("error_vs_time.png"), &refs, &rows)?;
+    let panels: Vec<(String, Vec<Series>)> = refs
+        .iter()
+        .map(|r| {
+            (
+                r.case.clone(),
+                method_series(&rows, &r.case, |x| (x.wall_s, x.err_h_c)),
+            )
+        })
+        .collect();
+    bench_charts::err_vs_time(&a.out.join("error_vs_time.png"), &panels).map_err(InputError)?;
     let mut md = String::from("# ehlmap bench (line and point contacts, one thread)\n\n");
     for r in &refs {
-        let slopes = time_vs_n(
+        let slopes = bench_charts::time_vs_n(
             &a.out.join(format!(
                 "time_vs_n_{}.png",
                 r.case.replace(['=', '.'], "").replace(' ', "_")
             )),
             &r.case,
-            &rows,
-        )?;
+            &method_series(&rows, &r.case, |x| (x.grid as f64, x.wall_s)),
+        )
+        .map_err(InputError)?;
         let _ = writeln!(
             md,
             "{}: reference H_c {:.6}, H_min {:.6}; time ~ N^slope: {}\n",
@@ -286,49 +157,6 @@ pub fn run_bench(a: &BenchArgs) -> Result<i32, InputError> {
     Ok(0)
 }
 
-fn stability_chart(path: &Path, cells: &[Cell], ms: &[f64], ls: &[f64]) -> Result<(), InputError> {
-    crate::render::charts::ensure_font();
-    let names: Vec<String> = stability::map_methods(1025)
-        .iter()
-        .map(|m| m.0.to_string())
-        .collect();
-    let root = BitMapBackend::new(path, (1000, 760)).into_drawing_area();
-    root.fill(&WHITE).map_err(e)?;
-    let panels = root.split_evenly((2, 2));
-    let (m0, m1) = (ms[0] * 0.7, ms[ms.len() - 1] * 1.4);
-    let l1 = ls[ls.len() - 1].max(1.0) * 1.1;
-    for (panel, name) in panels.iter().zip(&names) {
-        let mut ch = ChartBuilder::on(panel)
-            .caption(
-                format!("{name}: green converged, blue too slow, red diverged, orange stalled, grey max-iter"),
-                ("sans-serif", 13),
-            )
-            .margin(8)
-            .x_label_area_size(30)
-            .y_label_area_size(36)
-            .build_cartesian_2d((m0..m1).log_scale(), -0.1 * l1..l1)
-            .map_err(e)?;
-        ch.configure_mesh()
-            .x_desc("M")
-            .y_desc("L")
-            .draw()
-            .map_err(e)?;
-        ch.draw_series(cells.iter().filter(|c| &c.method == name).map(|c| {
-            let col = match c.status.as_str() {
-                "converged" if c.attempt <= 1 => RGBColor(44, 160, 44),
-                "converged" => RGBColor(140, 210, 120),
-                "diverged" => RGBColor(214, 39, 40),
-                "stalled" => RGBColor(255, 127, 14),
-                "too-slow" => RGBColor(31, 119, 180),
-                _ => RGBColor(150, 150, 150),
-            };
-            Circle::new((c.m, c.l), 8, col.filled())
-        }))
-        .map_err(e)?;
-    }
-    root.present().map_err(e)
-}
-
 /// `ehlmap bench --selection SPEC`: the saving of model selection on a sweep spec.
 fn run_selection(a: &BenchArgs, spec_path: &Path) -> Result<i32, InputError> {
     if !(a.accuracy > 0.0 && a.accuracy < 1.0) {
@@ -337,8 +165,8 @@ fn run_selection(a: &BenchArgs, spec_path: &Path) -> Result<i32, InputError> {
             a.accuracy
         )));
     }
-    let spec = crate::sweep::spec::load(spec_path).map_err(|x| InputError(x.to_string()))?;
-    let cases = crate::sweep::plan::plan(&spec).map_err(|x| InputError(x.to_string()))?;
+    let spec = ehlmap::sweep::spec::load(spec_path).map_err(|x| InputError(x.to_string()))?;
+    let cases = ehlmap::sweep::plan::plan(&spec).map_err(|x| InputError(x.to_string()))?;
     eprintln!(
         "bench --selection: {} cases of {}, each solved with target {} and with the full model",
         cases.len(),
@@ -446,7 +274,13 @@ pub fn run_stability(a: &StabilityArgs) -> Result<i32, InputError> {
         &[],
     )
     .map_err(InputError)?;
-    stability_chart(&a.out.join("stability.png"), &cells, &ms, &ls)?;
+    let names: Vec<String> = stability::map_methods(1025)
+        .iter()
+        .map(|m| m.0.to_string())
+        .collect();
+    let map: Vec<MapCell> = cells.iter().map(map_cell).collect();
+    bench_charts::stability_chart(&a.out.join("stability.png"), &names, &map, &ms, &ls)
+        .map_err(InputError)?;
     let mut md = String::from("| method | converged | of |\n|---|---|---|\n");
     for (n, ok, all) in stability::summary(&cells) {
         let _ = writeln!(md, "| {n} | {ok} | {all} |");
@@ -454,4 +288,37 @@ pub fn run_stability(a: &StabilityArgs) -> Result<i32, InputError> {
     std::fs::write(a.out.join("stability.md"), &md).map_err(|x| InputError(x.to_string()))?;
     println!("{md}");
     Ok(0)
+}
+
+/// One series per method of the converged rows of `case`, points from `xy`.
+fn method_series(rows: &[BenchRow], case: &str, xy: fn(&BenchRow) -> (f64, f64)) -> Vec<Series> {
+    speed::methods()
+        .iter()
+        .map(|m| Series {
+            label: m.label.to_string(),
+            points: rows
+                .iter()
+                .filter(|x| x.case == case && x.status == "converged" && x.method == m.label)
+                .map(xy)
+                .collect(),
+        })
+        .collect()
+}
+
+/// A stability cell as the chart colours it.
+fn map_cell(c: &Cell) -> MapCell {
+    let outcome = match c.status.as_str() {
+        "converged" if c.attempt <= 1 => Outcome::Converged,
+        "converged" => Outcome::ConvergedFallback,
+        "diverged" => Outcome::Diverged,
+        "stalled" => Outcome::Stalled,
+        "too-slow" => Outcome::TooSlow,
+        _ => Outcome::Other,
+    };
+    MapCell {
+        method: c.method.clone(),
+        m: c.m,
+        l: c.l,
+        outcome,
+    }
 }

@@ -23,11 +23,11 @@ pub struct CaseArgs {
 /// Run `ehlmap case`.
 pub fn run_case(a: &CaseArgs) -> Result<i32, InputError> {
     let path = a.file.display();
-    let spec = crate::cases::read_case(&a.file).map_err(|e| InputError(e.to_string()))?;
+    let spec = ehlmap::cases::read_case(&a.file).map_err(|e| InputError(e.to_string()))?;
     if a.plot.is_some() && a.no_solve {
         return Err(InputError("--plot needs a solve: drop --no-solve".into()));
     }
-    let (r, fields) = crate::cases::run(&spec, !a.no_solve, a.plot.is_some())
+    let (r, fields) = ehlmap::cases::run(&spec, !a.no_solve, a.plot.is_some())
         .map_err(|e| InputError(format!("{path}: {e}")))?;
     if let (Some(dir), Some(o)) = (&a.plot, &r.numerical) {
         let stem = a
@@ -35,11 +35,11 @@ pub fn run_case(a: &CaseArgs) -> Result<i32, InputError> {
             .file_stem()
             .map_or("case".into(), |s| s.to_string_lossy());
         let files = match &fields {
-            Some(crate::cases::CaseFields::Line(p)) => {
-                crate::render::pictures::draw_line(dir, &stem, p, o)
+            Some(ehlmap::cases::CaseFields::Line(p)) => {
+                ehlmap::render::pictures::draw_line(dir, &stem, p, o)
             }
-            Some(crate::cases::CaseFields::Point(f)) => {
-                crate::render::pictures::draw_point(dir, &stem, f, o)
+            Some(ehlmap::cases::CaseFields::Point(f)) => {
+                ehlmap::render::pictures::draw_point(dir, &stem, f, o)
             }
             None => Err(format!("the solve returned no fields ({})", o.status)),
         };
@@ -51,7 +51,7 @@ pub fn run_case(a: &CaseArgs) -> Result<i32, InputError> {
             serde_json::to_string_pretty(&r).expect("report serialises")
         );
     } else {
-        print!("{}", crate::cases::summary(&r));
+        print!("{}", ehlmap::cases::summary(&r));
     }
     Ok(0)
 }

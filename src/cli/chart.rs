@@ -1,8 +1,8 @@
 //! `ehlmap chart regimes`: the regime map, with a case file's (M, L) marked.
 
 use crate::cli::error::InputError;
-use crate::model::regimes::{regime, short};
-use crate::render::regime_map::write_regime_map;
+use ehlmap::model::regimes::{regime, short};
+use ehlmap::render::regime_map::write_regime_map;
 use std::path::PathBuf;
 
 /// `ehlmap chart regimes [--out DIR] [--case FILE.toml] [--D d]`.
@@ -32,8 +32,8 @@ pub fn run_chart(a: &ChartArgs) -> Result<i32, InputError> {
     }
     let mut mark = None;
     if let Some(path) = &a.case {
-        let spec = crate::cases::read_case(path).map_err(|e| InputError(e.to_string()))?;
-        let r = crate::cases::report(&spec, false)
+        let spec = ehlmap::cases::read_case(path).map_err(|e| InputError(e.to_string()))?;
+        let r = ehlmap::cases::report(&spec, false)
             .map_err(|e| InputError(format!("{}: {e}", path.display())))?;
         if let Some(dc) = r.d {
             if d.is_some_and(|x| (x - dc).abs() > 1e-12 * dc) {

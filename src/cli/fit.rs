@@ -3,10 +3,10 @@
 //! too few cases is reported as skipped; exit 2 only when nothing could be fitted.
 
 use crate::cli::error::InputError;
-use crate::fit::dataset::load_fit_input;
-use crate::render::charts::write_charts;
-use crate::report::fit_report;
-use crate::report::markdown::to_markdown;
+use ehlmap::fit::dataset::load_fit_input;
+use ehlmap::render::charts::write_charts;
+use ehlmap::report::fit_report;
+use ehlmap::report::markdown::to_markdown;
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]

@@ -1,18 +1,18 @@
-//! `ehlmap solve`: one line or point case in Moes' parameters, solved by [`crate::strategy::solve_case::solve`];
+//! `ehlmap solve`: one line or point case in Moes' parameters, solved by [`ehlmap::strategy::solve_case::solve`];
 //! prints the readable summary or one JSON object (the [`Outputs`] fields), and writes the
 //! profile, fields or pictures when asked. Bad input is an [`InputError`] (exit code 2) naming
 //! the value; a solve that fails numerically is still printed with its status (exit code 0).
 
 use crate::cli::error::InputError;
 use crate::cli::output::report_plot;
-use crate::model::case::{Case, Elasticity, LineCase, Models, ParamError, PointCase};
-use crate::model::lubricant::{Density, Viscosity};
-use crate::solve::line::multigrid::CycleType;
-use crate::solve::line::Method;
-use crate::solve::solution::{ModelUsed, Outputs, Solution};
-use crate::solve::{CycleEvent, Observer};
-use crate::strategy::solve_case::{solve, SolveParams};
 use clap::ValueEnum;
+use ehlmap::model::case::{Case, Elasticity, LineCase, Models, ParamError, PointCase};
+use ehlmap::model::lubricant::{Density, Viscosity};
+use ehlmap::solve::line::multigrid::CycleType;
+use ehlmap::solve::line::Method;
+use ehlmap::solve::solution::{ModelUsed, Outputs, Solution};
+use ehlmap::solve::{CycleEvent, Observer};
+use ehlmap::strategy::solve_case::{solve, SolveParams};
 use std::path::PathBuf;
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
@@ -347,11 +347,11 @@ fn write_fields_arg(a: &SolveArgs, case: &Case, s: &Solution) -> Result<(), Inpu
     let meta = file_meta(case, &s.outputs);
     let written = match (&a.profile, &a.fields, &s.profile, &s.fields) {
         (Some(path), _, Some(prof), _) => Some(
-            crate::store::profile::write_profile(path, prof, &meta)
+            ehlmap::store::profile::write_profile(path, prof, &meta)
                 .map_err(|e| InputError(format!("--profile: {e}"))),
         ),
         (_, Some(path), _, Some(f)) => Some(
-            crate::store::fields::write_fields(path, f, &meta)
+            ehlmap::store::fields::write_fields(path, f, &meta)
                 .map_err(|e| InputError(format!("--fields: {e}"))),
         ),
         _ => None,
@@ -378,8 +378,8 @@ fn plot_arg(dir: &std::path::Path, case: &Case, s: &Solution) {
         Case::Point(c) => format!("point-M{}-L{}-D{}", c.m, c.l, c.d),
     };
     report_plot(match (&s.profile, &s.fields) {
-        (Some(prof), _) => crate::render::pictures::draw_line(dir, &stem, prof, &s.outputs),
-        (_, Some(f)) => crate::render::pictures::draw_point(dir, &stem, f, &s.outputs),
+        (Some(prof), _) => ehlmap::render::pictures::draw_line(dir, &stem, prof, &s.outputs),
+        (_, Some(f)) => ehlmap::render::pictures::draw_point(dir, &stem, f, &s.outputs),
         _ => Err(format!(
             "the solve returned no profile or fields ({})",
             s.outputs.status

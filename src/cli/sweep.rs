@@ -12,11 +12,11 @@
 //!   cost, stored or not) and exit.
 
 use crate::cli::error::InputError;
-use crate::store::results;
-use crate::sweep::executor::{self, Progress, RunOptions};
-use crate::sweep::plan::{self, Shard};
-use crate::sweep::spec;
 use clap::ValueEnum;
+use ehlmap::store::results;
+use ehlmap::sweep::executor::{self, Progress, RunOptions};
+use ehlmap::sweep::plan::{self, Shard};
+use ehlmap::sweep::spec;
 use std::path::PathBuf;
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]

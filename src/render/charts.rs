@@ -16,7 +16,7 @@ use std::sync::Once;
 static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
 static REGISTER: Once = Once::new();
 
-pub(crate) fn ensure_font() {
+pub fn ensure_font() {
     REGISTER.call_once(|| {
         // The bundled font is a valid TrueType file; failure would only lose the labels.
         let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);

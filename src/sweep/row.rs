@@ -127,7 +127,12 @@ pub fn solve_case(case: &Case, sweep: &str) -> CaseRow {
 /// A line case whose cold solve failed (no accuracy target, fallback on) is continued in M
 /// ([`warm_start_line`]); returns the case id of the neighbour it started from when that
 /// converged, and counts the chain's cost either way.
-fn warm_start(case: &Case, c: &ModelCase, params: &SolveParams, s: &mut Solution) -> Option<String> {
+fn warm_start(
+    case: &Case,
+    c: &ModelCase,
+    params: &SolveParams,
+    s: &mut Solution,
+) -> Option<String> {
     let ModelCase::Line(lc) = c else {
         return None;
     };
