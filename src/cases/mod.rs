@@ -3,10 +3,9 @@
 //! grid, and set beside the published formulas in engineering units, with the film parameter
 //! `Lambda = h_min/sigma`: `< 1` boundary, `1..3` mixed, `> 3` full film.
 
-use crate::model::case::{Contact, Models};
-pub use crate::model::dimensional::{read_case, Body, CaseError, CaseSpec};
+use crate::model::case::Contact;
+pub use crate::model::dimensional::{read_case, Body, CaseError, CaseSpec, Groups};
 use crate::model::lubricant::Viscosity;
-use crate::model::oils::Resolved;
 use crate::solve::solution::{Outputs, PointFields, Profile};
 use crate::solve::Status;
 use crate::strategy::solve_case::{solve as solve_case, SolveParams};
@@ -15,39 +14,18 @@ use serde::Serialize;
 /// Everything derived from a case, and the results (SI units).
 #[derive(Clone, Debug, Serialize)]
 pub struct CaseReport {
+    /// Line or point contact.
     pub contact: Contact,
-    /// Line: R; point: Rx (m).
-    pub r: f64,
-    /// Point: Ry (m), D = Rx/Ry, exact k = a/b, a = semi-axis across rolling (m).
-    pub ry: Option<f64>,
-    pub d: Option<f64>,
-    pub k: Option<f64>,
-    pub a: Option<f64>,
-    pub e_reduced: f64,
-    pub eta0: f64,
-    pub alpha: f64,
-    pub lubricant: Option<Resolved>,
-    /// The solver's lubricant models (the published formulas are Barus, incompressible).
-    pub models: Models,
-    /// Load group (u_m convention): W' (line) or W (point).
-    pub w_prime: f64,
-    pub u_mean: f64,
-    pub g: f64,
-    pub m: f64,
-    pub l: f64,
-    /// Solver (Venner) groups lambda and alpha_bar.
-    pub lambda: f64,
-    pub alpha_bar: f64,
-    /// Hertz semi-width along x (m) and maximum Hertz pressure (Pa).
-    pub b: f64,
-    pub p_h: f64,
-    pub g_v: f64,
-    pub g_e: f64,
-    pub regime: String,
+    /// The case's groups.
+    #[serde(flatten)]
+    pub groups: Groups,
+    /// The numerical solve, when there was one (converged or not).
     pub numerical: Option<Outputs>,
-    /// Film thicknesses in m: (name, h_c or h_min, value).
+    /// Film thicknesses in m: (name, h_c or h_min, value); a converged solve first.
     pub films: Vec<(String, String, f64)>,
+    /// The solve's maximum pressure (Pa), when it converged.
     pub p_max: Option<f64>,
+    /// Lambda = h_min/sigma and its reading, when a roughness is given.
     pub film_parameter: Option<f64>,
     pub film_reading: Option<String>,
 }
@@ -75,7 +53,7 @@ pub fn run(
             ..SolveParams::default()
         };
         let s = solve_case(&d.case, &params);
-        p_max = add_numerical(&mut films, &s.outputs, |h| d.to_h(h), d.p_h);
+        p_max = add_numerical(&mut films, &s.outputs, |h| d.to_h(h), d.groups.p_h);
         fields = match (s.profile, s.fields) {
             (Some(p), _) => Some(CaseFields::Line(p)),
             (_, Some(f)) => Some(CaseFields::Point(f)),
@@ -85,28 +63,7 @@ pub fn run(
     }
     let mut rep = CaseReport {
         contact: d.case.contact(),
-        r: d.r,
-        ry: d.ry,
-        d: d.d,
-        k: d.k,
-        a: d.a,
-        e_reduced: d.e_reduced,
-        eta0: d.eta0,
-        alpha: d.alpha,
-        lubricant: d.lubricant,
-        models: d.models,
-        w_prime: d.w_prime,
-        u_mean: d.u_mean,
-        g: d.g,
-        m: d.m,
-        l: d.l,
-        lambda: d.lambda,
-        alpha_bar: d.alpha_bar,
-        b: d.b,
-        p_h: d.p_h,
-        g_v: d.g_v,
-        g_e: d.g_e,
-        regime: d.regime,
+        groups: d.groups,
         numerical,
         films,
         p_max,
@@ -166,56 +123,56 @@ pub fn summary(r: &CaseReport) -> String {
             "point contact: Rx = {:.3} mm, Ry = {:.3} mm, D = Rx/Ry = {:.5}, k = a/b = {:.4}\n\
              Hertz: a = {:.4} mm, b = {:.4} mm, p_h = {:.3} GPa, E' = {:.1} GPa\n\
              groups (u_m): W = {:.3e}, U = {:.3e}, G = {:.0}; g_v = {:.3e}, g_e = {:.3e}, regime {}\n",
-            r.r * 1e3,
-            r.ry.unwrap_or(f64::NAN) * 1e3,
-            r.d.unwrap_or(f64::NAN),
-            r.k.unwrap_or(f64::NAN),
-            r.a.unwrap_or(f64::NAN) * 1e3,
-            r.b * 1e3,
-            r.p_h * 1e-9,
-            r.e_reduced * 1e-9,
-            r.w_prime,
-            r.u_mean,
-            r.g,
-            r.g_v,
-            r.g_e,
-            r.regime
+            r.groups.r * 1e3,
+            r.groups.ry.unwrap_or(f64::NAN) * 1e3,
+            r.groups.d.unwrap_or(f64::NAN),
+            r.groups.k.unwrap_or(f64::NAN),
+            r.groups.a.unwrap_or(f64::NAN) * 1e3,
+            r.groups.b * 1e3,
+            r.groups.p_h * 1e-9,
+            r.groups.e_reduced * 1e-9,
+            r.groups.w_prime,
+            r.groups.u_mean,
+            r.groups.g,
+            r.groups.g_v,
+            r.groups.g_e,
+            r.groups.regime
         )
     } else {
         format!(
             "line contact: R = {:.3} mm, E' = {:.1} GPa, b = {:.4} mm, p_h = {:.3} GPa\n\
              groups (u_m): W' = {:.3e}, U = {:.3e}, G = {:.0}; g_v = {:.0}, g_e = {:.2}, regime {}\n",
-            r.r * 1e3,
-            r.e_reduced * 1e-9,
-            r.b * 1e3,
-            r.p_h * 1e-9,
-            r.w_prime,
-            r.u_mean,
-            r.g,
-            r.g_v,
-            r.g_e,
-            r.regime
+            r.groups.r * 1e3,
+            r.groups.e_reduced * 1e-9,
+            r.groups.b * 1e3,
+            r.groups.p_h * 1e-9,
+            r.groups.w_prime,
+            r.groups.u_mean,
+            r.groups.g,
+            r.groups.g_v,
+            r.groups.g_e,
+            r.groups.regime
         )
     };
-    if let Some(l) = &r.lubricant {
+    if let Some(l) = &r.groups.lubricant {
         s.push_str(&format!(
             "lubricant: {} at {:.1} C: nu = {:.2} mm^2/s, rho = {:.0} kg/m^3 (Walther A = {:.4}, B = {:.4})\n",
             l.name, l.temperature, l.nu, l.rho, l.walther.a, l.walther.b
         ));
     }
-    let z = match r.models.viscosity {
+    let z = match r.groups.models.viscosity {
         Viscosity::Roelands { z, .. } => format!(" z = {z:.3}"),
         Viscosity::Barus => String::new(),
     };
     s.push_str(&format!(
         "solver models: {}{z}, {}\n",
-        r.models.viscosity.name(),
-        r.models.density.name()
+        r.groups.models.viscosity.name(),
+        r.groups.models.density.name()
     ));
     s.push_str(&format!(
         "eta0 = {:.4} Pa s, alpha = {:.3e} 1/Pa\n\
          Moes (u_s): M = {:.3}, L = {:.3}; solver: lambda = {:.4e}, alpha_bar = {:.3}\n",
-        r.eta0, r.alpha, r.m, r.l, r.lambda, r.alpha_bar
+        r.groups.eta0, r.groups.alpha, r.groups.m, r.groups.l, r.groups.lambda, r.groups.alpha_bar
     ));
     if let Some(o) = &r.numerical {
         s.push_str(&format!("numerical solve: {} ({})\n", o.status, o.reason));

@@ -35,7 +35,7 @@ pub fn run_chart(a: &ChartArgs) -> Result<i32, InputError> {
         let spec = ehlmap::cases::read_case(path).map_err(|e| InputError(e.to_string()))?;
         let r = ehlmap::cases::report(&spec, false)
             .map_err(|e| InputError(format!("{}: {e}", path.display())))?;
-        if let Some(dc) = r.d {
+        if let Some(dc) = r.groups.d {
             if d.is_some_and(|x| (x - dc).abs() > 1e-12 * dc) {
                 return Err(InputError(format!(
                     "--D {} contradicts the case's D = {dc}",
@@ -52,9 +52,9 @@ pub fn run_chart(a: &ChartArgs) -> Result<i32, InputError> {
             .file_stem()
             .map_or("case".into(), |s| s.to_string_lossy().into_owned());
         mark = Some((
-            r.m,
-            r.l,
-            format!("{label} ({})", short(regime(r.m, r.l, d))),
+            r.groups.m,
+            r.groups.l,
+            format!("{label} ({})", short(regime(r.groups.m, r.groups.l, d))),
         ));
     }
     let files = write_regime_map(&a.out, d, mark.as_ref().map(|m| (m.0, m.1, m.2.as_str())))

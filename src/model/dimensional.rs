@@ -265,16 +265,9 @@ pub fn read_case(path: &std::path::Path) -> Result<CaseSpec, CaseError> {
     })
 }
 
-/// A case file's groups in SI units and Moes' parameters, the Moes case the solver takes, and
-/// the published formulas' films (m).
-#[derive(Clone, Debug)]
-pub struct Derived {
-    /// The case in Moes' parameters with the solver's models.
-    pub case: Case,
-    /// Finest grid of the solve.
-    pub grid: usize,
-    /// The speed group U_s = 2 U_m: a film is h = H_Moes r U_s^(1/2) (m).
-    pub u_s: f64,
+/// A case's groups in SI units and Moes' parameters (the JSON fields of `ehlmap case`).
+#[derive(Clone, Debug, Serialize)]
+pub struct Groups {
     /// Line: R; point: Rx (m).
     pub r: f64,
     /// Point: Ry (m), D = Rx/Ry, exact k = a/b, a = semi-axis across rolling (m).
@@ -282,16 +275,21 @@ pub struct Derived {
     pub d: Option<f64>,
     pub k: Option<f64>,
     pub a: Option<f64>,
+    /// Reduced modulus E' (Pa).
     pub e_reduced: f64,
+    /// Ambient viscosity (Pa s) and pressure-viscosity coefficient (1/Pa).
     pub eta0: f64,
     pub alpha: f64,
+    /// The Walther oil the viscosity came from, when the case file named one.
     pub lubricant: Option<Resolved>,
     /// The solver's lubricant models (the published formulas are Barus, incompressible).
     pub models: Models,
     /// Load group (u_m convention): W' (line) or W (point).
     pub w_prime: f64,
+    /// Speed group U (u_m convention) and materials group G = alpha E'.
     pub u_mean: f64,
     pub g: f64,
+    /// Moes' parameters (u_s convention).
     pub m: f64,
     pub l: f64,
     /// Solver (Venner) groups lambda and alpha_bar.
@@ -300,9 +298,24 @@ pub struct Derived {
     /// Hertz semi-width along x (m) and maximum Hertz pressure (Pa).
     pub b: f64,
     pub p_h: f64,
+    /// The textbook's viscosity and elasticity parameters and its regime.
     pub g_v: f64,
     pub g_e: f64,
     pub regime: String,
+}
+
+/// A case file derived: its groups, the Moes case the solver takes, and the published formulas'
+/// films (m).
+#[derive(Clone, Debug)]
+pub struct Derived {
+    /// The case in Moes' parameters with the solver's models.
+    pub case: Case,
+    /// Finest grid of the solve.
+    pub grid: usize,
+    /// The speed group U_s = 2 U_m: a film is h = H_Moes r U_s^(1/2) (m).
+    pub u_s: f64,
+    /// The groups.
+    pub groups: Groups,
     /// The published formulas' films in m: (name, h_c or h_min, value).
     pub films: Vec<(String, String, f64)>,
 }
@@ -310,7 +323,7 @@ pub struct Derived {
 impl Derived {
     /// A film in Moes units as metres.
     pub fn to_h(&self, h_moes: f64) -> f64 {
-        h_moes * self.r * self.u_s.sqrt()
+        h_moes * self.groups.r * self.u_s.sqrt()
     }
 }
 
@@ -399,28 +412,30 @@ fn line_groups(spec: &CaseSpec) -> Result<Derived, CaseError> {
         case: Case::Line(case),
         grid,
         u_s,
-        r,
-        ry: None,
-        d: None,
-        k: None,
-        a: None,
-        e_reduced: e_red,
-        eta0,
-        alpha,
-        lubricant: lub,
-        models,
-        w_prime,
-        u_mean: u_m,
-        g,
-        m,
-        l,
-        lambda: venner.lambda,
-        alpha_bar: venner.alpha_bar,
-        b,
-        p_h,
-        g_v: gp.g_v,
-        g_e: gp.g_e,
-        regime: format!("{regime:?}"),
+        groups: Groups {
+            r,
+            ry: None,
+            d: None,
+            k: None,
+            a: None,
+            e_reduced: e_red,
+            eta0,
+            alpha,
+            lubricant: lub,
+            models,
+            w_prime,
+            u_mean: u_m,
+            g,
+            m,
+            l,
+            lambda: venner.lambda,
+            alpha_bar: venner.alpha_bar,
+            b,
+            p_h,
+            g_v: gp.g_v,
+            g_e: gp.g_e,
+            regime: format!("{regime:?}"),
+        },
         films,
     })
 }
@@ -517,28 +532,30 @@ fn point_groups(spec: &CaseSpec) -> Result<Derived, CaseError> {
         case: Case::Point(case),
         grid,
         u_s,
-        r: rx,
-        ry: Some(ry),
-        d: Some(d),
-        k: Some(el.k),
-        a: Some(a),
-        e_reduced: e_red,
-        eta0,
-        alpha,
-        lubricant: lub,
-        models,
-        w_prime: w,
-        u_mean: u_m,
-        g,
-        m,
-        l,
-        lambda: venner.lambda,
-        alpha_bar: venner.alpha_bar,
-        b,
-        p_h,
-        g_v: gp.g_v,
-        g_e: gp.g_e,
-        regime: format!("{regime:?}"),
+        groups: Groups {
+            r: rx,
+            ry: Some(ry),
+            d: Some(d),
+            k: Some(el.k),
+            a: Some(a),
+            e_reduced: e_red,
+            eta0,
+            alpha,
+            lubricant: lub,
+            models,
+            w_prime: w,
+            u_mean: u_m,
+            g,
+            m,
+            l,
+            lambda: venner.lambda,
+            alpha_bar: venner.alpha_bar,
+            b,
+            p_h,
+            g_v: gp.g_v,
+            g_e: gp.g_e,
+            regime: format!("{regime:?}"),
+        },
         films,
     })
 }
