@@ -5,11 +5,12 @@
 use ehlmap::model::case::{Elasticity, LineCase, Models};
 use ehlmap::model::formulas::moes_line_hc;
 use ehlmap::solve::line::multigrid::{LineMgParams, LineMultigrid};
-use ehlmap::solve::line::{solve_line, LineSolution, LineSolveParams};
+use ehlmap::solve::line::{solve_line, LineSolveParams};
+use ehlmap::solve::solution::Solution;
 use ehlmap::solve::Status;
 use ehlmap::strategy::accuracy::richardson3;
 
-fn solve(m: f64, l: f64, models: Models, grid: usize) -> LineSolution {
+fn solve(m: f64, l: f64, models: Models, grid: usize) -> Solution {
     let case = LineCase::with_models(m, l, models).unwrap();
     let mut p = LineSolveParams::default();
     p.mg.grid = grid;

@@ -10,7 +10,7 @@ use ehlmap::solve::point::multigrid::PointMultigrid;
 use ehlmap::solve::point::{solve_point, PointMgParams, PointSolveParams};
 use ehlmap::solve::Status;
 
-fn solve(m: f64, l: f64, d: f64, grid: usize) -> ehlmap::solve::point::PointSolution {
+fn solve(m: f64, l: f64, d: f64, grid: usize) -> ehlmap::Solution {
     let case = PointCase::new(m, l, d).unwrap();
     let p = PointSolveParams {
         mg: PointMgParams {

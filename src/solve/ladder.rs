@@ -4,7 +4,7 @@
 //! attempts made, and a converged solve whose H_min <= 0 carries a warning (the grid does not
 //! resolve the film).
 
-use crate::solve::solution::Outputs;
+use crate::solve::solution::{Outputs, Solution};
 use crate::solve::{SolveInfo, Status};
 
 /// A solve result the ladder can rank and annotate.
@@ -65,4 +65,19 @@ pub fn run_ladder<S: Attempt>(names: &[&str], mut run: impl FnMut(usize) -> S) -
     out.work_units = spent_wu;
     out.wall_s = spent_s;
     s
+}
+
+impl Attempt for Solution {
+    fn parts(&mut self) -> (&mut SolveInfo, &mut Outputs) {
+        (&mut self.info, &mut self.outputs)
+    }
+    fn info(&self) -> &SolveInfo {
+        &self.info
+    }
+    fn set_attempt(&mut self, k: usize) {
+        self.attempt = k;
+    }
+    fn attempt(&self) -> usize {
+        self.attempt
+    }
 }

@@ -12,6 +12,7 @@
 //!   (M, L) alone do not fix.
 //! * `load_error`: (h sum P - pi/2)/(pi/2) on the finest grid.
 
+use crate::model::error::ParamError;
 use crate::solve::{SolveInfo, Status};
 use serde::{Deserialize, Serialize};
 
@@ -59,12 +60,16 @@ impl std::fmt::Display for ModelUsed {
 }
 
 impl std::str::FromStr for ModelUsed {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
+    type Err = ParamError;
+    fn from_str(s: &str) -> Result<Self, ParamError> {
         ModelUsed::ALL
             .into_iter()
             .find(|m| m.as_str() == s)
-            .ok_or_else(|| format!("unknown model {s:?}"))
+            .ok_or_else(|| ParamError::Unknown {
+                what: "model",
+                name: s.to_string(),
+                expected: "closed-form, rigid-isoviscous, rigid, isoviscous, slender-line or full",
+            })
     }
 }
 

@@ -10,8 +10,9 @@
 use crate::discrete::point::domain::PointDomain;
 use crate::model::case::{LineCase, PointCase};
 use crate::solve::ladder::Attempt;
-use crate::solve::line::{solve_line, LineSolution, LineSolveParams};
-use crate::solve::point::{solve_point, PointSolution, PointSolveParams};
+use crate::solve::line::{solve_line, LineSolveParams};
+use crate::solve::point::{solve_point, PointSolveParams};
+use crate::solve::solution::Solution;
 use crate::solve::Status;
 use serde::{Deserialize, Serialize};
 
@@ -148,7 +149,7 @@ pub fn solve_line_to_accuracy(
     params: &LineSolveParams,
     target: f64,
     max_grid: usize,
-) -> LineSolution {
+) -> Solution {
     refine_to_accuracy(257, max_grid, target, ESTIMATE_ORDER, |grid, last| {
         let mut p = *params;
         p.mg.grid = grid;
@@ -174,7 +175,7 @@ pub fn solve_point_to_accuracy(
     params: &PointSolveParams,
     target: f64,
     max_grid: usize,
-) -> PointSolution {
+) -> Solution {
     let mut s = refine_point(case, params, target, max_grid);
     let t = PointDomain::of_case(case, &params.mg.domain).truncation_error();
     let o = &mut s.outputs;
@@ -198,7 +199,7 @@ fn refine_point(
     params: &PointSolveParams,
     target: f64,
     max_grid: usize,
-) -> PointSolution {
+) -> Solution {
     refine_to_accuracy(33, max_grid, target, POINT_ESTIMATE_ORDER, |grid, last| {
         let mut p = *params;
         p.mg.grid = grid;

@@ -1,7 +1,7 @@
 //! Martin's closed form for the rigid-isoviscous line contact (Reynolds exit condition):
 //! H_c = H_min = 2.4475/M, and the flux thickness 3/M at the pressure maximum.
 
-use crate::solve::line::LineSolution;
+use crate::solve::solution::Solution;
 use crate::solve::solution::{ModelUsed, Outputs};
 use crate::solve::{SolveInfo, Status};
 
@@ -12,7 +12,7 @@ pub const MARTIN_FLUX: f64 = 3.0;
 
 /// The closed-form rigid-isoviscous line answer (no discretisation error: its estimate is 0
 /// until the model selection adds the neglected effect).
-pub fn closed_form_line(m: f64) -> LineSolution {
+pub fn closed_form_line(m: f64) -> Solution {
     let reason = "closed form: rigid-isoviscous line contact, H_c = H_min = 2.4475/M (Martin, \
                   Reynolds exit condition)"
         .to_string();
@@ -50,10 +50,11 @@ pub fn closed_form_line(m: f64) -> LineSolution {
         grid: 0,
         levels: 0,
     };
-    LineSolution {
+    Solution {
         outputs,
         info,
         profile: None,
         attempt: 1,
+        fields: None,
     }
 }

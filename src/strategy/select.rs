@@ -42,8 +42,9 @@ use crate::model::formulas::{
 };
 use crate::model::lubricant::{Density, Viscosity};
 use crate::solve::ladder::Attempt;
-use crate::solve::line::{solve_line, LineSolution, LineSolveParams};
-use crate::solve::point::{solve_point, PointSolution, PointSolveParams};
+use crate::solve::line::{solve_line, LineSolveParams};
+use crate::solve::point::{solve_point, PointSolveParams};
+use crate::solve::solution::Solution;
 use crate::solve::solution::{ModelUsed, Outputs};
 use crate::solve::{SolveInfo, Status};
 use crate::strategy::accuracy::solve_line_to_accuracy;
@@ -265,7 +266,7 @@ pub fn solve_line_selected(
     params: &LineSolveParams,
     target: f64,
     max_grid: usize,
-) -> (LineSolution, Selection) {
+) -> (Solution, Selection) {
     let screened = select(case.m, case.l, None, &case.models, target);
     let mut cp = *params;
     cp.mg.grid = CHECK_GRID_LINE;
@@ -292,7 +293,7 @@ pub fn solve_point_selected(
     params: &PointSolveParams,
     target: f64,
     max_grid: usize,
-) -> (PointSolution, Selection) {
+) -> (Solution, Selection) {
     let screened = select(case.m, case.l, Some(case.d), &case.models, target);
     let full = |p: &PointSolveParams| solve_point_to_accuracy(case, p, target, max_grid);
     if let Some(bound) = slender::gap_bound(case).filter(|b| *b < CHECK_FRACTION * target) {

@@ -40,8 +40,7 @@
 
 use crate::model::case::{Elasticity, LineCase, PointCase};
 use crate::model::lubricant::{Density, Viscosity};
-use crate::solve::line::LineSolution;
-use crate::solve::point::PointSolution;
+use crate::solve::solution::Solution;
 use crate::solve::solution::{Outputs, Spike};
 use std::f64::consts::PI;
 
@@ -93,12 +92,13 @@ pub fn point_outputs(case: &PointCase, line: &Outputs) -> Outputs {
 }
 
 /// [`point_outputs`] for a whole line solution (no point fields).
-pub fn point_solution(case: &PointCase, line: LineSolution) -> PointSolution {
-    PointSolution {
+pub fn point_solution(case: &PointCase, line: Solution) -> Solution {
+    Solution {
         outputs: point_outputs(case, &line.outputs),
         info: line.info,
         fields: None,
         attempt: line.attempt,
+        profile: None,
     }
 }
 

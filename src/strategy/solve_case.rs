@@ -157,19 +157,15 @@ impl SolveParams {
 pub fn solve(case: &Case, params: &SolveParams) -> Solution {
     let max_grid = params.max_grid.unwrap_or(default_max_grid(case.contact()));
     match (case, params.accuracy) {
-        (Case::Line(c), None) => solve_line(c, &params.line_params()).into(),
-        (Case::Point(c), None) => solve_point(c, &params.point_params()).into(),
+        (Case::Line(c), None) => solve_line(c, &params.line_params()),
+        (Case::Point(c), None) => solve_point(c, &params.point_params()),
         (Case::Line(c), Some(t)) if params.full_model => {
-            solve_line_to_accuracy(c, &params.line_params(), t, max_grid).into()
+            solve_line_to_accuracy(c, &params.line_params(), t, max_grid)
         }
         (Case::Point(c), Some(t)) if params.full_model => {
-            solve_point_to_accuracy(c, &params.point_params(), t, max_grid).into()
+            solve_point_to_accuracy(c, &params.point_params(), t, max_grid)
         }
-        (Case::Line(c), Some(t)) => solve_line_selected(c, &params.line_params(), t, max_grid)
-            .0
-            .into(),
-        (Case::Point(c), Some(t)) => solve_point_selected(c, &params.point_params(), t, max_grid)
-            .0
-            .into(),
+        (Case::Line(c), Some(t)) => solve_line_selected(c, &params.line_params(), t, max_grid).0,
+        (Case::Point(c), Some(t)) => solve_point_selected(c, &params.point_params(), t, max_grid).0,
     }
 }

@@ -11,7 +11,8 @@
 //! result is kept only when it converged; otherwise the cold result stands.
 
 use crate::model::case::LineCase;
-use crate::solve::line::{solve_line, solve_line_from, warm_guess, LineSolution, LineSolveParams};
+use crate::solve::line::{solve_line, solve_line_from, warm_guess, LineSolveParams};
+use crate::solve::solution::Solution;
 use crate::solve::Status;
 
 /// Most halvings of M tried for a converged neighbour.
@@ -23,13 +24,13 @@ pub fn warm_start_line(
     case: &LineCase,
     params: &LineSolveParams,
     spent: &mut (f64, f64),
-) -> Option<LineSolution> {
+) -> Option<Solution> {
     let mut keep = *params;
     keep.keep_profile = true;
     let at = |k: u32| -> Option<LineCase> {
         LineCase::with_models(case.m / 2f64.powi(k as i32), case.l, case.models).ok()
     };
-    let count = |s: &LineSolution, spent: &mut (f64, f64)| {
+    let count = |s: &Solution, spent: &mut (f64, f64)| {
         spent.0 += s.info.work_units;
         spent.1 += s.info.wall_s;
     };

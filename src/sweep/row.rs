@@ -143,7 +143,7 @@ fn warm_start(
     let (wu, wall) = (s.outputs.work_units, s.outputs.wall_s);
     let mut warm = None;
     if let Some(w) = warm_start_line(lc, &params.line_params(), &mut spent) {
-        *s = w.into();
+        *s = w;
         warm = Some(case.with_m(case.m / 2.0).id_hex());
     }
     s.outputs.work_units = wu + spent.0;

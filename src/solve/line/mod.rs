@@ -21,10 +21,10 @@ pub mod relax;
 
 use crate::model::case::LineCase;
 use crate::model::formulas::moes_line_hc;
-use crate::solve::ladder::{run_ladder, Attempt};
+use crate::solve::ladder::run_ladder;
 use crate::solve::line::multigrid::{CycleType, LineMgParams, LineMultigrid, WarmGuess};
 use crate::solve::single_grid::solve_relax;
-use crate::solve::solution::{line_outputs, Outputs, Profile, Solution};
+use crate::solve::solution::{line_outputs, Profile, Solution};
 use crate::solve::SolveInfo;
 
 /// Which solver.
@@ -75,16 +75,6 @@ impl Default for LineSolveParams {
     }
 }
 
-/// Everything a line solve returns.
-#[derive(Clone, Debug)]
-pub struct LineSolution {
-    pub outputs: Outputs,
-    pub info: SolveInfo,
-    pub profile: Option<Profile>,
-    /// Which attempt (1-based) produced the result.
-    pub attempt: usize,
-}
-
 /// The fallback ladder (module doc), each attempt with the name its reason carries.
 fn attempts(p: &LineMgParams) -> Vec<(&'static str, LineMgParams)> {
     let mut smooth = *p;
@@ -112,7 +102,7 @@ fn run(
     p: &LineMgParams,
     keep_profile: bool,
     guess: Option<&WarmGuess>,
-) -> LineSolution {
+) -> Solution {
     let mut mg = LineMultigrid::new(case, p);
     if let Some(g) = guess {
         mg.set_guess(g.clone());
@@ -121,12 +111,7 @@ fn run(
     package(case, &mg, info, keep_profile)
 }
 
-fn package(
-    case: &LineCase,
-    mg: &LineMultigrid,
-    info: SolveInfo,
-    keep_profile: bool,
-) -> LineSolution {
+fn package(case: &LineCase, mg: &LineMultigrid, info: SolveInfo, keep_profile: bool) -> Solution {
     let fine = mg.levels.last().expect("levels");
     let ic = mg.domain.centre_index(fine.len() - 1);
     let hs = 8.0 * case.m / std::f64::consts::PI;
@@ -136,11 +121,12 @@ fn package(
         p: fine.p.clone(),
         h: fine.film.iter().map(|v| v * hs).collect(),
     });
-    LineSolution {
+    Solution {
         outputs,
         info,
         profile,
         attempt: 1,
+        fields: None,
     }
 }
 
@@ -153,14 +139,14 @@ fn single_level(p: &LineMgParams) -> LineMgParams {
 }
 
 /// Solve a line contact. Never panics on a valid case; numerical failure is a status.
-pub fn solve_line(case: &LineCase, params: &LineSolveParams) -> LineSolution {
+pub fn solve_line(case: &LineCase, params: &LineSolveParams) -> Solution {
     solve_line_from(case, params, None)
 }
 
 /// The warm-start guess for `case` from a solved neighbour (same models, another M or L;
 /// its solution must carry its profile): the neighbour's P(X), and a central film scaled from
 /// the neighbour's by the ratio of Moes' formula at the two cases.
-pub fn warm_guess(case: &LineCase, neighbour: &LineCase, from: &LineSolution) -> Option<WarmGuess> {
+pub fn warm_guess(case: &LineCase, neighbour: &LineCase, from: &Solution) -> Option<WarmGuess> {
     let prof = from.profile.as_ref()?;
     let ratio = moes_line_hc(case.m, case.l) / moes_line_hc(neighbour.m, neighbour.l);
     let centre_film = from.outputs.h_c * ratio / (8.0 * case.m / std::f64::consts::PI);
@@ -177,7 +163,7 @@ pub fn solve_line_from(
     case: &LineCase,
     params: &LineSolveParams,
     guess: Option<&WarmGuess>,
-) -> LineSolution {
+) -> Solution {
     match params.method {
         Method::Multigrid => {}
         Method::Newton => {
@@ -199,31 +185,4 @@ pub fn solve_line_from(
     run_ladder(&names, |k| {
         run(case, &list[k].1, params.keep_profile, guess)
     })
-}
-
-impl Attempt for LineSolution {
-    fn parts(&mut self) -> (&mut SolveInfo, &mut Outputs) {
-        (&mut self.info, &mut self.outputs)
-    }
-    fn info(&self) -> &SolveInfo {
-        &self.info
-    }
-    fn set_attempt(&mut self, k: usize) {
-        self.attempt = k;
-    }
-    fn attempt(&self) -> usize {
-        self.attempt
-    }
-}
-
-impl From<LineSolution> for Solution {
-    fn from(s: LineSolution) -> Self {
-        Solution {
-            outputs: s.outputs,
-            info: s.info,
-            attempt: s.attempt,
-            profile: s.profile,
-            fields: None,
-        }
-    }
 }

@@ -18,7 +18,7 @@ pub mod relax;
 use crate::discrete::point::domain::BIAS_CAUTION;
 use crate::model::case::PointCase;
 use crate::solve::fmg::fmg_solve;
-use crate::solve::ladder::{run_ladder, Attempt};
+use crate::solve::ladder::run_ladder;
 use crate::solve::line::multigrid::CycleType;
 use crate::solve::line::Method;
 pub use crate::solve::point::multigrid::PointMgParams;
@@ -55,16 +55,6 @@ impl Default for PointSolveParams {
             keep_fields: false,
         }
     }
-}
-
-/// Everything a point solve returns.
-#[derive(Clone, Debug)]
-pub struct PointSolution {
-    pub outputs: Outputs,
-    pub info: SolveInfo,
-    pub fields: Option<PointFields>,
-    /// Which attempt (1-based) produced the result.
-    pub attempt: usize,
 }
 
 fn attempts(p: &PointMgParams) -> Vec<PointMgParams> {
@@ -150,13 +140,13 @@ pub fn point_outputs(mg: &PointMultigrid, info: &SolveInfo) -> Outputs {
     out
 }
 
-fn run(case: &PointCase, p: &PointMgParams, keep_fields: bool) -> PointSolution {
+fn run(case: &PointCase, p: &PointMgParams, keep_fields: bool) -> Solution {
     let mut mg = PointMultigrid::new(case, p);
     let info = fmg_solve(&mut mg);
     package(&mg, info, keep_fields)
 }
 
-fn package(mg: &PointMultigrid, info: SolveInfo, keep_fields: bool) -> PointSolution {
+fn package(mg: &PointMultigrid, info: SolveInfo, keep_fields: bool) -> Solution {
     let outputs = point_outputs(mg, &info);
     let fields = keep_fields.then(|| {
         let lv = mg.levels.last().expect("levels");
@@ -167,11 +157,12 @@ fn package(mg: &PointMultigrid, info: SolveInfo, keep_fields: bool) -> PointSolu
             h: lv.film.iter().map(|v| v * mg.phys.h_scale).collect(),
         }
     });
-    PointSolution {
+    Solution {
         outputs,
         info,
         fields,
         attempt: 1,
+        profile: None,
     }
 }
 
@@ -183,21 +174,6 @@ const ATTEMPT_NAMES: [&str; 4] = [
     "distributive relaxation, W cycles",
 ];
 
-impl Attempt for PointSolution {
-    fn parts(&mut self) -> (&mut SolveInfo, &mut Outputs) {
-        (&mut self.info, &mut self.outputs)
-    }
-    fn info(&self) -> &SolveInfo {
-        &self.info
-    }
-    fn set_attempt(&mut self, k: usize) {
-        self.attempt = k;
-    }
-    fn attempt(&self) -> usize {
-        self.attempt
-    }
-}
-
 /// The baselines run on one level: the finest grid itself.
 fn single_level(p: &PointMgParams) -> PointMgParams {
     let mut s = *p;
@@ -206,7 +182,7 @@ fn single_level(p: &PointMgParams) -> PointMgParams {
 }
 
 /// Solve a point contact. Never panics on a valid case; numerical failure is a status.
-pub fn solve_point(case: &PointCase, params: &PointSolveParams) -> PointSolution {
+pub fn solve_point(case: &PointCase, params: &PointSolveParams) -> Solution {
     match params.method {
         Method::Multigrid => {}
         Method::Newton => {
@@ -228,16 +204,4 @@ pub fn solve_point(case: &PointCase, params: &PointSolveParams) -> PointSolution
     run_ladder(&ATTEMPT_NAMES[..list.len()], |k| {
         run(case, &list[k], params.keep_fields)
     })
-}
-
-impl From<PointSolution> for Solution {
-    fn from(s: PointSolution) -> Self {
-        Solution {
-            outputs: s.outputs,
-            info: s.info,
-            attempt: s.attempt,
-            profile: None,
-            fields: s.fields,
-        }
-    }
 }
