@@ -18,7 +18,8 @@ pub struct BenchArgs {
     /// Timed repeats per point (median).
     #[arg(long, default_value_t = 3)]
     pub repeats: usize,
-    /// Smaller ladder (257..2049 points, reference from 4097): about a minute.
+    /// Smaller ladder (line 257..2049 points, reference from 4097; point 33^2..129^2, reference
+    /// from 257^2).
     #[arg(long)]
     pub quick: bool,
     /// Instead of the speed ladder: solve every case of this sweep spec with the accuracy target
@@ -33,12 +34,13 @@ pub struct BenchArgs {
 
 #[derive(clap::Args, Debug)]
 pub struct StabilityArgs {
+    /// Output directory for stability.parquet, stability.md and stability.png.
     #[arg(long, default_value = "outputs/stability")]
     pub out: PathBuf,
     /// Finest grid of the multigrid runs.
     #[arg(long, default_value_t = 1025)]
     pub grid: usize,
-    /// A 5 x 3 map instead of 8 x 5.
+    /// A 5 x 3 map (M x L) instead of 8 x 5.
     #[arg(long)]
     pub quick: bool,
     /// Map point contacts of this ellipticity D = Rx/Ry in (0, 1] instead of line contacts

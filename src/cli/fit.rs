@@ -21,8 +21,8 @@ pub struct FitArgs {
     /// Print fit.json to stdout instead of the Markdown report.
     #[arg(long)]
     pub json: bool,
-    /// Skip the solver's asymptote limit solves (a few seconds for line data; for point data they
-    /// solve on the data's grid, at least 257^2: 1-2 min on two cores, 7 min for 513^2 data).
+    /// Skip the solver's asymptote limit solves (for point data they solve the limit cases on the
+    /// data's grid, at least 257^2: minutes for fine grids).
     #[arg(long)]
     pub no_limit_solves: bool,
 }
@@ -32,9 +32,8 @@ pub fn run_fit(a: &FitArgs) -> Result<i32, InputError> {
     let input = load_fit_input(&a.datasets).map_err(InputError)?;
     if !a.no_limit_solves && !input.point.is_empty() {
         eprintln!(
-            "fitting; the point asymptote checks solve the limit cases on the data's grid (1-2 min \
-             on two cores for 257^2 or coarser data, about 7 min for 513^2; --no-limit-solves \
-             skips them)"
+            "fitting; the point asymptote checks solve the limit cases on the data's grid \
+             (minutes for fine grids; --no-limit-solves skips them)"
         );
     }
     let report = fit_report(&input, !a.no_limit_solves).map_err(InputError)?;

@@ -1,18 +1,19 @@
-//! The film-thickness model fitted to the sweeps: Moes' (1992) blend of four power-law asymptotes,
-//! with every exponent, the blending powers and the blending-exponent law free.
+//! The line film-thickness model fitted to the sweeps: Moes' (1992) blend of four power-law
+//! asymptotes, with every exponent, the blending powers and the blending-exponent laws free.
 //!
-//! H_RI = c_RI / M (fixed: the exact rigid-isoviscous constant, 2.4475 for the film at X = 0),
-//! H_EI = a M^alpha, H_RP = b L^beta, H_EP = d M^gamma L^delta,
+//! H_RI = c_RI / M (fixed: the exact rigid-isoviscous constant of the film, 2.4475 for H_c and
+//! H_min, 3 for H_pm), H_EI = a M^alpha, H_RP = b L^beta, H_EP = d M^gamma L^delta,
+//!
 //! H = [ (H_RI^p + H_EI^p)^(s/p) + (H_RP^-q + H_EP^-q)^(-s/q) ]^(1/s),
-//! s = s0 + s1 exp(-s2 H_EI/H_RI), p = p0 + p1 exp(-s2 H_EI/H_RI).
-//! The p law (p1 = 0 is Moes) lets the isoviscous blend sharpen through the RI-EI transition the
-//! way Moes' s law does for the outer blend: at L = 0 the s law cancels and a constant p cannot
-//! follow the numerics near M = 1-3 (on the nightly line sweep the local p needed goes from 2.7 at
-//! M = 1 to 1.6 at M = 2.9); with it the max error fell from 4.9 % to 4.6 %, RMS 1.4 % to 1.2 %.
-//! Moes 1992 is the parameter vector [`LineModel::moes`]: a = 2.621, alpha = -1/5, b = 1.287,
-//! beta = 2/3, d = 1.311, gamma = -1/8, delta = 3/4, p = 7/3, q = 7/2, s0 = 7/5, s1 = 8/5, s2 = 2,
-//! p1 = 0.
-//! At L = 0 the piezoviscous bracket vanishes.
+//! s = s0 + s1 exp(-s2 H_EI/H_RI), p = p0 + p1 exp(-s2 H_EI/H_RI);
+//!
+//! at L = 0 the piezoviscous bracket is dropped. Parameters: the vector of [`PARAM_NAMES`]
+//! (constants as logarithms) and c_RI. The p law (p1 = 0 is Moes) lets the isoviscous blend
+//! sharpen through the RI-EI transition the way Moes' s law does for the outer blend: at L = 0 the
+//! s law cancels and a constant p cannot follow the numerics near M = 1-3 (figures:
+//! docs/validation.md, "Earlier fit changes"). Moes 1992 is [`LineModel::moes`]: a = 2.621,
+//! alpha = -1/5, b = 1.287, beta = 2/3, d = 1.311, gamma = -1/8, delta = 3/4, p = 7/3, q = 7/2,
+//! s0 = 7/5, s1 = 8/5, s2 = 2, p1 = 0, c_RI = 3 (docs/physics.md section 4).
 
 use serde::{Deserialize, Serialize};
 
@@ -43,7 +44,8 @@ pub const PARAM_NAMES: [&str; 13] = [
     "s1", "s2", "p1",
 ];
 
-/// A line-contact film model: the fixed rigid-isoviscous constant and 12 free parameters.
+/// A line-contact film model: the fixed rigid-isoviscous constant `c_ri` and the 13 parameters
+/// `x` of [`PARAM_NAMES`].
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct LineModel {
     pub c_ri: f64,
@@ -51,7 +53,7 @@ pub struct LineModel {
 }
 
 impl LineModel {
-    /// The seven asymptote parameters (the blending powers p, q and the s-law stay Moes').
+    /// Indices of the seven asymptote parameters (EI, RP, EP); the rest are the blend's.
     pub const ASYMPTOTES: [usize; 7] = [0, 1, 2, 3, 4, 5, 6];
 
     /// Moes 1992 (central film; `c_ri` = 3 is his flux-thickness constant).

@@ -1,33 +1,31 @@
 //! The point-contact (elliptic) film model fitted to point sweeps: the Nijenbanning-Venner-Moes
 //! (1994) blend of four asymptotes, with NVM's D dependence times a free power-law correction.
 //!
-//! With D = Rx/Ry and each NVM D-factor normalised to 1 at D = 1 (c(D) = 1 + 0.006 ln D + 0.63 D^(4/7)):
+//! With D = Rx/Ry and each NVM D factor normalised to 1 at D = 1
+//! (c(D) = 1 + 0.006 ln D + 0.63 D^(4/7)):
+//!
 //! H_RI = c_RI  f_RI(D) D^e_RI M^-2,            f_RI = [(1 + 0.796 D^(14/15))/1.796]^(-15/7) / D
 //! H_EI = a M^alpha f_EI(D) D^e_EI,             f_EI = [c(D)/c(1)]^(-14/25) D^(-1/15)
 //! H_RP = b L^beta  f_RP(D) D^e_RP,             f_RP = [(1 + 0.691 D)/1.691]^(-2/3)
 //! H_EP = d M^gamma L^delta f_EP(D) D^e_EP,     f_EP = [c(D)/c(1)]^(-7/20) D^(-1/24)
-//! H_00 = c_00 / D (NVM's 1.8),
+//! H_00 = c_00 / D,
 //! H = { [H_RI^r + (H_EI^-4 + H_00^-4)^(-r/4)]^(s/r) + (H_RP^-8 + H_EP^-8)^(-s/8) }^(1/s),
-//! s = s0 (1 + exp(-s1 H_EI/H_RI)), with the rigid/elastic isoviscous blending power r = 3/2 in
-//! NVM.
-//! c_00 and r are freed with the other blend parameters once the data are many (the line model
-//! frees its blending powers likewise): on the 513^2 nightly point sweep, whose converged H_c
-//! reach M = 1000 at every D, NVM's c_00 = 1.8 and r = 3/2 left the L = 0 rows' curvature in M
-//! unmatched (max error 2.95 %, at M = 52, D = 0.25); freed, c_00 = 1.61 and r = 1.02 for H_c,
-//! and the max error is 1.63 %.
+//! s = s0 (1 + exp(-s1 H_EI/H_RI));
+//!
+//! at L = 0 the piezoviscous bracket is dropped. Parameters: the vector of
+//! [`POINT_PARAM_NAMES`] (constants as logarithms). [`PointModel::nvm`] (all e_i = 0,
+//! c_00 = 1.8, r = 3/2 and NVM's constants) reproduces NVM 1994 exactly (docs/physics.md
+//! section 4); the fit frees c_00 and r with the other blend parameters once the data are many
+//! (as the line model frees its blending powers).
 //!
 //! Why this D form: NVM's D factors carry the Hertzian geometry (the contact ellipse and the load
 //! per unit length at y = 0), which is what makes the elliptic EI and EP asymptotes tend to the
 //! line ones as D -> 0; the free exponent e_i only corrects the residual D trend over the swept D
-//! range (e_i = 0 is NVM). The M^-2 of H_RI is exact for a rigid isoviscous point contact (the
-//! pressure scales with 1/H^2 at fixed load), and its constant at D = 1 is the solver's own
-//! (rigid solves extrapolated to an unbounded domain, [`crate::limits::rigid_point`]: 35.5 for H_c
-//! and H_min, 45.0 at the pressure maximum), with NVM's D factor (e_RI = 0): the fitted rows
-//! (a domain-truncation error below 2 %, so M >= 19 at D = 1 on the nightly sweep) barely see
-//! the rigid-isoviscous regime. Fitted freely there, c_RI came out 40.2 with a sigma of 19 %, and
-//! e_RI took values from -0.7 to +0.6 for the three films (the same rigid film); held, the H_c
-//! fit's max error went from 1.84 % to 1.71 %.
-//! [`PointModel::nvm`] (all e_i = 0, NVM constants) reproduces NVM 1994 exactly.
+//! range. The M^-2 of H_RI is exact for a rigid isoviscous point contact (the pressure scales with
+//! 1/H^2 at fixed load); the fits hold its constant at the solver's own domain-extrapolated value
+//! ([`crate::limits::rigid_point`]) with NVM's D factor (e_RI = 0), since the fitted rows barely
+//! see the rigid-isoviscous regime. (Fit figures behind these choices: docs/validation.md, "Fit:
+//! the nightly sweeps".)
 
 use crate::fit::model::FilmModel;
 use serde::{Deserialize, Serialize};
@@ -38,7 +36,7 @@ pub const POINT_PARAM_NAMES: [&str; 16] = [
     "gamma_EP", "delta_EP", "e_EP", "s0", "s1", "ln_c_00", "r",
 ];
 
-/// A point-contact film model (16 parameters, see the module doc).
+/// A point-contact film model: the 16 parameters of [`POINT_PARAM_NAMES`] (module doc).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PointModel {
     pub x: [f64; 16],
@@ -173,7 +171,7 @@ mod tests {
                 assert!((pa[k] / na[k] - 1.0).abs() < 1e-12, "asymptote {k}");
             }
         }
-        // PHYSICS.md section 4: circular M = 20, L = 10 gives 4.71.
+        // docs/physics.md section 4: circular M = 20, L = 10 gives 4.71.
         assert!((p.eval(20.0, 10.0, 1.0) - 4.71).abs() < 0.01);
     }
 }

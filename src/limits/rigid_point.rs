@@ -1,30 +1,24 @@
 //! The rigid-isoviscous constant of a point contact, from the solver's own rigid solves.
 //!
 //! A rigid isoviscous point contact obeys H M^2 = c_RI(D) exactly (the pressure scales with
-//! 1/H^2 at fixed load), but its pressure decays like r^-3 into the inlet and the sides: a domain
-//! truncated at R loses load like 1/R, and H comes out low like
+//! 1/H^2 at fixed load; docs/physics.md section 5), and H_min = H_c (the gap is smallest at the
+//! centre). Its pressure decays like r^-3 into the inlet and the sides, so a domain truncated at
+//! R loses load like 1/R and the film comes out low like
 //!
 //! H(R) = H_inf (1 - a/R - b/R^2 - ...).
 //!
-//! The solves here enlarge the default rigid domain (src/problem/point_domain.rs) by the factors
-//! [`DOMAIN_SCALES`] = 1, 2, 4 with the grid refined alongside ([`GRIDS`]: the spacing of the
-//! default 257^2 solve, whose discretisation error is about 0.2 %), and Richardson extrapolation
-//! in 1/R removes both terms: E1(R) = 2 H(2R) - H(R), H_inf = (4 E1(2R) - E1(R))/3.
+//! [`RigidPointSolves::run`] solves the rigid case at M = 1, L = 0 on the default rigid domain
+//! ([`crate::discrete::point::domain::PointDomain`]) enlarged by [`DOMAIN_SCALES`] = 1, 2, 4, with
+//! the grid refined alongside ([`GRIDS`]: the spacing of the default 257^2 solve), and
+//! [`extrapolate`] removes both terms by Richardson extrapolation in 1/R:
 //!
-//! Measured at D = 1, M = 1 (H_c; each value grid-converged by Richardson from two or three
-//! grids; at scale 8 from 513^2 and 1025^2 with the convergence ratio measured at scale 4, its
-//! 2049^2 solve was stopped after 16 minutes): 24.84, 29.44, 32.26, 33.8 on domains scaled
-//! 1, 2, 4, 8; E1 = 34.03, 35.09, 35.40; the
-//! extrapolation is 35.44 from scales 1-4 and 35.50 from scales 2-8, hence [`C_RI_CENTRE`] = 35.5
-//! (+-0.1). The same for the film at the pressure maximum: 31.46, 37.25, 40.80, 42.86; E1 = 43.04,
-//! 44.35, 44.92; extrapolations 44.79 and 45.11: [`C_RI_PMAX`] = 45.0 (+-0.2). (NVM 1994 use 41.3,
-//! and the default domain gives 24.8 and 31.4.) The point fits hold c_RI at these values and the
-//! rigid-isoviscous check re-solves scales 1, 2, 4 and compares their extrapolation with them.
-//! For a rigid contact H_min = H_c (the gap is smallest at the centre).
+//! E1(R) = 2 H(2R) - H(R),  H_inf = (4 E1(2R) - E1(R))/3.
 //!
-//! Across D the fits use NVM's D factor f_RI(D) (e_RI = 0), and the solver agrees: the
-//! extrapolated rigid film over C_RI_CENTRE f_RI(D) is 0.9965, 0.9988, 0.9907, 0.9753 at
-//! D = 1, 0.5, 0.25, 0.1 (H_pm over C_RI_PMAX f_RI(D): 0.9954, 0.9848, 0.9687, 0.9479).
+//! [`C_RI_CENTRE`] and [`C_RI_PMAX`] are these extrapolations at D = 1, held by the point fits
+//! ([`crate::fit::point_model`]); across D the fits use NVM's D factor f_RI(D) (e_RI = 0). The
+//! rigid-isoviscous check of the fit report re-solves scales 1, 2, 4 and compares their
+//! extrapolation with the fitted law. (Solves, extrapolations and the check across D:
+//! docs/validation.md, "The circular rigid-isoviscous constant"; timings: docs/performance.md.)
 
 use crate::model::case::{Elasticity, Models, PointCase};
 use crate::solve::film::Film;
@@ -34,9 +28,10 @@ use crate::solve::Status;
 use rayon::prelude::*;
 
 /// c_RI of H_c and H_min at D = 1 (the point model's f_RI(D) is 1 there): the domain-extrapolated
-/// rigid solves of the module doc.
+/// rigid solves, +-0.1 (docs/validation.md).
 pub const C_RI_CENTRE: f64 = 35.5;
-/// c_RI of the film at the pressure maximum at D = 1.
+/// c_RI of the film at the pressure maximum at D = 1: the domain-extrapolated rigid solves, +-0.2
+/// (docs/validation.md).
 pub const C_RI_PMAX: f64 = 45.0;
 
 /// The point model's fixed c_RI for a film.
@@ -58,8 +53,7 @@ pub fn extrapolate(h: [f64; 3]) -> f64 {
     (4.0 * e1[1] - e1[0]) / 3.0
 }
 
-/// Rigid isoviscous solves at M = 1 on the enlarged domains (about 80 s on one core, 60 s on
-/// two: they run on the rayon pool).
+/// Rigid isoviscous solves at M = 1, L = 0 on the enlarged domains (run on the rayon pool).
 pub struct RigidPointSolves {
     pub d: f64,
     /// (domain scale, outputs), in [`DOMAIN_SCALES`] order.
@@ -111,7 +105,7 @@ impl RigidPointSolves {
         [0, 1, 2].map(|k| film.of_outputs(&self.solves[k].1))
     }
 
-    /// The extrapolated rigid film H M^2 at M = 1.
+    /// The extrapolated rigid film H M^2 (= H at M = 1): [`extrapolate`] of [`Self::films`].
     pub fn extrapolated(&self, film: Film) -> f64 {
         extrapolate(self.films(film))
     }

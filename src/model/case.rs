@@ -209,6 +209,23 @@ mod tests {
     use super::*;
 
     #[test]
+    fn contact_names_round_trip_and_unknown_names_are_errors() {
+        for c in Contact::ALL {
+            assert_eq!(c.as_str().parse::<Contact>(), Ok(c));
+            assert_eq!(c, c.as_str());
+        }
+        let e = "circular".parse::<Contact>().unwrap_err().to_string();
+        assert_eq!(e, "unknown contact \"circular\": expected line or point");
+        let case = Case::Point(PointCase::new(20.0, 10.0, 0.5).unwrap());
+        assert_eq!(
+            (case.contact(), case.m(), case.l(), case.d()),
+            (Contact::Point, 20.0, 10.0, Some(0.5))
+        );
+        let json = serde_json::to_value(case).unwrap();
+        assert_eq!(json["contact"], "point");
+    }
+
+    #[test]
     fn venner_groups_match_closed_forms() {
         // Direct evaluation from dimensional quantities: pick W', U, G and compare.
         let (w, u, g) = (1.0e-4_f64, 2.5e-11_f64, 5000.0_f64);

@@ -1,24 +1,24 @@
 //! Published EHL film-thickness formulas, each with its velocity convention explicit.
 //!
-//! Conventions (PHYSICS.md 1): `2/E' = (1-nu1^2)/E1 + (1-nu2^2)/E2`, `G = alpha E'`, `u_s = u1+u2`,
-//! `u_m = u_s/2`. **Moes groups use `u_s`; Hamrock-Dowson, Dowson-Toyoda, Dowson-Higginson and the
-//! textbook g-parameters use `u_m`.** Moes line: `W' = w'/(E'R)`, `U = eta0 u_s/(E'R)`,
-//! `M = W' U^-1/2`, `L = G U^1/4`, `H = (h/R) U^-1/2`; point: `W = w/(E'Rx^2)`,
-//! `U = eta0 u_s/(E'Rx)`, `M = W U^-3/4`, `L = G U^1/4`, `H = (h/Rx) U^-1/2`. [`HdGroups`] holds
-//! `U = eta0 u_m/(E'R)`, `G`, `W'` or `W`; with `U_s = 2U = (L/G)^4`: `W' = M U_s^1/2` (line),
-//! `W = M U_s^3/4` (point), `h/R = H_Moes U_s^1/2`.
+//! Conventions (docs/physics.md section 1): `2/E' = (1-nu1^2)/E1 + (1-nu2^2)/E2`, `G = alpha E'`,
+//! `u_s = u1+u2`, `u_m = u_s/2`. **Moes groups use `u_s`; Hamrock-Dowson, Dowson-Toyoda,
+//! Dowson-Higginson and the textbook g-parameters use `u_m`.** Moes line: `W' = w'/(E'R)`,
+//! `U = eta0 u_s/(E'R)`, `M = W' U^-1/2`, `L = G U^1/4`, `H = (h/R) U^-1/2`; point:
+//! `W = w/(E'Rx^2)`, `U = eta0 u_s/(E'Rx)`, `M = W U^-3/4`, `L = G U^1/4`, `H = (h/Rx) U^-1/2`.
+//! [`HdGroups`] holds `U = eta0 u_m/(E'R)`, `G`, `W'` or `W`; with `U_s = 2U = (L/G)^4`:
+//! `W' = M U_s^1/2` (line), `W = M U_s^3/4` (point), `h/R = H_Moes U_s^1/2`.
 //!
-//! Central film in Moes units: Moes 1992 line [`moes_line_hc`], Nijenbanning-Venner-Moes 1994
-//! [`nvm_point_hc`] (PHYSICS.md 4). With `u_m` groups and `H = h/R`: Dowson-Toyoda 1979 line
-//! `H_c = 3.06 U^0.69 G^0.56 W'^-0.10`; Dowson-Higginson line
+//! Central film in Moes units (docs/physics.md section 4): Moes 1992 line [`moes_line_hc`],
+//! Nijenbanning-Venner-Moes 1994 point [`nvm_point_hc`]. With `u_m` groups and `H = h/R`:
+//! Dowson-Toyoda 1979 line `H_c = 3.06 U^0.69 G^0.56 W'^-0.10`; Dowson-Higginson line
 //! `H_min = 2.65 U^0.70 G^0.54 W'^-0.13`; Hamrock-Dowson 1977
 //! `H_c = 2.69 U^0.67 G^0.53 W^-0.067 (1 - 0.61 e^(-0.73k))`,
 //! `H_min = 3.63 U^0.68 G^0.49 W^-0.073 (1 - e^(-0.68k))`, `k = a/b` (exact Hertz `k` from `D`,
 //! not the `1.03 (Ry/Rx)^0.64` fit). In Moes units the line ones are `G`-free: DT
 //! `3.06 2^-0.69 M^-0.1 L^0.56`, DH `2.65 2^-0.70 M^-0.13 L^0.54`.
 //!
-//! Textbook regime formulas (seed 002 ch. 7; PDF text garbled as "66.1" for 1.66, "13.0" for 0.13;
-//! reconstructed as follows; all `u_m`, `H = h_min/R`):
+//! Textbook regime formulas (seed 002 ch. 7; the PDF text is garbled, e.g. "66.1" for 1.66,
+//! "13.0" for 0.13; reconstructed as follows; all `u_m`, `H = h_min/R`):
 //! - Line (eqs 7-15..7-22, Table 7-1): `g_h = H W'/U`, `g_v = G W'^(3/2)/U^(1/2)`,
 //!   `g_e = W'/U^(1/2)`, `g_h = Z g_v^m g_e^n`, (Z, m, n) = Martin RI (4.9, 0, 0), Blok RP
 //!   (1.66, 2/3, 0), Herrebrugh EI (3.0, 0, 0.8), Dowson-Higginson EP (2.65, 0.54, 0.06). In Moes
@@ -31,21 +31,17 @@
 //!   book prints 0.13/1.68/3.45; Hamrock-Dowson are usually quoted with 0.131/1.683/3.42 (from
 //!   memory, unverified). In Moes units `g_v = 4 M^3 L`, `g_e = 4 M^8/3`, `H = g_h/(4M^2)` (RI
 //!   `34.9/M^2`).
-//! - Regime choice (uncertain): the book reads it off a chart (Fig. 7-5, Winer & Cheng 1980) that
-//!   is not in the text. Reconstruction: boundaries where two formulas give the same film, regime =
-//!   the formula with the largest `g_h` ([`line_regime`], [`elliptic_regime`]); this reproduces the
-//!   book's R-V call in Example 7-1. But with Table 7-1 (EP grows as `g_v^0.54`, RP as `g_v^2/3`)
-//!   it leaves EP only a closed wedge (`g_v < 253`, `g_e < 48`) and calls typical EHL points RP
+//! - Regime choice (a reconstruction): the book reads it off a chart (Fig. 7-5, Winer & Cheng
+//!   1980) that is not in the text. [`line_regime`] and [`elliptic_regime`] take the formula with
+//!   the largest `g_h` (boundaries where two formulas give the same film); this reproduces the
+//!   book's R-V call in Example 7-1. With Table 7-1 (EP grows as `g_v^0.54`, RP as `g_v^2/3`) that
+//!   rule leaves EP only a closed wedge (`g_v < 253`, `g_e < 48`) and calls typical EHL points RP
 //!   (line M = 20, L = 10: `g_v = 1265`, `g_e = 28`). Moes' composite treats RP/EP as a soft
 //!   minimum (elasticity caps the pressure rise); [`line_regime_composite`] and
-//!   [`elliptic_regime_composite`] use `max(max(RI, EI), min(RP, EP))`: EP there, and EP for
-//!   Example 7-1 too (`g_h = 330`, `h = 0.236 um`).
+//!   [`elliptic_regime_composite`] use `max(max(RI, EI), min(RP, EP))`.
 //!
-//! Example 7-1 slips: with the book's inputs (`W' = 1.99e-5`, `U = 7.52e-13`, `G = 52400` from the
-//! printed `alpha = 2.3e-7 m^2/N`, ten times a typical oil) `g_e = 22.9` and `g_v = 5364`. The book
-//! prints `g_v = 3264` (the slip) then uses 5366, then writes `1.66 (5366)^(2/3) = 339.2`, which is
-//! neither 509 (5366) nor 365 (3264). Its steps after 339.2 are right (`H = 1.282e-5`,
-//! `h = 0.24 um`); the R-V formula gives `g_h = 509`, `h = 0.363 um`.
+//! The book's Example 7-1 against these formulas (its arithmetic slips included):
+//! docs/validation.md, "Dimensional cases".
 //!
 //! Invalid inputs (`M <= 0`, `L < 0`, `D` outside `(0, 1]`, NaN) give NaN from scalar functions.
 
@@ -396,8 +392,8 @@ mod tests {
 
     #[test]
     fn nvm_narrow_ellipse_approaches_line_asymptotes() {
-        // PHYSICS.md 5: as D -> 0 the EI and EP asymptotes must approach the line ones with
-        // w' = 3w/(4a). With b^3 = 6 E w Rx/(pi k (1+D) E') this is
+        // docs/physics.md section 5: as D -> 0 the EI and EP asymptotes must approach the line
+        // ones with w' = 3w/(4a). With b^3 = 6 E w Rx/(pi k (1+D) E') this is
         // M_line = (3/4) M^(2/3) k^(-2/3) (6E/(pi (1+D)))^(-1/3), same U and H.
         let (m, l) = (100.0_f64, 10.0);
         for &d in &[1e-2, 1e-3, 1e-4, 1e-6] {

@@ -1,11 +1,11 @@
 //! Hertz contact ellipse from the ellipticity parameter `D = Rx/Ry`.
 //!
-//! Conventions (PHYSICS.md sections 1 and 3): `x` is the rolling direction, `1/Rx = 1/Rx1 + 1/Rx2`,
-//! `1/Ry` likewise, `D = Rx/Ry` in `(0, 1]` (`D = 1` circular, `D -> 0` line contact). The Hertz
-//! ellipse has semi-axis `b` along `x` and `a` across (along `y`), `a >= b` when `Ry >= Rx`;
-//! `kappa = b/a <= 1`, `k = a/b = 1/kappa >= 1`. `F = K(m)` and `E = E(m)` are the complete
-//! elliptic integrals of the first and second kind with parameter `m = 1 - kappa^2` (`m = e^2`, the
-//! squared eccentricity of the ellipse).
+//! Conventions (docs/physics.md sections 1 and 3): `x` is the rolling direction,
+//! `1/Rx = 1/Rx1 + 1/Rx2`, `1/Ry` likewise, `D = Rx/Ry` in `(0, 1]` (`D = 1` circular, `D -> 0`
+//! line contact). The Hertz ellipse has semi-axis `b` along `x` and `a` across (along `y`),
+//! `a >= b` when `Ry >= Rx`; `kappa = b/a <= 1`, `k = a/b = 1/kappa >= 1`. `F = K(m)` and
+//! `E = E(m)` are the complete elliptic integrals of the first and second kind with parameter
+//! `m = 1 - kappa^2` (`m = e^2`, the squared eccentricity of the ellipse).
 //!
 //! Exact relation (solved here for `kappa`):
 //!
@@ -13,18 +13,15 @@
 //! D = kappa^2 (F - E) / (E - kappa^2 F)
 //! ```
 //!
-//! Verified independently, not just copied: for the ellipsoidal Hertz pressure
-//! `p = p0 sqrt(1 - x^2/b^2 - y^2/a^2)` potential theory gives an interior surface displacement
-//! `u = C - A' x^2 - B' y^2` with
+//! Derivation: for the ellipsoidal Hertz pressure `p = p0 sqrt(1 - x^2/b^2 - y^2/a^2)` potential
+//! theory gives an interior surface displacement `u = C - A' x^2 - B' y^2` with
 //! `A' ~ Int_0^inf dw / (sqrt(w) (b^2 + w)^(3/2) (a^2 + w)^(1/2))` and
 //! `B' ~ Int_0^inf dw / (sqrt(w) (b^2 + w)^(1/2) (a^2 + w)^(3/2))` (same prefactor). Matching the
-//! gap `x^2/(2 Rx) + y^2/(2 Ry)` gives `D = Rx/Ry = B'/A'`. The test
-//! `relation_matches_potential_theory_quadrature` evaluates these two integrals by plain quadrature
-//! (substitution `w = a^2 e^s`, trapezoid rule in `s`) without any elliptic integral and compares
-//! the ratio with the closed form above to 1e-10. The closed form is also the classical textbook
-//! one (Johnson, Contact Mechanics, ch. 4: curvature ratio `((a/b)^2 E - K)/(K - E)` along the
-//! short over the long axis), inverted here because `D` is the long-axis over the short-axis
-//! curvature.
+//! gap `x^2/(2 Rx) + y^2/(2 Ry)` gives `D = Rx/Ry = B'/A'`; the test
+//! `relation_matches_potential_theory_quadrature` checks the closed form against a plain
+//! quadrature of these integrals, without any elliptic integral. Reference: Johnson, Contact
+//! Mechanics, ch. 4 (curvature ratio `((a/b)^2 E - K)/(K - E)` along the short over the long
+//! axis), inverted here because `D` is the long-axis over the short-axis curvature.
 //!
 //! Numerics: `K` and `E` come from the arithmetic-geometric mean started from the complementary
 //! modulus `kappa` (so `m -> 1` loses no precision), `E = K (1 - sum_{n>=0} 2^(n-1) c_n^2)`,
@@ -33,11 +30,10 @@
 //! near `kappa = 1`. Near `kappa = 1`, `D ~ kappa^(3/2)`; for small `kappa`,
 //! `D ~ kappa^2 (ln(4/kappa) - 1)`.
 //!
-//! Approximations (for comparison only): Moes
-//! `kappa = [1 + sqrt(ln(16/D)/(2D)) - sqrt(ln 4) + 0.16 ln D]^(-1)` (exact at `D = 1`; largest
-//! error 0.8016 % near `D = 0.45`, i.e. "0.8 %" only after rounding; below 0.67 % for
-//! `1e-6 <= D < 0.1`) and Hamrock-Brewe `k = 1.0339 D^(-0.636)` (3.4 % off at `D = 1`,
-//! about 23 % off at `D = 1e-3`; do not use it in the solver).
+//! Approximations, for comparison only (Moes' also starts the iteration of [`ellipse_from_d`]):
+//! Moes `kappa = [1 + sqrt(ln(16/D)/(2D)) - sqrt(ln 4) + 0.16 ln D]^(-1)` (exact at `D = 1`) and
+//! Hamrock-Brewe `k = 1.0339 D^(-0.636)`; their errors against the exact relation are in
+//! docs/physics.md section 3 and docs/validation.md (Point contacts).
 
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -186,14 +182,14 @@ pub fn ellipse_from_d(d: f64) -> Result<Ellipse, String> {
     })
 }
 
-/// Moes approximation `kappa = [1 + sqrt(ln(16/D)/(2D)) - sqrt(ln 4) + 0.16 ln D]^(-1)`
-/// (exact at `D = 1`; at most 0.8016 % off, near `D = 0.45`, for `D` in `[1e-6, 1]`).
+/// Moes approximation `kappa = [1 + sqrt(ln(16/D)/(2D)) - sqrt(ln 4) + 0.16 ln D]^(-1)`, exact
+/// at `D = 1`; the Newton start of [`ellipse_from_d`] (its error: docs/validation.md).
 pub fn kappa_moes(d: f64) -> f64 {
     1.0 / (1.0 + ((16.0 / d).ln() / (2.0 * d)).sqrt() - 4.0_f64.ln().sqrt() + 0.16 * d.ln())
 }
 
-/// Hamrock-Brewe fit `k = a/b = 1.0339 (Ry/Rx)^0.636 = 1.0339 D^(-0.636)`. For comparison only:
-/// 3.4 % off at `D = 1`.
+/// Hamrock-Brewe fit `k = a/b = 1.0339 (Ry/Rx)^0.636 = 1.0339 D^(-0.636)`. For comparison only,
+/// not exact even at `D = 1` (its error: docs/validation.md).
 pub fn hamrock_brewe_k(d: f64) -> f64 {
     1.0339 * (1.0 / d).powf(0.636)
 }

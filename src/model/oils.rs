@@ -1,10 +1,14 @@
 //! Lubricant properties at the operating temperature: the Walther (ASTM D341) viscosity-temperature
 //! line through two kinematic viscosities, and a small table of named oils.
 //!
-//! Walther: `log10 log10(nu + 0.7) = A - B log10 T` (nu in mm^2/s, T in K), fitted exactly
-//! through (40 C, nu40) and (100 C, nu100). Density: `rho(T) = rho15 (1 - 6.5e-4 (T - 15 C))`
-//! (a typical mineral-oil expansion coefficient). Dynamic viscosity `eta0 = rho nu 1e-6` (Pa s).
-//! The pressure-viscosity coefficient alpha is taken as given (no temperature dependence).
+//! Walther (ASTM D341; docs/physics.md section 2, Lubricant):
+//! `log10 log10(nu + 0.7) = A - B log10 T` (nu in mm^2/s, T in K), fitted exactly through
+//! (40 C, nu40) and (100 C, nu100). Density: `rho(T) = rho15 (1 - 6.5e-4 (T - 15 C))` (a typical
+//! mineral-oil expansion coefficient). Dynamic viscosity `eta0 = rho nu 1e-6` (Pa s). The
+//! pressure-viscosity coefficient alpha is taken as given (no temperature dependence).
+//!
+//! Input: a [`LubricantSpec`] (the `[lubricant]` table of a case file); output: a [`Resolved`]
+//! lubricant at the operating temperature, or an error naming the offending `lubricant.*` input.
 //!
 //! Named oils: ISO VG mineral oils of viscosity index about 95-100 with typical values
 //! (nu40 = the grade, nu100 from the usual VI-100 tables, density at 15 C, alpha about 2e-8 1/Pa);
@@ -35,7 +39,8 @@ fn z(nu: f64) -> f64 {
 }
 
 impl Walther {
-    /// The line through `(t1 C, nu1)` and `(t2 C, nu2)` (mm^2/s).
+    /// The line through `(t1 C, nu1)` and `(t2 C, nu2)` (mm^2/s); errors unless
+    /// `t1 < t2`, `nu1 > nu2` and both viscosities are finite and above 0.3 mm^2/s.
     pub fn through(t1: f64, nu1: f64, t2: f64, nu2: f64) -> Result<Self, String> {
         if !(nu1 > 0.3 && nu2 > 0.3 && nu1.is_finite() && nu2.is_finite()) {
             return Err(format!(
@@ -81,12 +86,19 @@ pub struct LubricantSpec {
 /// A lubricant resolved at its operating temperature.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Resolved {
+    /// The named oil, or "nu40/nu100 oil".
     pub name: String,
+    /// Operating temperature (C).
     pub temperature: f64,
+    /// Kinematic viscosity at the operating temperature (mm^2/s).
     pub nu: f64,
+    /// Density at the operating temperature (kg/m^3).
     pub rho: f64,
+    /// Dynamic viscosity at the operating temperature (Pa s).
     pub eta0: f64,
+    /// Pressure-viscosity coefficient (1/Pa).
     pub alpha: f64,
+    /// The Walther line through nu40 and nu100.
     pub walther: Walther,
 }
 

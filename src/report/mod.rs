@@ -5,12 +5,17 @@
 //!
 //! Why two central films: Moes' H_RI = 3/M is the rigid-isoviscous flux thickness, the film at
 //! the pressure maximum; the film at X = 0 tends to 2.4475/M instead. Where the pressure peak
-//! moves upstream (line, M < 3 with L > 0) the film at X = 0 is not monotone in M (L = 12: 6.14,
-//! 7.24, 7.08 at M = 1, 1.7, 2.9) while the film at the pressure maximum is (7.35, 7.32, 7.08), so
-//! the Moes form follows H_pm to 1.5 % on the nightly line sweep and H_c only to 4.6 %.
+//! moves upstream (line, M < 3 with L > 0) the film at X = 0 is not monotone in M while the film
+//! at the pressure maximum is, and the Moes form follows H_pm more closely (figures:
+//! docs/validation.md, "Fit: the nightly sweeps"; docs/known-limits.md).
 //!
-//! A contact with fewer converged cases than its model needs (free parameters + 5) is reported as
-//! "skipped: N cases, need at least K"; the report fails only when no contact could be fitted.
+//! Fitting (`staged`): stage 1 frees the asymptote laws from the published start; with
+//! [`FULL_FIT_MIN_POINTS`] cases or more, stage 2 also frees the blend and is kept only when it is
+//! physical, identified (every sigma finite) and fits better.
+//!
+//! Outputs: a [`FitReport`] (serialised as `fit.json`). A contact with fewer converged cases
+//! than its model needs (free parameters + [`SPARE_CASES`]) is reported as "skipped: N cases,
+//! need at least K"; [`fit_report`] fails only when no contact could be fitted.
 
 pub mod checks;
 pub mod markdown;
@@ -34,20 +39,21 @@ use serde::{Deserialize, Serialize};
 pub const C_RI_CENTRAL: f64 = 2.4475;
 
 /// The rigid-piezoviscous constant of the line film at X = 0: H_RP = (c L)^(2/3), c = alpha p_max
-/// H^(3/2)/L of the rigid isoviscous solution (the Barus reduced pressure reaches 1/alpha). From
-/// the solver's rigid L = 0 solve at 4097 points, c = 1.0753, (c)^(2/3) = 1.0496; the report
-/// re-derives it from a fresh solve ([`crate::report::checks`]).
+/// H^(3/2)/L of the rigid isoviscous solution (the Barus reduced pressure reaches 1/alpha;
+/// docs/physics.md section 5), with c from the solver's rigid L = 0 solve at 4097 points
+/// (docs/validation.md). The start of the line RP law; the report re-derives the limit from a
+/// fresh solve ([`crate::report::checks`]).
 pub const B_RP_CENTRAL: f64 = 1.0496;
 
 /// Datasets with at least this many converged cases of a contact also fit the blending law (and,
-/// for point contacts, the elastic M exponents and the H_EP law). 40 (was 60): the nightly point
-/// sweep at 257^2 keeps 46 cases, and freeing those laws takes its H_c max error from 4.0 % to
-/// 1.8 %; no line dataset in use has 40-59 cases.
+/// for point contacts, the elastic M exponents and the H_EP law): low enough for the nightly
+/// point sweep's fitted rows (docs/validation.md, "Earlier fit changes").
 pub const FULL_FIT_MIN_POINTS: usize = 40;
 
 /// The fit's targets: max error within [`MAX_ERROR_TARGET`] of the data, below the published
 /// formulas' on the same film, asymptotes within [`ASYMPTOTE_TARGET`] of the limit solves.
 pub const MAX_ERROR_TARGET: f64 = 0.02;
+/// Largest relative gap between a fitted asymptote and the solver's limit solve (the target).
 pub const ASYMPTOTE_TARGET: f64 = 0.01;
 
 /// Extra cases required beyond the number of free parameters.
@@ -116,13 +122,12 @@ fn samples(pts: &[FitPoint], film: Film) -> Vec<Sample> {
         .collect()
 }
 
-/// Fit the `r.stage1` parameters from `start`; with enough data refit all of `r.stage2` from
-/// there and keep it when it stays physical, identified (every sigma finite: J^T J not
-/// singular) and fits better; if it does not, try once more with
-/// the rigid-piezoviscous law (`r.rp`) held at its stage-1 fit (a freed RP law can run off when
-/// the data hardly see it: the point H_min fit on the 257^2 nightly sweep sent b_RP to e^-40;
-/// holding it brought the max error from 18 % to 13 %), then with the `r.late` parameters held
-/// at their start, then with both held.
+/// Fit the `r.stage1` parameters from `start`; with at least [`FULL_FIT_MIN_POINTS`] samples
+/// refit all of `r.stage2` from there and keep it when it stays physical, identified (every sigma
+/// finite: J^T J not singular) and fits better (lower RMS log error). If it does not, try in turn
+/// with the rigid-piezoviscous law (`r.rp`) held at its stage-1 fit (a freed RP law can run off
+/// when the data hardly see it; docs/validation.md, "Earlier fit changes"), with the `r.late`
+/// parameters held at their start, and with both held; the first kept try wins, else stage 1.
 fn staged<Mo: FilmModel>(
     data: &[Sample],
     start: &Mo,
@@ -246,9 +251,9 @@ fn skipped(contact: &str, n: usize, failed: usize, need: usize) -> ContactReport
 /// [`C_RI_CENTRAL`]; RP starts from its rigid limit [`B_RP_CENTRAL`] L^(2/3)); stage 2 also the
 /// blending powers and the s-law.
 const LINE_STAGE1: [usize; 7] = [0, 1, 2, 3, 4, 5, 6];
-// (Holding H_RP at its rigid limit B_RP_CENTRAL L^(2/3) was tried on the nightly line sweep: max
-// error 5.5 % against 4.9 % free; the elastic data never reach that limit, so RP is fitted and
-// checked against the limit instead.)
+// H_RP is fitted, not held at its rigid limit B_RP_CENTRAL L^(2/3): the elastic data never reach
+// that limit and holding it fits worse (docs/validation.md, "Earlier fit changes"); the fitted
+// law is checked against the limit instead.
 const LINE_STAGE2: [usize; 13] = [0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12];
 
 /// The start of a line fit of `film`: Moes' laws, with H_RI at its exact constant (2.4475 at
@@ -401,11 +406,10 @@ fn point_report(
     failed: usize,
     limit_solves: bool,
 ) -> Result<ContactReport, String> {
-    // Stage 1 holds the M exponents of H_EI (-2/15) and the whole H_EP law at NVM's: with few
-    // elastic cases (129^2 data reached M ~ 50, D = 1: M ~ 20) they are not identifiable; freed,
-    // alpha_EI turned positive and H_EP ran off to 1e3 times the film. Stage 2 (from
-    // FULL_FIT_MIN_POINTS cases: the 257^2 nightly data reach M = 139 at D = 1 and 1000 at
-    // D = 0.1) frees everything and is kept only when physical, identified and better.
+    // Stage 1 holds the M exponent of H_EI (-2/15) and the whole H_EP law at NVM's: with few
+    // elastic cases they are not identifiable and run off when freed (docs/validation.md,
+    // "Earlier fit changes"). Stage 2 (from FULL_FIT_MIN_POINTS cases) frees everything and is
+    // kept only when physical, identified and better.
     let all_free = point_free(pts);
     let free: Vec<usize> = all_free
         .iter()

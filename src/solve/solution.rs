@@ -249,6 +249,20 @@ mod tests {
     use super::*;
 
     #[test]
+    fn model_names_round_trip_and_unknown_names_are_errors() {
+        for m in ModelUsed::ALL {
+            assert_eq!(m.as_str().parse::<ModelUsed>(), Ok(m));
+            let json = serde_json::to_string(&m).unwrap();
+            assert_eq!(json, format!("\"{}\"", m.as_str()));
+        }
+        let e = "Full".parse::<ModelUsed>().unwrap_err().to_string();
+        assert!(
+            e.contains("unknown model \"Full\"") && e.contains("slender-line"),
+            "{e}"
+        );
+    }
+
+    #[test]
     fn parabola_vertex_is_exact_for_parabolas() {
         // y = 2 - 3 (t - 0.3)^2 sampled at -1, 0, 1.
         let y = |t: f64| 2.0 - 3.0 * (t - 0.3) * (t - 0.3);

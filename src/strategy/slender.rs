@@ -7,36 +7,20 @@
 //!
 //!   M_line = pi h_scale / 8,  L_line = L,
 //!
-//! and its H_c, H_min (Moes units) are compared with the point ones directly. Pressures differ
-//! by the Hertzian scales: p_h,ellipse/p_h,line = (1 + D)/E(m), so P_point = P_line E/(1 + D).
+//! and its H_c, H_min (Moes units) stand for the point ones. Pressures differ by the Hertzian
+//! scales: p_h,ellipse/p_h,line = (1 + D)/E(m), so P_point = P_line E/(1 + D).
 //!
-//! The centre-line film of the ellipse is below the line film (side leakage). Measured gap
-//! |H_line/H_point - 1| (max of H_c and H_min; point reference = Richardson extrapolation of
-//! 129^2 and 257^2 solves, or 257^2 and 513^2 at D = 0.01; line 4097 points):
+//! The centre-line film of the ellipse is below the line film (side leakage), and where the
+//! equivalent line case is not elastic the side leakage changes the film entirely. Hence the
+//! gate and the bound used by the model selection (`crate::strategy::select`):
 //!
-//! | (M, L)     | D = 0.01 | 0.02  | 0.05  | 0.1   |
-//! |------------|----------|-------|-------|-------|
-//! | (100, 0)   |          | 1.0 % | 1.1 % | 3.5 % |
-//! | (100, 10)  | (3.9 %)  | 1.1 % | 2.2 % | 3.6 % |
-//! | (1000, 0)  |          | 0.5 % | 1.7 % | 3.6 % |
-//! | (1000, 10) | 0.8 %    | 0.8 % | 1.2 % | 2.2 % |
-//! | (200, 10)  | 1.1 %    |       |       |       |
-//! | (150, 5)   |          | 1.1 % |       |       |
-//! | (300, 20)  |          | 1.8 % |       |       |
-//! | (60, 5)    |          | (3.9 %) |     |       |
-//! | (10, 0/10) |          | (x 6-8) | (x 3-4) | (x 1.5-2) |
+//! * gate ([`gap_bound`] is `Some`): D <= [`D_MAX`], M_line >= [`M_LINE_MIN`], L <= [`L_MAX`],
+//!   elastic surfaces, Barus viscosity and an incompressible lubricant (the pressure-dependent
+//!   models are written for one p_h, and the two cases' p_h differ by (1 + D)/E);
+//! * bound on |H_line/H_point - 1| for H_c and H_min: (0.005 + 0.4 D)(1 + L/20), set above every
+//!   measured gap inside the gate and checked on a separate validation set in `tests/slender.rs`.
 //!
-//! The bracketed cases have an equivalent line case that is not elastic (M_line = 1.9, 1.8,
-//! 0.5-1): there the film is made in an inlet long against the Hertz zone and the side leakage
-//! of the ellipse changes it entirely (at M = 10 the point film is 2 to 8 times the line film).
-//! Hence the gate and the bound used by the model selection (`crate::strategy::select`):
-//!
-//! * gate: D <= [`D_MAX`], M_line >= [`M_LINE_MIN`], L <= [`L_MAX`], elastic surfaces, Barus
-//!   viscosity and an incompressible lubricant (the pressure-dependent models are written for
-//!   one p_h, and the two cases' p_h differ by (1 + D)/E);
-//! * bound on the gap: (0.005 + 0.4 D)(1 + L/20), above every measured gap inside the gate.
-//!
-//! The bound is checked on a separate validation set in `tests/slender.rs`.
+//! (Measured gaps: docs/validation.md, "Slender ellipses against the equivalent line contact".)
 
 use crate::model::case::{Elasticity, LineCase, PointCase};
 use crate::model::lubricant::{Density, Viscosity};
@@ -46,9 +30,10 @@ use std::f64::consts::PI;
 
 /// The largest ellipticity D = Rx/Ry answered by a line contact.
 pub const D_MAX: f64 = 0.1;
-/// The smallest M of the equivalent line case (its elastic regime).
+/// The smallest M of the equivalent line case: below it the line case is not elastic and the gap
+/// is not bounded (docs/validation.md).
 pub const M_LINE_MIN: f64 = 2.5;
-/// The largest L measured.
+/// The largest L of the gap measurements the bound was set from.
 pub const L_MAX: f64 = 20.0;
 /// The finest line grid of an accuracy-target solve of the equivalent line case.
 pub const LINE_MAX_GRID: usize = 4097;
@@ -112,7 +97,7 @@ mod tests {
         let lc = equivalent_line(&pc);
         assert!((lc.venner().h_scale / pc.venner().h_scale - 1.0).abs() < 1e-12);
         assert_eq!(lc.l, pc.l);
-        // Measured M_line of the module table.
+        // M_line of the (M, L, D) = (100, 10, 0.02) case of the gap measurements.
         assert!((lc.m - 2.461).abs() < 1e-3, "{}", lc.m);
     }
 

@@ -1,43 +1,55 @@
-//! The computational domain and the coarsest grid, chosen from (M, L).
+//! The computational domain and the coarsest grid of a line contact, chosen from (M, L).
 //!
-//! Rule (line contact, Hertzian units X = x/b). Let H_e be the Moes 1992 estimate of the central film
-//! in Hertzian units (H_Moes * pi/(8M); for rigid surfaces Moes' rigid asymptotes alone) and l_h = sqrt(2 H_e) the hydrodynamic length: the distance
-//! over which the rigid gap H_e + X^2/2 doubles. Then
+//! Units: Hertzian X = x/b. Inputs: the Moes parameters (M, L), whether the surfaces are rigid,
+//! [`DomainParams`] and the finest grid's interval count (which caps n0). Let
 //!
-//! * inlet  X_in  = -max(1 + clamp(inlet_elastic * H_e^(2/3), 0.5, 3.5), (inlet_factor + w inlet_rigid) * l_h)
-//! * outlet X_out =  max(1.5, outlet_factor * l_h)
+//! * H_e = H_Moes pi/(8M), the Moes 1992 central-film estimate in Hertzian units (for rigid
+//!   surfaces (H_RI^3 + H_RP^3)^(1/3) of Moes' asymptotes alone);
+//! * l_h = sqrt(2 H_e), the hydrodynamic length (the rigid gap H_e + X^2/2 doubles over it);
+//! * w = min(1, H_RI/H_Moes)^2, the weight of the rigid-isoviscous regime (w = 1 for rigid
+//!   surfaces).
 //!
-//! (defaults inlet_elastic = 20, inlet_factor = 16, inlet_rigid = 32, outlet_factor = 1.5), with
-//! w = min(1, H_RI/H_e)^2 the weight of the rigid-isoviscous regime (w = 1 for rigid surfaces).
-//! The rigid inlet truncation error of H_c is about 3.8/(factor)^2: 1.5 % at 16 l_h, 0.16 % at
-//! 48 l_h (measured, M = 1, 8193 points). Elastic regime: outside
-//! the Hertzian zone the gap grows like (|X| - 1)^(3/2), so it reaches ~100 H_e at
-//! |X| - 1 ~ 20 H_e^(2/3); that inlet is capped at Venner's classic -4.5 for thick films and shrinks
-//! towards -1.5 at high M (the l_h term takes over for thick films: -7.2 at M = 20, L = 10), where a
-//! fixed [-4.5, 1.5] wastes most points on a dry inlet and leaves
-//! too few across the thin film (the classic failure at high M, L = 0). As M -> 0 the contact is
-//! rigid and every length scales with l_h (the Martin pressure decays like |X|^-3 into the inlet
-//! and cavitates at X = 0.475 l_h), so the domain grows with l_h and the inlet truncation error
-//! stays a fixed, small fraction. For rigid surfaces there is no Hertzian zone at all and the
-//! domain is [-(inlet_factor + inlet_rigid) l_h, outlet_factor l_h] for any M.
+//! Output: the domain [X_in, X_out] with
 //!
-//! The coarsest grid has the fewest intervals (a power of two, at least 16) with spacing
-//! h0 <= min(coarse_h_max * max(1, l_h / 2), coarse_lh * l_h): coarse grids that cannot see the
-//! film (h0 much larger than l_h at high M) make corrections of the wrong kind, and the exact
-//! coarsest solve is cheap enough to afford a few hundred points; for rigid surfaces simply
-//! h0 <= 0.4 l_h. The domain is then shifted so that X = 0 is a node of every level.
+//! * inlet  X_in  = -max(1 + clamp(inlet_elastic H_e^(2/3), 0.5, 3.5), (inlet_factor + w inlet_rigid) l_h)
+//! * outlet X_out =  max(min_outlet, outlet_factor l_h)
+//!
+//! and for rigid surfaces (no Hertzian zone) [-(inlet_factor + inlet_rigid) l_h, outlet_factor l_h]
+//! for any M. Defaults: inlet_elastic = 20, inlet_factor = 16, inlet_rigid = 32,
+//! outlet_factor = min_outlet = 1.5.
+//!
+//! Rationale (docs/method.md, Line contact): outside the Hertzian zone the elastic gap grows like
+//! (|X| - 1)^(3/2) and reaches about 100 H_e at |X| - 1 ~ 20 H_e^(2/3); that inlet is capped at
+//! Venner's classic -4.5 for thick films and shrinks towards -1.5 at high M, where a fixed
+//! [-4.5, 1.5] wastes most points on a dry inlet and leaves too few across the thin film. As
+//! M -> 0 the contact is rigid and every length scales with l_h (the Martin pressure decays like
+//! |X|^-3 into the inlet and cavitates at X = 0.475 l_h), so the domain grows with l_h and the
+//! relative inlet truncation error of H_c stays a fixed fraction, about 3.8/factor^2 for an inlet
+//! of factor l_h (figures: docs/validation.md, Line contacts).
+//!
+//! Coarsest grid: the fewest intervals n0 (a power of two, at least 16, at most the finest
+//! grid's) with spacing h0 <= min(coarse_h_max max(1, l_h/2), coarse_lh l_h), for rigid surfaces
+//! h0 <= 0.4 l_h: coarse grids that cannot see the film (h0 much larger than l_h at high M) make
+//! corrections of the wrong kind. Invariant: X_in is shifted so that X = 0 is a node of every
+//! level.
 
 use crate::model::formulas::{moes_line_asymptotes, moes_line_hc};
 use std::f64::consts::PI;
 
-/// Tunable constants of the domain rule.
+/// Tunable constants of the domain rule (module doc).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DomainParams {
+    /// Elastic inlet margin beyond X = -1, in units of H_e^(2/3) (clamped to [0.5, 3.5]).
     pub inlet_elastic: f64,
+    /// Inlet length in hydrodynamic lengths l_h.
     pub inlet_factor: f64,
+    /// Extra inlet length in l_h at full rigid weight w = 1.
     pub inlet_rigid: f64,
+    /// Outlet length in l_h.
     pub outlet_factor: f64,
+    /// Smallest outlet X_out (Hertzian units).
     pub min_outlet: f64,
+    /// Largest coarsest spacing for films with l_h <= 2 (scaled by l_h/2 above).
     pub coarse_h_max: f64,
     /// The coarsest spacing is at most this many hydrodynamic lengths l_h.
     pub coarse_lh: f64,
@@ -69,7 +81,8 @@ pub struct LineDomain {
 }
 
 impl LineDomain {
-    /// The rule above for Moes parameters (m, l); `max_intervals` caps n0 (the finest grid).
+    /// The rule of the module doc for Moes parameters (m, l); `max_intervals` (the finest grid's
+    /// intervals) caps n0.
     pub fn for_case(m: f64, l: f64, rigid: bool, p: &DomainParams, max_intervals: usize) -> Self {
         let h_moes = if rigid {
             // Moes' formula without its elastic asymptotes (s = 3 in that limit).
@@ -96,8 +109,8 @@ impl LineDomain {
             )
         };
         let width = x_out - x_in;
-        // Rigid surfaces have no feature finer than l_h: a coarsest grid of ~120 points suffices
-        // whatever M (the elastic rule below would ask for hundreds at M << 1).
+        // Rigid surfaces have no feature finer than l_h: 0.4 l_h over a 49.5 l_h domain is about
+        // 124 intervals whatever M (the elastic rule below would ask for hundreds at M << 1).
         let h_target = if rigid {
             0.4 * lh
         } else {

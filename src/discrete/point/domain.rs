@@ -1,63 +1,73 @@
 //! The computational domain and the coarsest grid of a point contact, chosen from (M, L, D).
 //!
-//! Hertzian units X = x/b, Y = y/b: the Hertz contact is the ellipse X^2 + (Y/k)^2 <= 1. Let H_e be
-//! the Nijenbanning-Venner-Moes estimate of the central film in these units (H_NVM / h_scale; for
-//! rigid surfaces the rigid asymptotes alone) and l_h = sqrt(2 H_e) the hydrodynamic length, the
-//! distance over which the rigid gap H_e + X^2/2 doubles. Then
+//! Units: Hertzian X = x/b, Y = y/b; the Hertz contact is the ellipse X^2 + (Y/k)^2 <= 1,
+//! k = a/b. Inputs: the Moes parameters (M, L, D), k and h_scale = H_Moes/H_Hertzian of the
+//! case, whether the surfaces are rigid, and [`PointDomainParams`]. Let
+//!
+//! * H_e = H_NVM / h_scale, the Nijenbanning-Venner-Moes 1994 central-film estimate in Hertzian
+//!   units (for rigid surfaces (H_RI^3 + H_RP^3)^(1/3) of the NVM asymptotes alone);
+//! * l_h = sqrt(2 H_e), the hydrodynamic length (the rigid gap H_e + X^2/2 doubles over it);
+//! * w = min(1, H_RI/H_NVM)^2 (NVM's rigid-isoviscous asymptote over its film), the weight of the
+//!   rigid-isoviscous regime (w = 1 for rigid surfaces), and g = 1 + w.
+//!
+//! Output: the domain [X_in, X_out] x [-Y_half, Y_half] with
 //!
 //! * inlet   X_in   = -max(1 + clamp(inlet_elastic H_e^(2/3), 0.5, 3.5), g inlet_lh l_h)
 //! * outlet  X_out  =  max(1.5, g outlet_lh l_h)
 //! * sides   Y_half =  max(k + side / sqrt(D k), g side_lh l_h / sqrt(D))
 //!
-//! with g = 1 + w, w = min(1, H_RI/H_e)^2 the weight of the rigid-isoviscous regime (w = 1 for
-//! rigid surfaces): the rigid pressure spreads over several l_h, and at M = 1, D = 1 the inlet
-//! 4.5 l_h cut H_c by 25 % against 9 l_h (measured on 129^2).
+//! and for rigid surfaces (no Hertzian zone) g [-inlet_lh l_h, outlet_lh l_h] x
+//! [-side_lh l_h/sqrt(D), side_lh l_h/sqrt(D)]. Defaults: inlet_elastic = 20, inlet_lh = 4.5,
+//! outlet_lh = 1.5, side = 2, side_lh = 3; at M = 20, L = 10, D = 1 this is the classic
+//! [-4.5, 1.5] x [-3, 3].
 //!
-//! (defaults inlet_elastic = 20, inlet_lh = 4.5, outlet_lh = 1.5, side = 2, side_lh = 3). At
-//! M = 20, L = 10, D = 1 this is the classic [-4.5, 1.5] x [-3, 3]. The inlet shrinks towards -1.5
-//! for thin films (high M), where a fixed -4.5 leaves too few points across the contact, and grows
-//! with l_h for thick ones (low M, rigid), where the pressure spreads over a few l_h. Across the
-//! rolling direction the gap grows like D k (|Y| - k) beyond the contact edge, so the margin
-//! beyond k grows like 1/sqrt(D k) for slender contacts. For rigid surfaces there is no Hertzian
-//! zone: g [-inlet_lh l_h, outlet_lh l_h] x [-side_lh l_h, side_lh l_h] (with D Y^2/2 in the gap the
-//! side extent is stretched by 1/sqrt(D)).
+//! Rationale (docs/method.md, Point contact): the elastic inlet shrinks towards -1.5 for thin
+//! films (high M), where a fixed -4.5 leaves too few points across the contact; the l_h terms
+//! make the domain grow with the rigid pressure, which spreads over several l_h; across the
+//! rolling direction the gap grows like D k (|Y| - k) beyond the contact edge, hence the margin
+//! 1/sqrt(D k), and with D Y^2/2 in the gap the rigid side extent is stretched by 1/sqrt(D).
 //!
-//! **Truncation bias.** The pressure of a rigid-like contact spreads far into the inlet and decays
-//! slowly, and a truncated domain carries less load at a given film, so H comes out low. Doubling
-//! the inlet and side extents (257^2 nodes) raised H_c or H_min by 18 % at (M, L, D) = (1, 0, 1)
-//! (w = 0.99), 18 % at (3, 0, 0.25) (w = 0.98), 10 % at (3, 10, 1) (w = 0.52), 9 % at (5, 0, 1)
-//! (w = 0.42), 3.6 % at (20, 0, 0.25) (w = 0.15), 1.3 % at (10, 0, 1) (w = 0.06), 1.0 % at
-//! (10, 10, 1) (w = 0.007, the elastic inlet) and 0.1 % at (30, 0, 1): about
-//! [`DOMAIN_BIAS_PER_W`] w. The change shrinks only by a factor of about 1.65 per doubling
-//! (at (3, 0, 1): +15 %, then +8 %), so the bias of the default domain is larger still (about
-//! 30 % at M = 3, D = 1); uniform grids cannot reach 1 % there. [`PointDomain::bias`] is reported
-//! with every point solve where it is 1 % or more, and the fit leaves such rows out.
+//! Invariants: the coarsest grid has `n0` intervals per direction (a power of two, at least 4;
+//! 16 by default, 17^2 nodes for the exact Newton solve), and X_in is shifted so that X = 0 is a
+//! node of every level (Y = 0 is one by symmetry).
 //!
-//! The coarsest grid has `n0` intervals per direction (16 by default: about 300 unknowns for the
-//! exact Newton solve); the domain is shifted so that X = 0 is a node of every level (Y = 0 is one
-//! by symmetry).
+//! **Truncation estimate.** A rigid-like contact's pressure decays slowly into the inlet and the
+//! sides, so a truncated domain carries less load at a given film and H comes out low.
+//! [`PointDomain::bias`] = [`DOMAIN_BIAS_PER_W`] w estimates the rise of H_c and H_min when the
+//! inlet and side extents are doubled, and [`PointDomain::truncation_error`] =
+//! [`TRUNCATION_OVER_BIAS`] times the bias the total error of the default domain. A point
+//! solve's reason carries a caution where the bias is [`BIAS_CAUTION`] or more; the fit leaves
+//! out rows whose truncation estimate is above 2 %. (Measurements: docs/known-limits.md, "Point
+//! contacts below M of about 10-20 are biased low by the truncated domain".)
 
 use crate::model::formulas::{nvm_point_asymptotes, nvm_point_hc};
 
-/// Relative change of H_c and H_min per unit rigid weight w when the domain is doubled (see the
-/// module doc): the domain-sensitivity estimate [`PointDomain::bias`].
+/// Relative rise of H_c and H_min per unit rigid weight w when the inlet and side extents are
+/// doubled: the slope of the doubling measurements in docs/known-limits.md (used by
+/// [`PointDomain::bias`]).
 pub const DOMAIN_BIAS_PER_W: f64 = 0.25;
 
-/// [`PointDomain::bias`] from which a point solve's reason carries a caution.
+/// [`PointDomain::bias`] from which a point solve's reason carries a caution ("rigid-like case").
 pub const BIAS_CAUTION: f64 = 0.01;
 
-/// The truncation error of the default domain over its doubling change [`PointDomain::bias`]:
-/// the change shrank by a factor of 1.65 per doubling at (M, L, D) = (3, 0, 1) and 2.3 at the
-/// rigid M = 1, so the sum of all further doublings is 1.75-2.5 times the first.
+/// The truncation error of the default domain over its first doubling change
+/// [`PointDomain::bias`]: the changes of all successive doublings sum to r/(r - 1) times the
+/// first when they shrink by r per doubling; 2.5 is that sum for the slowest measured shrink
+/// (docs/known-limits.md).
 pub const TRUNCATION_OVER_BIAS: f64 = 2.5;
 
-/// Tunable constants of the domain rule.
+/// Tunable constants of the domain rule (module doc).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PointDomainParams {
+    /// Elastic inlet margin beyond X = -1, in units of H_e^(2/3) (clamped to [0.5, 3.5]).
     pub inlet_elastic: f64,
+    /// Inlet length in hydrodynamic lengths l_h, before the rigid factor g.
     pub inlet_lh: f64,
+    /// Outlet length in l_h, before g.
     pub outlet_lh: f64,
+    /// Side margin beyond Y = k, in units of 1/sqrt(D k).
     pub side: f64,
+    /// Side half-width in l_h/sqrt(D), before g.
     pub side_lh: f64,
     /// Intervals per direction of the coarsest grid.
     pub n0: usize,
@@ -76,12 +86,14 @@ impl Default for PointDomainParams {
     }
 }
 
-/// A point-contact domain [x_in, x_out] x [-y_half, y_half] with n0 x n0 coarsest intervals.
+/// A point-contact domain [x_in, x_out] x [-y_half, y_half] (Hertzian units) with n0 x n0
+/// coarsest intervals; X = 0 lies on a node of every level.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PointDomain {
     pub x_in: f64,
     pub x_out: f64,
     pub y_half: f64,
+    /// Intervals per direction of the coarsest grid (a power of two, at least 4).
     pub n0: usize,
     /// Central film estimate (Hertzian units).
     pub h_estimate: f64,
@@ -90,7 +102,8 @@ pub struct PointDomain {
 }
 
 impl PointDomain {
-    /// The rule above; `h_scale` = H_Moes/H_Hertzian and `k` = a/b of the case.
+    /// The rule of the module doc for Moes parameters (m, l, d); `k` = a/b and `h_scale` =
+    /// H_Moes/H_Hertzian of the case.
     #[allow(clippy::too_many_arguments)]
     pub fn for_case(
         m: f64,
@@ -144,14 +157,15 @@ impl PointDomain {
         }
     }
 
-    /// Estimated relative rise of H_c and H_min when the domain is doubled, `DOMAIN_BIAS_PER_W`
-    /// times the rigid weight: a lower bound of how far the truncated domain biases H low.
+    /// Estimated relative rise of H_c and H_min when the domain is doubled,
+    /// [`DOMAIN_BIAS_PER_W`] times the rigid weight: a lower bound of how far the truncated
+    /// domain biases H low.
     pub fn bias(&self) -> f64 {
         DOMAIN_BIAS_PER_W * self.rigid_weight
     }
 
     /// Estimated relative error of H_c and H_min from the truncation of the domain (H is low by
-    /// about this much): `TRUNCATION_OVER_BIAS` times [`PointDomain::bias`].
+    /// about this much): [`TRUNCATION_OVER_BIAS`] times [`PointDomain::bias`].
     pub fn truncation_error(&self) -> f64 {
         TRUNCATION_OVER_BIAS * self.bias()
     }
