@@ -177,7 +177,7 @@ impl CaseSpec {
     pub fn lubricant(&self) -> Result<(f64, f64, Option<Resolved>), CaseError> {
         let (eta0, alpha, res) = match (&self.lubricant, self.eta0, self.alpha) {
             (Some(l), None, None) => {
-                let r = l.resolve().map_err(CaseError::invalid)?;
+                let r = l.resolve()?;
                 (r.eta0, r.alpha, Some(r))
             }
             (None, Some(e), Some(a)) => (e, a, None),

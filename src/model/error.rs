@@ -9,6 +9,9 @@ pub enum ParamError {
         value: f64,
         why: &'static str,
     },
+    /// An input rejected, with the reason (the message names the input).
+    #[error("{0}")]
+    Input(String),
     /// A name (of a contact, model, status ...) that is not one of the known ones.
     #[error("unknown {what} {name:?}: expected {expected}")]
     Unknown {
@@ -28,5 +31,17 @@ pub(crate) fn check(
         Ok(())
     } else {
         Err(ParamError::Invalid { name, value, why })
+    }
+}
+
+impl From<String> for ParamError {
+    fn from(msg: String) -> Self {
+        ParamError::Input(msg)
+    }
+}
+
+impl From<&str> for ParamError {
+    fn from(msg: &str) -> Self {
+        ParamError::Input(msg.to_string())
     }
 }

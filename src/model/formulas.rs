@@ -45,6 +45,7 @@
 //!
 //! Invalid inputs (`M <= 0`, `L < 0`, `D` outside `(0, 1]`, NaN) give NaN from scalar functions.
 
+use crate::model::error::ParamError;
 use crate::model::hertz::{ellipse_from_d, Ellipse};
 
 /// Moes 1992 line asymptotes `[H_RI, H_EI, H_RP, H_EP]` (Moes units, `u_s`):
@@ -111,11 +112,11 @@ pub struct HdGroups {
     pub w: f64,
 }
 
-fn groups_from_moes(m: f64, l: f64, g: f64, load_exp: f64) -> Result<HdGroups, String> {
+fn groups_from_moes(m: f64, l: f64, g: f64, load_exp: f64) -> Result<HdGroups, ParamError> {
     if !(m > 0.0 && l > 0.0 && g > 0.0 && m.is_finite() && l.is_finite() && g.is_finite()) {
-        return Err(format!(
+        return Err(ParamError::Input(format!(
             "need finite M, L, G > 0 (got M = {m}, L = {l}, G = {g})"
-        ));
+        )));
     }
     let us = (l / g).powi(4);
     let w = m * us.powf(load_exp);
@@ -123,12 +124,12 @@ fn groups_from_moes(m: f64, l: f64, g: f64, load_exp: f64) -> Result<HdGroups, S
 }
 
 /// Line groups from Moes `(M, L)` and `G`: `U_s = (L/G)^4`, `U = U_s/2`, `W' = M U_s^(1/2)`.
-pub fn line_groups_from_moes(m: f64, l: f64, g: f64) -> Result<HdGroups, String> {
+pub fn line_groups_from_moes(m: f64, l: f64, g: f64) -> Result<HdGroups, ParamError> {
     groups_from_moes(m, l, g, 0.5)
 }
 
 /// Point groups from Moes `(M, L)` and `G`: `U_s = (L/G)^4`, `U = U_s/2`, `W = M U_s^(3/4)`.
-pub fn point_groups_from_moes(m: f64, l: f64, g: f64) -> Result<HdGroups, String> {
+pub fn point_groups_from_moes(m: f64, l: f64, g: f64) -> Result<HdGroups, ParamError> {
     groups_from_moes(m, l, g, 0.75)
 }
 

@@ -35,6 +35,7 @@
 //! Hamrock-Brewe `k = 1.0339 D^(-0.636)`; their errors against the exact relation are in
 //! docs/physics.md section 3 and docs/validation.md (Point contacts).
 
+use crate::model::error::ParamError;
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// The Hertz ellipse for a given `D = Rx/Ry`.
@@ -113,9 +114,11 @@ pub fn d_from_kappa(kappa: f64) -> f64 {
 /// Exact Hertz ellipse for `D` in `(0, 1]`: solves `D = d_from_kappa(kappa)` by a bracketed
 /// Newton iteration on `ln D(ln kappa)` (bisection fallback), started from the Moes estimate.
 /// `D = 1` returns `kappa = k = 1`, `E = F = pi/2` exactly. Errors for `D` outside `(0, 1]` or NaN.
-pub fn ellipse_from_d(d: f64) -> Result<Ellipse, String> {
+pub fn ellipse_from_d(d: f64) -> Result<Ellipse, ParamError> {
     if !(d > 0.0 && d <= 1.0) {
-        return Err(format!("ellipse_from_d: D = {d} is not in (0, 1]"));
+        return Err(ParamError::Input(format!(
+            "ellipse_from_d: D = {d} is not in (0, 1]"
+        )));
     }
     if d == 1.0 {
         return Ok(Ellipse {
@@ -138,7 +141,9 @@ pub fn ellipse_from_d(d: f64) -> Result<Ellipse, String> {
         step *= 2.0;
         lo -= step;
         if lo < -1500.0 {
-            return Err(format!("ellipse_from_d: no bracket found for D = {d}"));
+            return Err(ParamError::Input(format!(
+                "ellipse_from_d: no bracket found for D = {d}"
+            )));
         }
     }
     if u0 + 0.05 < hi && f(u0 + 0.05) > 0.0 {

@@ -14,6 +14,7 @@
 //! (nu40 = the grade, nu100 from the usual VI-100 tables, density at 15 C, alpha about 2e-8 1/Pa);
 //! they are "typical values", not a supplier's data sheet.
 
+use crate::model::error::ParamError;
 use serde::{Deserialize, Serialize};
 
 /// `(name, nu40 mm^2/s, nu100 mm^2/s, rho15 kg/m^3, alpha 1/Pa)`: typical values.
@@ -41,16 +42,16 @@ fn z(nu: f64) -> f64 {
 impl Walther {
     /// The line through `(t1 C, nu1)` and `(t2 C, nu2)` (mm^2/s); errors unless
     /// `t1 < t2`, `nu1 > nu2` and both viscosities are finite and above 0.3 mm^2/s.
-    pub fn through(t1: f64, nu1: f64, t2: f64, nu2: f64) -> Result<Self, String> {
+    pub fn through(t1: f64, nu1: f64, t2: f64, nu2: f64) -> Result<Self, ParamError> {
         if !(nu1 > 0.3 && nu2 > 0.3 && nu1.is_finite() && nu2.is_finite()) {
-            return Err(format!(
+            return Err(ParamError::Input(format!(
                 "kinematic viscosities {nu1}, {nu2} mm^2/s: must be finite and > 0.3"
-            ));
+            )));
         }
         if !(t1 < t2 && nu1 > nu2) {
-            return Err(format!(
+            return Err(ParamError::Input(format!(
                 "nu({t1} C) = {nu1} must exceed nu({t2} C) = {nu2}: viscosity falls with temperature"
-            ));
+            )));
         }
         let (l1, l2) = ((t1 + K0).log10(), (t2 + K0).log10());
         let b = (z(nu1) - z(nu2)) / (l2 - l1);
@@ -104,12 +105,12 @@ pub struct Resolved {
 
 impl LubricantSpec {
     /// eta0 and alpha at the operating temperature; errors name the `lubricant.*` input.
-    pub fn resolve(&self) -> Result<Resolved, String> {
+    pub fn resolve(&self) -> Result<Resolved, ParamError> {
         let t = self.temperature;
         if !(t.is_finite() && t > -K0) {
-            return Err(format!(
+            return Err(ParamError::Input(format!(
                 "lubricant.temperature = {t} is invalid: give the operating temperature in C"
-            ));
+            )));
         }
         let (name, nu40, nu100, rho15, alpha) = match (&self.oil, self.nu40, self.nu100) {
             (Some(o), None, None) => {
@@ -147,14 +148,14 @@ impl LubricantSpec {
         let walther = Walther::through(40.0, nu40, 100.0, nu100)
             .map_err(|e| format!("lubricant.nu40/nu100: {e}"))?;
         if !(rho15 > 0.0 && rho15.is_finite()) {
-            return Err(format!(
+            return Err(ParamError::Input(format!(
                 "lubricant.density = {rho15} is invalid: must be > 0"
-            ));
+            )));
         }
         if !(alpha >= 0.0 && alpha.is_finite()) {
-            return Err(format!(
+            return Err(ParamError::Input(format!(
                 "lubricant.alpha = {alpha} is invalid: must be >= 0 (1/Pa)"
-            ));
+            )));
         }
         let nu = walther.nu(t);
         let rho = rho15 * (1.0 - 6.5e-4 * (t - 15.0));
@@ -230,7 +231,11 @@ mod tests {
             temperature: 40.0,
             ..Default::default()
         };
-        assert!(bad.resolve().unwrap_err().contains("lubricant.oil"));
+        assert!(bad
+            .resolve()
+            .unwrap_err()
+            .to_string()
+            .contains("lubricant.oil"));
         let inv = LubricantSpec {
             nu40: Some(10.0),
             nu100: Some(20.0),
@@ -239,6 +244,10 @@ mod tests {
             temperature: 40.0,
             ..Default::default()
         };
-        assert!(inv.resolve().unwrap_err().contains("lubricant.nu40/nu100"));
+        assert!(inv
+            .resolve()
+            .unwrap_err()
+            .to_string()
+            .contains("lubricant.nu40/nu100"));
     }
 }
