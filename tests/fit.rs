@@ -131,11 +131,13 @@ fn line_asymptotes_agree_with_the_limit_solves() {
 
 #[test]
 fn empty_or_tiny_datasets_are_clear_errors() {
-    let e = fit_report(&FitInput::default(), false).unwrap_err();
+    let e = fit_report(&FitInput::default(), false)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("no converged cases"), "{e}");
     let mut input = load_fit_input(&[data()]).unwrap();
     input.line.truncate(5);
-    let e = fit_report(&input, false).unwrap_err();
+    let e = fit_report(&input, false).unwrap_err().to_string();
     assert!(e.contains("too few"), "{e}");
     assert!(e.contains("line skipped: 5 cases, need at least 12"), "{e}");
     // A dataset whose rows mostly lack the film at the pressure maximum (older datasets): H_c

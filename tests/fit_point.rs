@@ -162,13 +162,14 @@ fn mixed_input_fits_each_contact_and_skips_a_thin_one() {
         Some("skipped: 6 cases, need at least 10")
     );
     input.line.clear();
-    let e = fit_report(&input, false).unwrap_err();
+    let e = fit_report(&input, false).unwrap_err().to_string();
     assert!(
         e.contains("too few") && e.contains("need at least 10"),
         "{e}"
     );
     assert!(fit_report(&FitInput::default(), false)
         .unwrap_err()
+        .to_string()
         .contains("no converged cases"));
 }
 

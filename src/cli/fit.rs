@@ -36,7 +36,7 @@ pub fn run_fit(a: &FitArgs) -> Result<i32, InputError> {
              (minutes for fine grids; --no-limit-solves skips them)"
         );
     }
-    let report = fit_report(&input, !a.no_limit_solves).map_err(InputError)?;
+    let report = fit_report(&input, !a.no_limit_solves).map_err(|e| InputError(e.to_string()))?;
     // Default beside the first dataset, outside it: the dataset folder holds only Parquet parts
     // (polars' scan_parquet on the folder fails on anything else).
     let out = a.out.clone().unwrap_or_else(|| {

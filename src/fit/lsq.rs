@@ -2,6 +2,7 @@
 //! on nalgebra), with parameter uncertainties from the Jacobian: cov = sigma^2 (J^T J)^-1,
 //! sigma^2 = sum r^2 / (m - n). Generic over [`FilmModel`]: the line and point models share it.
 
+use crate::fit::error::FitError;
 use crate::fit::model::FilmModel;
 #[cfg(test)]
 use crate::fit::model::LineModel;
@@ -104,20 +105,19 @@ pub fn fit<Mo: FilmModel>(
     data: &[Sample],
     start: &Mo,
     free: &[usize],
-) -> Result<LsqFit<Mo>, String> {
+) -> Result<LsqFit<Mo>, FitError> {
     let n = free.len();
     if data.len() <= n {
-        return Err(format!(
-            "{} usable points for {} parameters: too few to fit",
-            data.len(),
-            n
-        ));
+        return Err(FitError::TooFewPoints {
+            points: data.len(),
+            params: n,
+        });
     }
     if data
         .iter()
         .any(|s| !(s.m > 0.0 && s.l >= 0.0 && s.h > 0.0 && s.h.is_finite()))
     {
-        return Err("data contain a non-positive or non-finite value".into());
+        return Err(FitError::BadData);
     }
     let problem = Problem {
         data,
@@ -127,9 +127,7 @@ pub fn fit<Mo: FilmModel>(
     let (problem, report) = LevenbergMarquardt::new()
         .with_patience(400)
         .minimize(problem);
-    let r = problem
-        .residuals()
-        .ok_or("the fitted model is not finite on the data")?;
+    let r = problem.residuals().ok_or(FitError::NotFinite)?;
     let m = data.len();
     let s2 = r.norm_squared() / (m - n) as f64;
     let mut sigma = vec![0.0; start.x().len()];

@@ -7,6 +7,7 @@
 //! sweep rows a fit uses, [`fitted`] holds what a fit returns.
 
 pub mod dataset;
+pub mod error;
 pub mod fitted;
 pub mod lsq;
 pub mod model;

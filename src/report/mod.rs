@@ -21,6 +21,7 @@ pub mod checks;
 pub mod markdown;
 
 pub use crate::fit::dataset::{FitInput, FitPoint};
+use crate::fit::error::FitError;
 pub use crate::fit::fitted::{FittedModel, Param, QuantityFit};
 use crate::fit::lsq::{fit, LsqFit, Sample};
 use crate::fit::model::{FilmModel, LineModel, PARAM_NAMES};
@@ -132,7 +133,7 @@ fn staged<Mo: FilmModel>(
     data: &[Sample],
     start: &Mo,
     r: &Recipe<Mo>,
-) -> Result<LsqFit<Mo>, String> {
+) -> Result<LsqFit<Mo>, FitError> {
     let mut f = fit(data, start, &r.stage1)?;
     if data.len() < FULL_FIT_MIN_POINTS || r.stage2.len() <= r.stage1.len() {
         return Ok(f);
@@ -308,7 +309,7 @@ fn fit_films<Mo: FilmModel>(
     r: &Recipe<Mo>,
     pts: &[FitPoint],
     failed: usize,
-) -> Result<(ContactReport, Vec<(Film, Mo)>), String> {
+) -> Result<(ContactReport, Vec<(Film, Mo)>), FitError> {
     let need = r.stage1.len() + SPARE_CASES;
     let mut report = ContactReport {
         contact: r.contact.to_string(),
@@ -328,8 +329,11 @@ fn fit_films<Mo: FilmModel>(
             ));
             continue;
         }
-        let f = staged(&data, &(r.start)(film), r)
-            .map_err(|e| format!("{} {}: {e}", r.contact, film.name()))?;
+        let f = staged(&data, &(r.start)(film), r).map_err(|e| FitError::Film {
+            contact: r.contact.to_string(),
+            film: film.name(),
+            source: Box::new(e),
+        })?;
         models.push((film, f.model.clone()));
         let q = Some(quantity(film, pts, f, r.names, r.wrap));
         match film {
@@ -345,7 +349,7 @@ fn line_report(
     pts: &[FitPoint],
     failed: usize,
     limit_solves: bool,
-) -> Result<ContactReport, String> {
+) -> Result<ContactReport, FitError> {
     let need = LINE_STAGE1.len() + SPARE_CASES;
     if pts.len() < need {
         return Ok(skipped("line", pts.len(), failed, need));
@@ -405,7 +409,7 @@ fn point_report(
     pts: &[FitPoint],
     failed: usize,
     limit_solves: bool,
-) -> Result<ContactReport, String> {
+) -> Result<ContactReport, FitError> {
     // Stage 1 holds the M exponent of H_EI (-2/15) and the whole H_EP law at NVM's: with few
     // elastic cases they are not identifiable and run off when freed (docs/validation.md,
     // "Earlier fit changes"). Stage 2 (from FULL_FIT_MIN_POINTS cases) frees everything and is
@@ -449,25 +453,22 @@ fn point_report(
 
 /// Fit, compare and check each contact present. `limit_solves` runs the solver's limit cases.
 /// Errors: no converged case at all, or no contact with enough cases (the message names each).
-pub fn fit_report(input: &FitInput, limit_solves: bool) -> Result<FitReport, String> {
+pub fn fit_report(input: &FitInput, limit_solves: bool) -> Result<FitReport, FitError> {
     if input.line.is_empty() && input.point.is_empty() {
-        return Err(format!(
-            "no converged cases in {} ({} failed rows, {} excluded for an error estimate \
-             above 2 %): nothing to fit",
-            input.datasets.join(", "),
-            input.failed_line + input.failed_point,
-            input.excluded.len()
-        ));
+        return Err(FitError::NoCases {
+            datasets: input.datasets.join(", "),
+            failed: input.failed_line + input.failed_point,
+            excluded: input.excluded.len(),
+        });
     }
     let line = line_report(&input.line, input.failed_line, limit_solves)?;
     let point = point_report(&input.point, input.failed_point, limit_solves)?;
     if line.h_c.is_none() && point.h_c.is_none() {
         let why = |c: &ContactReport| c.skipped.clone().unwrap_or_default();
-        return Err(format!(
-            "too few converged cases to fit: line {}; point {}",
-            why(&line),
-            why(&point)
-        ));
+        return Err(FitError::TooFewCases {
+            line: why(&line),
+            point: why(&point),
+        });
     }
     Ok(FitReport {
         datasets: input.datasets.clone(),
