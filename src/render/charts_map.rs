@@ -5,7 +5,7 @@
 //! Contours by marching squares on a 160 x 120 grid in (ln M, L), linear interpolation on cell
 //! edges (a saddle cell gives two segments).
 
-use crate::render::charts::{e, log_grid, Ctx, Res};
+use crate::render::style::{e, log_grid, Ctx, Res};
 use crate::report::FittedModel;
 use plotters::coord::Shift;
 use plotters::prelude::*;

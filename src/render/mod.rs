@@ -5,3 +5,4 @@ pub mod charts;
 pub mod charts_map;
 pub mod contour;
 pub mod pictures;
+pub mod style;
