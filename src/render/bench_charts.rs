@@ -2,23 +2,9 @@
 //! stability map (each method's outcome over an (M, L) map). They take plain series, not the
 //! bench's rows.
 
-use crate::render::charts::ensure_font;
+use crate::render::style::{e, ensure_font, COLORS};
 use plotters::prelude::*;
 use std::path::Path;
-
-/// Series colours of the bench charts.
-pub const COLORS: [RGBColor; 6] = [
-    RGBColor(31, 119, 180),
-    RGBColor(214, 39, 40),
-    RGBColor(44, 160, 44),
-    RGBColor(255, 127, 14),
-    RGBColor(148, 103, 189),
-    RGBColor(140, 86, 75),
-];
-
-fn e<T: std::fmt::Debug>(x: T) -> String {
-    format!("{x:?}")
-}
 
 /// One series of a chart: its label and (x, y) points.
 #[derive(Clone, Debug, PartialEq)]

@@ -5,8 +5,9 @@
 //! Contours by marching squares on a 160 x 120 grid in (ln M, L), linear interpolation on cell
 //! edges (a saddle cell gives two segments).
 
-use crate::render::charts::{e, log_grid, Ctx, Res};
+use crate::render::style::{e, log_grid, Ctx, Res};
 use crate::report::FittedModel;
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -102,6 +103,31 @@ pub(crate) fn error_map<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, c: &C
 /// A regime boundary: its name, colour and the function whose zero contour it is.
 type Boundary<'a> = (&'static str, RGBColor, Box<dyn Fn(f64, f64) -> f64 + 'a>);
 
+/// The chart of the regime map: log M by linear L.
+type MapChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<LogCoord<f64>, RangedCoordf64>>;
+
+/// The sampling grid of the contours: 161 log-spaced M values by 121 L values from 0 to l_hi.
+struct Grid {
+    xs: Vec<f64>,
+    ys: Vec<f64>,
+}
+
+impl Grid {
+    fn new(m_lo: f64, m_hi: f64, l_hi: f64) -> Self {
+        let xs = log_grid(m_lo, m_hi, 160);
+        let ys: Vec<f64> = (0..=120).map(|j| l_hi * j as f64 / 120.0).collect();
+        Grid { xs, ys }
+    }
+
+    /// The values of `f` on the grid, `[i][j]` at (xs[i], ys[j]).
+    fn field(&self, f: &dyn Fn(f64, f64) -> f64) -> Vec<Vec<f64>> {
+        self.xs
+            .iter()
+            .map(|&m| self.ys.iter().map(|&l| f(m, l)).collect())
+            .collect()
+    }
+}
+
 pub(crate) fn regime_map<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, c: &Ctx) -> Res {
     let pts = c.at_d();
     let m_lo = pts.iter().map(|p| p.m).fold(f64::INFINITY, f64::min) * 0.8;
@@ -127,15 +153,28 @@ pub(crate) fn regime_map<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, c: &
         .light_line_style(WHITE.mix(0.0))
         .draw()
         .map_err(e)?;
-    let xs = log_grid(m_lo, m_hi, 160);
-    let ys: Vec<f64> = (0..=120).map(|j| l_hi * j as f64 / 120.0).collect();
-    let field = |f: &dyn Fn(f64, f64) -> f64| -> Vec<Vec<f64>> {
-        xs.iter()
-            .map(|&m| ys.iter().map(|&l| f(m, l)).collect())
-            .collect()
-    };
-    // H_c contours at 1-1.5-2-3-5-7 levels per decade, labelled.
-    let h = field(&|m, l| c.eval(m, l).ln());
+    let grid = Grid::new(m_lo, m_hi, l_hi);
+    draw_hc_contours(&mut ch, &grid, c, m_hi, l_hi)?;
+    draw_boundaries(&mut ch, &grid, &boundaries(c))?;
+    ch.draw_series(
+        pts.iter()
+            .map(|p| Cross::new((p.m, p.l), 4, RGBColor(40, 40, 200).stroke_width(1))),
+    )
+    .map_err(e)?
+    .label("solved cases")
+    .legend(|(x, y)| Cross::new((x, y), 4, RGBColor(40, 40, 200).stroke_width(1)));
+    ch.configure_series_labels()
+        .position(SeriesLabelPosition::LowerRight)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .draw()
+        .map_err(e)?;
+    Ok(())
+}
+
+/// The H_c contour levels within (exp(hmin), exp(hmax)) of ln H_c field `h`: 1-1.5-2-3-5-7 per
+/// decade.
+fn hc_levels(h: &[Vec<f64>]) -> Vec<f64> {
     let (hmin, hmax) = h
         .iter()
         .flatten()
@@ -151,13 +190,26 @@ pub(crate) fn regime_map<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, c: &
             }
         }
     }
+    levels
+}
+
+/// The fitted H_c as grey contours, each labelled at its segment nearest the top of the map.
+fn draw_hc_contours<DB: DrawingBackend>(
+    ch: &mut MapChart<DB>,
+    grid: &Grid,
+    c: &Ctx,
+    m_hi: f64,
+    l_hi: f64,
+) -> Res {
+    let h = grid.field(&|m, l| c.eval(m, l).ln());
+    let levels = hc_levels(&h);
     let grey = RGBColor(110, 110, 110);
     for (k, &lv) in levels.iter().enumerate() {
         let v: Vec<Vec<f64>> = h
             .iter()
             .map(|r| r.iter().map(|x| x - lv.ln()).collect())
             .collect();
-        let segs = contour(&xs, &ys, &v);
+        let segs = contour(&grid.xs, &grid.ys, &v);
         let s = ch
             .draw_series(
                 segs.iter()
@@ -184,12 +236,17 @@ pub(crate) fn regime_map<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, c: &
             .map_err(e)?;
         }
     }
+    Ok(())
+}
+
+/// The regime boundaries of the fit: RI = EI, RP = EP and isoviscous = piezoviscous bracket.
+fn boundaries<'a>(c: &'a Ctx) -> Vec<Boundary<'a>> {
     let a = |m: f64, l: f64| c.asymptotes(m, l);
     let (p, q) = match c.model {
         FittedModel::Line(x) => (x.x[7], x.x[8]),
         FittedModel::Point(_) => (1.5, 8.0),
     };
-    let bounds: Vec<Boundary> = vec![
+    vec![
         (
             "RI = EI",
             RGBColor(0, 0, 0),
@@ -210,10 +267,18 @@ pub(crate) fn regime_map<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, c: &
                 (iso / piezo).ln()
             }),
         ),
-    ];
-    for (name, col, f) in &bounds {
-        let v = field(&|m, l| if l > 0.0 { f(m, l) } else { f64::NAN });
-        let segs = contour(&xs, &ys, &v);
+    ]
+}
+
+/// Each boundary as the zero contour of its function over L > 0, in its colour.
+fn draw_boundaries<DB: DrawingBackend>(
+    ch: &mut MapChart<DB>,
+    grid: &Grid,
+    bounds: &[Boundary],
+) -> Res {
+    for (name, col, f) in bounds {
+        let v = grid.field(&|m, l| if l > 0.0 { f(m, l) } else { f64::NAN });
+        let segs = contour(&grid.xs, &grid.ys, &v);
         let col = *col;
         ch.draw_series(
             segs.iter()
@@ -223,19 +288,6 @@ pub(crate) fn regime_map<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, c: &
         .label(*name)
         .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], col.stroke_width(3)));
     }
-    ch.draw_series(
-        pts.iter()
-            .map(|p| Cross::new((p.m, p.l), 4, RGBColor(40, 40, 200).stroke_width(1))),
-    )
-    .map_err(e)?
-    .label("solved cases")
-    .legend(|(x, y)| Cross::new((x, y), 4, RGBColor(40, 40, 200).stroke_width(1)));
-    ch.configure_series_labels()
-        .position(SeriesLabelPosition::LowerRight)
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .draw()
-        .map_err(e)?;
     Ok(())
 }
 

@@ -7,3 +7,4 @@ pub mod charts_map;
 pub mod contour;
 pub mod pictures;
 pub mod regime_map;
+pub mod style;

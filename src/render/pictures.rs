@@ -7,6 +7,7 @@
 //!   from H_min to 2.5 H_c, with the Hertz ellipse `X^2 + (Y/k)^2 = 1`, H_c and H_min marked;
 //!   and `STEM-pressure`: a filled colour map of P/P_max (blue 0 to red 1) with the ellipse.
 
+use crate::render::style::e;
 use crate::solve::point::PointFields;
 use crate::solve::solution::{Outputs, Profile};
 use plotters::coord::Shift;
@@ -14,10 +15,6 @@ use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 
 type Res = Result<(), String>;
-
-fn e<T: std::fmt::Debug>(x: T) -> String {
-    format!("{x:?}")
-}
 
 /// Draw with `f` on a PNG and an SVG backend: `dir/stem.png`, `dir/stem.svg`.
 fn both(
@@ -28,7 +25,7 @@ fn both(
     g: impl Fn(&DrawingArea<SVGBackend, Shift>) -> Res,
 ) -> Result<Vec<PathBuf>, String> {
     std::fs::create_dir_all(dir).map_err(|x| format!("--plot {}: {x}", dir.display()))?;
-    crate::render::charts::both(&dir.join(stem), size, f, g)?;
+    crate::render::style::both(&dir.join(stem), size, f, g)?;
     Ok(vec![
         dir.join(format!("{stem}.png")),
         dir.join(format!("{stem}.svg")),

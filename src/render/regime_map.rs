@@ -3,13 +3,10 @@
 
 use crate::model::formulas::Regime;
 use crate::model::regimes::{boundary_points, regime, short, LOG_M, L_MAX};
+use crate::render::style::{e, ensure_font};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
-
-fn e<T: std::fmt::Debug>(x: T) -> String {
-    format!("{x:?}")
-}
 
 fn color(r: Regime) -> RGBColor {
     match r {
@@ -108,7 +105,7 @@ pub fn write_regime_map(
     d: Option<f64>,
     mark: Option<(f64, f64, &str)>,
 ) -> Result<Vec<PathBuf>, String> {
-    crate::render::charts::ensure_font();
+    ensure_font();
     std::fs::create_dir_all(dir).map_err(|x| format!("--out {}: {x}", dir.display()))?;
     let stem = match d {
         None => "regimes".to_string(),

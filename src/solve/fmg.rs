@@ -88,142 +88,242 @@ pub fn fmg_solve<S: Fas>(s: &mut S) -> SolveInfo {
     let top = s.top();
     let coarse = s.start_coarse(top > 0);
     if top == 0 {
-        // A single level: the Newton solve is the whole solve.
-        let rec = s.record(0);
-        let (status, reason) = if coarse.converged {
-            (
-                Status::Converged,
-                format!("Newton converged in {} iterations", coarse.iterations),
-            )
-        } else if coarse.singular {
-            (Status::Diverged, "singular Newton system".to_string())
-        } else {
-            (
-                Status::MaxIterations,
-                format!(
-                    "Newton residual {:.2e} after {} iterations",
-                    coarse.residual, coarse.iterations
-                ),
-            )
-        };
-        return s.finish(start, status, reason, vec![rec]);
+        return single_level(s, start, &coarse);
     }
-    let mut lb = LoadBalance::new(s.load_slope());
-    let mut history = vec![];
-    let mut status = Status::MaxIterations;
-    let mut reason = format!("no convergence in {} cycles", c.max_cycles);
-    let mut min_res = f64::INFINITY;
+    let mut d = Driver {
+        lb: LoadBalance::new(s.load_slope()),
+        history: vec![],
+        status: Status::MaxIterations,
+        reason: format!("no convergence in {} cycles", c.max_cycles),
+        min_res: f64::INFINITY,
+    };
     // H0 at the end of each level: it converges at second order in h, so the next level's
     // H0 is predicted by extrapolating the last change by 1/4 (Richardson).
     let mut h0_end = vec![s.h0()];
     let warm = s.install_guess(top);
     for l in (if warm { top } else { 1 })..=top {
         if !warm {
-            if let [.., a, b] = h0_end[..] {
-                if l >= 3 {
-                    s.set_h0(l, b + 0.25 * (b - a));
-                }
-            }
-            s.fmg_interpolate(l);
+            start_level(s, l, &h0_end);
         }
-        lb.reset();
-        let final_level = l == top;
-        let (tol_e, max) = if final_level {
-            (c.tol_load, c.max_cycles)
-        } else {
-            (
-                c.tol_load_fmg,
-                4 * c.fmg_cycles * c.coarse_budget_growth.pow((top - l) as u32),
-            )
-        };
-        let mut prev: Option<CycleRecord> = None;
-        let mut first_res = f64::INFINITY;
-        let mut settled_h: Option<f64> = None;
-        for k in 0..max {
-            s.cycle(l);
-            let rec = s.record(l);
-            if let Some(o) = s.observer() {
-                o.notify(&crate::solve::CycleEvent {
-                    level: l,
-                    cycle: k,
-                    record: rec,
-                    h0: s.h0(),
-                });
-            }
-            if final_level {
-                history.push(rec);
-            }
-            if !(rec.residual.is_finite() && rec.h_c.is_finite() && s.h0().is_finite()) {
-                status = Status::Diverged;
-                reason = format!("non-finite residual or film on level {l}");
-                return s.finish(start, status, reason, history);
-            }
-            if final_level {
-                min_res = min_res.min(rec.residual);
-                if rec.residual > 1e4 * min_res.max(1e-14) || rec.load_error.abs() > 10.0 {
-                    reason = format!(
-                        "residual grew to {:.3e} (min {:.3e}), load error {:.3e}",
-                        rec.residual, min_res, rec.load_error
-                    );
-                    return s.finish(start, Status::Diverged, reason, history);
-                }
-            }
-            // P has settled for this H0 when the residual fell by 20 since the last H0 change
-            // and the load error moved by less than a tenth of itself over the last cycle.
-            first_res = first_res.min(if prev.is_none() {
-                rec.residual
-            } else {
-                f64::INFINITY
-            });
-            let settled = prev.is_some_and(|p| {
-                (rec.load_error - p.load_error).abs() <= 0.1 * rec.load_error.abs() + 0.25 * tol_e
-                    && rec.residual <= 0.05 * first_res
-            });
-            let dh = prev.map_or(f64::INFINITY, |p| {
-                // (a floor for the dry limit, where H_c is zero up to rounding)
-                (rec.h_c - p.h_c).abs() / rec.h_c.abs().max(1e-6)
-            });
-            if rec.load_error.abs() < tol_e
-                && (settled || k + 1 == max)
-                && (!final_level || dh < c.tol_h)
-            {
-                if final_level {
-                    status = Status::Converged;
-                    reason = format!(
-                        "load error {:.1e} and H_c change {:.1e} below tolerances",
-                        rec.load_error, dh
-                    );
-                }
-                break;
-            }
-            if settled {
-                if final_level {
-                    if let Some(hs) = settled_h {
-                        if (rec.h_c - hs).abs() / rec.h_c.abs() < 1e-12
-                            && rec.load_error.abs() > tol_e
-                        {
-                            status = Status::Stalled;
-                            reason = format!("load error stuck at {:.2e}", rec.load_error);
-                            break;
-                        }
-                    }
-                    settled_h = Some(rec.h_c);
-                }
-                // H0 is a rigid approach: elastic contacts absorb much of a change of it, so the
-                // step limit scales with |H0| as well as with the film.
-                let max_step =
-                    0.3 * s.centre_film(l).abs().max(1e-3 * s.h_estimate()) + 0.1 * s.h0().abs();
-                let g = rec.load_error * s.load_target(l);
-                let next = lb.next(s.h0(), g, max_step);
-                let h0 = s.h0() + c.load_factor.unwrap_or(1.0) * (next - s.h0());
-                s.set_h0(l, h0);
-                prev = None;
-                first_res = f64::INFINITY;
-            } else {
-                prev = Some(rec);
-            }
+        if let Err(reason) = run_level(s, &c, l, top, &mut d) {
+            return s.finish(start, Status::Diverged, reason, d.history);
         }
         h0_end.push(s.h0());
     }
-    s.finish(start, status, reason, history)
+    s.finish(start, d.status, d.reason, d.history)
+}
+
+/// A single level: the Newton solve of the coarse start is the whole solve.
+fn single_level<S: Fas>(s: &mut S, start: Instant, coarse: &NewtonOutcome) -> SolveInfo {
+    let rec = s.record(0);
+    let (status, reason) = if coarse.converged {
+        (
+            Status::Converged,
+            format!("Newton converged in {} iterations", coarse.iterations),
+        )
+    } else if coarse.singular {
+        (Status::Diverged, "singular Newton system".to_string())
+    } else {
+        (
+            Status::MaxIterations,
+            format!(
+                "Newton residual {:.2e} after {} iterations",
+                coarse.residual, coarse.iterations
+            ),
+        )
+    };
+    s.finish(start, status, reason, vec![rec])
+}
+
+/// The state of the driver across the levels: the load balance on H0, the finest level's
+/// cycles, the outcome so far and the smallest finest-level residual.
+struct Driver {
+    lb: LoadBalance,
+    history: Vec<CycleRecord>,
+    status: Status,
+    reason: String,
+    min_res: f64,
+}
+
+/// Start level `l` from level l-1: H0 predicted by Richardson extrapolation of its last change
+/// (from level 3 on, `h0_end` holding H0 at the end of each level), then the FMG interpolation.
+fn start_level<S: Fas>(s: &mut S, l: usize, h0_end: &[f64]) {
+    if let [.., a, b] = h0_end[..] {
+        if l >= 3 {
+            s.set_h0(l, b + 0.25 * (b - a));
+        }
+    }
+    s.fmg_interpolate(l);
+}
+
+/// The load tolerance and the cycle budget of level `l`.
+fn level_budget(c: &FmgControl, l: usize, top: usize) -> (f64, usize) {
+    if l == top {
+        (c.tol_load, c.max_cycles)
+    } else {
+        (
+            c.tol_load_fmg,
+            4 * c.fmg_cycles * c.coarse_budget_growth.pow((top - l) as u32),
+        )
+    }
+}
+
+/// Cycle level `l` until its load error is below the tolerance with P settled (on the finest
+/// level also H_c steady; there the outcome goes to `d`), the load error stalls on the finest
+/// level, or the budget is spent; a secant step on H0 each time P has settled. `Err` holds the
+/// reason of a divergence.
+fn run_level<S: Fas>(
+    s: &mut S,
+    c: &FmgControl,
+    l: usize,
+    top: usize,
+    d: &mut Driver,
+) -> Result<(), String> {
+    d.lb.reset();
+    let final_level = l == top;
+    let (tol_e, max) = level_budget(c, l, top);
+    let mut settling = Settling::new();
+    let mut settled_h: Option<f64> = None;
+    for k in 0..max {
+        let rec = cycle_once(s, l, k);
+        if final_level {
+            d.history.push(rec);
+        }
+        check_divergence(s, l, final_level, &rec, &mut d.min_res)?;
+        let (settled, dh) = settling.observe(&rec, tol_e);
+        if rec.load_error.abs() < tol_e
+            && (settled || k + 1 == max)
+            && (!final_level || dh < c.tol_h)
+        {
+            if final_level {
+                d.status = Status::Converged;
+                d.reason = format!(
+                    "load error {:.1e} and H_c change {:.1e} below tolerances",
+                    rec.load_error, dh
+                );
+            }
+            break;
+        }
+        if settled {
+            if final_level && stalled(&rec, &mut settled_h, tol_e, d) {
+                break;
+            }
+            secant_step(s, c, l, &mut d.lb, &rec);
+            settling = Settling::new();
+        } else {
+            settling.prev = Some(rec);
+        }
+    }
+    Ok(())
+}
+
+/// Cycle `k` of level `l`: one FAS cycle and its record (sent to the observer, if any).
+fn cycle_once<S: Fas>(s: &mut S, l: usize, k: usize) -> CycleRecord {
+    s.cycle(l);
+    let rec = s.record(l);
+    if let Some(o) = s.observer() {
+        o.notify(&crate::solve::CycleEvent {
+            level: l,
+            cycle: k,
+            record: rec,
+            h0: s.h0(),
+        });
+    }
+    rec
+}
+
+/// The reason of a divergence, if the cycle diverged: a non-finite residual, film or H0 on any
+/// level; on the finest level (where `min_res` tracks the smallest residual) a residual grown
+/// by 1e4 or a load error above 10.
+fn check_divergence<S: Fas>(
+    s: &S,
+    l: usize,
+    final_level: bool,
+    rec: &CycleRecord,
+    min_res: &mut f64,
+) -> Result<(), String> {
+    if !(rec.residual.is_finite() && rec.h_c.is_finite() && s.h0().is_finite()) {
+        return Err(format!("non-finite residual or film on level {l}"));
+    }
+    if final_level {
+        *min_res = min_res.min(rec.residual);
+        if rec.residual > 1e4 * min_res.max(1e-14) || rec.load_error.abs() > 10.0 {
+            return Err(format!(
+                "residual grew to {:.3e} (min {:.3e}), load error {:.3e}",
+                rec.residual, *min_res, rec.load_error
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Whether P has settled for the current H0: the residual fell by 20 since the last H0 change
+/// and the load error moved by less than a tenth of itself over the last cycle.
+struct Settling {
+    /// The previous cycle at this H0 (none right after an H0 change).
+    prev: Option<CycleRecord>,
+    /// The residual of the first cycle at this H0.
+    first_res: f64,
+}
+
+impl Settling {
+    fn new() -> Self {
+        Settling {
+            prev: None,
+            first_res: f64::INFINITY,
+        }
+    }
+
+    /// Take a cycle's record: whether P has settled, and the relative change of H_c over the
+    /// cycle (infinite for the first cycle at this H0).
+    fn observe(&mut self, rec: &CycleRecord, tol_e: f64) -> (bool, f64) {
+        let prev = self.prev;
+        self.first_res = self.first_res.min(if prev.is_none() {
+            rec.residual
+        } else {
+            f64::INFINITY
+        });
+        let first_res = self.first_res;
+        let settled = prev.is_some_and(|p| {
+            (rec.load_error - p.load_error).abs() <= 0.1 * rec.load_error.abs() + 0.25 * tol_e
+                && rec.residual <= 0.05 * first_res
+        });
+        let dh = prev.map_or(f64::INFINITY, |p| {
+            // (a floor for the dry limit, where H_c is zero up to rounding)
+            (rec.h_c - p.h_c).abs() / rec.h_c.abs().max(1e-6)
+        });
+        (settled, dh)
+    }
+}
+
+/// On the finest level, with P settled: true (and the outcome Stalled in `d`) when H_c has not
+/// moved since the previous settled H0 (`settled_h`) while the load error is above `tol_e`;
+/// else `settled_h` becomes this H_c.
+fn stalled(rec: &CycleRecord, settled_h: &mut Option<f64>, tol_e: f64, d: &mut Driver) -> bool {
+    if let Some(hs) = *settled_h {
+        if (rec.h_c - hs).abs() / rec.h_c.abs() < 1e-12 && rec.load_error.abs() > tol_e {
+            d.status = Status::Stalled;
+            d.reason = format!("load error stuck at {:.2e}", rec.load_error);
+            return true;
+        }
+    }
+    *settled_h = Some(rec.h_c);
+    false
+}
+
+/// The safeguarded (and damped) secant step of the load balance on H0, after P has settled.
+fn secant_step<S: Fas>(
+    s: &mut S,
+    c: &FmgControl,
+    l: usize,
+    lb: &mut LoadBalance,
+    rec: &CycleRecord,
+) {
+    // H0 is a rigid approach: elastic contacts absorb much of a change of it, so the
+    // step limit scales with |H0| as well as with the film.
+    let max_step = 0.3 * s.centre_film(l).abs().max(1e-3 * s.h_estimate()) + 0.1 * s.h0().abs();
+    let g = rec.load_error * s.load_target(l);
+    let next = lb.next(s.h0(), g, max_step);
+    let h0 = s.h0() + c.load_factor.unwrap_or(1.0) * (next - s.h0());
+    s.set_h0(l, h0);
 }

@@ -251,13 +251,7 @@ pub fn execute(spec: &SweepSpec, cases: &[Case], opts: &RunOptions) -> Result<Ru
     let start = Instant::now();
     let dir = &opts.dataset;
     std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-    let stored = results::stored_ids(dir)?;
-    let shard_cases: Vec<&Case> = cases.iter().filter(|c| opts.shard.contains(c.id)).collect();
-    let todo: Vec<&Case> = shard_cases
-        .iter()
-        .copied()
-        .filter(|c| !stored.contains(&c.id_hex()))
-        .collect();
+    let (shard_cases, todo) = cases_to_solve(dir, cases, &opts.shard)?;
     let mut report = RunReport {
         total: cases.len(),
         in_shard: shard_cases.len(),
@@ -270,13 +264,71 @@ pub fn execute(spec: &SweepSpec, cases: &[Case], opts: &RunOptions) -> Result<Ru
     }
     remove_stale_temps(dir, &opts.shard);
     let threads = opts.threads.max(1);
-    let pool = rayon::ThreadPoolBuilder::new()
+    let pool = worker_pool(threads)?;
+    let mut writer = PartWriter {
+        dir,
+        shard: &opts.shard,
+        meta: part_metadata(spec, &opts.shard, cases.len(), shard_cases.len()),
+        rows: vec![],
+        part: None,
+    };
+    let mut reporter = Reporter::new(
+        opts.progress,
+        format!("sweep {} [shard {}]", spec.name, opts.shard),
+        todo.len(),
+    );
+
+    let stop = AtomicBool::new(false);
+    let (tx, rx) = mpsc::channel::<CaseRow>();
+    let failure = std::thread::scope(|ts| {
+        let (stop, todo, pool) = (&stop, &todo, &pool);
+        let sweep = spec.name.as_str();
+        ts.spawn(move || solve_all(pool, threads, todo, sweep, stop, tx));
+        collect(rx, spec, &mut report, &mut reporter, &mut writer, stop)
+    });
+    reporter.finish();
+    if let Some(e) = failure {
+        return Err(e);
+    }
+    report.file = writer.part;
+    report.wall_s = start.elapsed().as_secs_f64();
+    Ok(report)
+}
+
+/// The cases of `shard`, and those of them that the dataset in `dir` does not hold yet.
+fn cases_to_solve<'c>(
+    dir: &Path,
+    cases: &'c [Case],
+    shard: &Shard,
+) -> Result<(Vec<&'c Case>, Vec<&'c Case>), String> {
+    let stored = results::stored_ids(dir)?;
+    let shard_cases: Vec<&Case> = cases.iter().filter(|c| shard.contains(c.id)).collect();
+    let todo: Vec<&Case> = shard_cases
+        .iter()
+        .copied()
+        .filter(|c| !stored.contains(&c.id_hex()))
+        .collect();
+    Ok((shard_cases, todo))
+}
+
+/// A dedicated rayon pool of `threads` workers.
+fn worker_pool(threads: usize) -> Result<rayon::ThreadPool, String> {
+    rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .thread_name(|i| format!("ehlmap-sweep-{i}"))
         .build()
-        .map_err(|e| format!("cannot start {threads} threads: {e}"))?;
+        .map_err(|e| format!("cannot start {threads} threads: {e}"))
+}
+
+/// The footer metadata of every part file of this run (each flush adds `run` and `rows`).
+fn part_metadata(
+    spec: &SweepSpec,
+    shard: &Shard,
+    cases_total: usize,
+    cases_shard: usize,
+) -> Vec<(String, String)> {
     let created = iso8601(SystemTime::now());
-    let meta_base = vec![
+    vec![
         (
             "git_commit".to_string(),
             env!("EHLMAP_GIT_COMMIT").to_string(),
@@ -285,107 +337,127 @@ pub fn execute(spec: &SweepSpec, cases: &[Case], opts: &RunOptions) -> Result<Ru
         ("spec_file".to_string(), spec.file.clone()),
         ("spec".to_string(), spec.text.clone()),
         ("created".to_string(), created),
-        ("shard".to_string(), opts.shard.to_string()),
-        ("cases_total".to_string(), cases.len().to_string()),
-        ("cases_shard".to_string(), shard_cases.len().to_string()),
-    ];
-    let mut reporter = Reporter::new(
-        opts.progress,
-        format!("sweep {} [shard {}]", spec.name, opts.shard),
-        todo.len(),
-    );
+        ("shard".to_string(), shard.to_string()),
+        ("cases_total".to_string(), cases_total.to_string()),
+        ("cases_shard".to_string(), cases_shard.to_string()),
+    ]
+}
 
+/// Solve `todo` on `pool`: `threads` workers take the next case in order and send its row to
+/// `tx`, until no case is left, `stop` is set or the receiver is gone.
+fn solve_all(
+    pool: &rayon::ThreadPool,
+    threads: usize,
+    todo: &[&Case],
+    sweep: &str,
+    stop: &AtomicBool,
+    tx: mpsc::Sender<CaseRow>,
+) {
     let next = AtomicUsize::new(0);
-    let stop = AtomicBool::new(false);
-    let (tx, rx) = mpsc::channel::<CaseRow>();
-    let flush_every = Duration::from_secs_f64(spec.output.flush_seconds);
-    let batch = spec.output.batch.max(1);
-    let mut rows: Vec<CaseRow> = vec![];
-    let mut part: Option<PathBuf> = None;
-    let mut failure: Option<String> = None;
-
-    std::thread::scope(|ts| {
-        let (next, stop, todo, pool) = (&next, &stop, &todo, &pool);
-        let sweep = spec.name.as_str();
-        ts.spawn(move || {
-            pool.scope(|s| {
-                for _ in 0..threads {
-                    let tx = tx.clone();
-                    s.spawn(move |_| loop {
-                        if stop.load(Ordering::Relaxed) {
-                            break;
-                        }
-                        let i = next.fetch_add(1, Ordering::Relaxed);
-                        let Some(case) = todo.get(i) else { break };
-                        if tx.send(solve_guarded(case, sweep)).is_err() {
-                            break;
-                        }
-                    });
-                }
-            });
-            drop(tx);
-        });
-
-        let mut pending = 0usize;
-        let mut last_flush = Instant::now();
-        let flush = |rows: &mut Vec<CaseRow>, part: &mut Option<PathBuf>| -> Result<(), String> {
-            if part.is_none() {
-                *part = Some(claim_part(dir, &opts.shard)?);
-            }
-            let path = part.as_ref().expect("claimed");
-            let run = path
-                .file_name()
-                .and_then(|n| run_number(&n.to_string_lossy(), &opts.shard.label()))
-                .unwrap_or(0);
-            rows.sort_by(|a, b| a.case_id.cmp(&b.case_id));
-            let mut meta = meta_base.clone();
-            meta.push(("run".to_string(), run.to_string()));
-            meta.push(("rows".to_string(), rows.len().to_string()));
-            results::write_part(path, rows, &meta)
-        };
-        loop {
-            let wait = flush_every.saturating_sub(last_flush.elapsed());
-            match rx.recv_timeout(wait.max(Duration::from_millis(1))) {
-                Ok(row) => {
-                    report.solved += 1;
-                    report.failed += is_failure(&row) as usize;
-                    *report.models.entry(row.model_used.clone()).or_default() += 1;
-                    *report
-                        .model_seconds
-                        .entry(row.model_used.clone())
-                        .or_default() += row.wall_s.unwrap_or(0.0);
-                    rows.push(row);
-                    pending += 1;
-                    reporter.update(report.solved, report.failed);
-                }
-                Err(mpsc::RecvTimeoutError::Timeout) => {}
-                Err(mpsc::RecvTimeoutError::Disconnected) => break,
-            }
-            if pending > 0 && (pending >= batch || last_flush.elapsed() >= flush_every) {
-                if let Err(e) = flush(&mut rows, &mut part) {
-                    failure = Some(e);
-                    stop.store(true, Ordering::Relaxed);
+    let next = &next;
+    pool.scope(|s| {
+        for _ in 0..threads {
+            let tx = tx.clone();
+            s.spawn(move |_| loop {
+                if stop.load(Ordering::Relaxed) {
                     break;
                 }
-                pending = 0;
-                last_flush = Instant::now();
-            }
+                let i = next.fetch_add(1, Ordering::Relaxed);
+                let Some(case) = todo.get(i) else { break };
+                if tx.send(solve_guarded(case, sweep)).is_err() {
+                    break;
+                }
+            });
         }
-        if failure.is_none() && pending > 0 {
-            if let Err(e) = flush(&mut rows, &mut part) {
-                failure = Some(e);
-            }
-        }
-        // Dropping the receiver ends the workers after their current case on an error.
-        drop(rx);
     });
-    reporter.finish();
-    if let Some(e) = failure {
-        return Err(e);
+    drop(tx);
+}
+
+/// The part file of this run: claimed at the first flush, then rewritten with all rows of the
+/// run at every flush.
+struct PartWriter<'a> {
+    dir: &'a Path,
+    shard: &'a Shard,
+    /// The footer metadata before `run` and `rows`.
+    meta: Vec<(String, String)>,
+    rows: Vec<CaseRow>,
+    part: Option<PathBuf>,
+}
+
+impl PartWriter<'_> {
+    fn flush(&mut self) -> Result<(), String> {
+        if self.part.is_none() {
+            self.part = Some(claim_part(self.dir, self.shard)?);
+        }
+        let path = self.part.as_ref().expect("claimed");
+        let run = path
+            .file_name()
+            .and_then(|n| run_number(&n.to_string_lossy(), &self.shard.label()))
+            .unwrap_or(0);
+        self.rows.sort_by(|a, b| a.case_id.cmp(&b.case_id));
+        let mut meta = self.meta.clone();
+        meta.push(("run".to_string(), run.to_string()));
+        meta.push(("rows".to_string(), self.rows.len().to_string()));
+        results::write_part(path, &self.rows, &meta)
     }
-    report.file = part;
-    report.wall_s = start.elapsed().as_secs_f64();
-    Ok(report)
+}
+
+/// Count a solved row in `report`.
+fn tally(report: &mut RunReport, row: &CaseRow) {
+    report.solved += 1;
+    report.failed += is_failure(row) as usize;
+    *report.models.entry(row.model_used.clone()).or_default() += 1;
+    *report
+        .model_seconds
+        .entry(row.model_used.clone())
+        .or_default() += row.wall_s.unwrap_or(0.0);
+}
+
+/// Receive the rows until the workers are done, flushing after `batch` rows or `flush_seconds`
+/// (of `spec.output`); on a write error, set `stop` and return the error.
+fn collect(
+    rx: mpsc::Receiver<CaseRow>,
+    spec: &SweepSpec,
+    report: &mut RunReport,
+    reporter: &mut Reporter,
+    writer: &mut PartWriter,
+    stop: &AtomicBool,
+) -> Option<String> {
+    let flush_every = Duration::from_secs_f64(spec.output.flush_seconds);
+    let batch = spec.output.batch.max(1);
+    let mut failure: Option<String> = None;
+    let mut pending = 0usize;
+    let mut last_flush = Instant::now();
+    loop {
+        let wait = flush_every.saturating_sub(last_flush.elapsed());
+        match rx.recv_timeout(wait.max(Duration::from_millis(1))) {
+            Ok(row) => {
+                tally(report, &row);
+                writer.rows.push(row);
+                pending += 1;
+                reporter.update(report.solved, report.failed);
+            }
+            Err(mpsc::RecvTimeoutError::Timeout) => {}
+            Err(mpsc::RecvTimeoutError::Disconnected) => break,
+        }
+        if pending > 0 && (pending >= batch || last_flush.elapsed() >= flush_every) {
+            if let Err(e) = writer.flush() {
+                failure = Some(e);
+                stop.store(true, Ordering::Relaxed);
+                break;
+            }
+            pending = 0;
+            last_flush = Instant::now();
+        }
+    }
+    if failure.is_none() && pending > 0 {
+        if let Err(e) = writer.flush() {
+            failure = Some(e);
+        }
+    }
+    // Dropping the receiver ends the workers after their current case on an error.
+    drop(rx);
+    failure
 }
 
 #[cfg(test)]

@@ -39,195 +39,41 @@
 //! flush_seconds = 30             # ... or this long after the previous flush
 //! ```
 
-use crate::model::case::Elasticity;
-use crate::model::lubricant::Density;
-use crate::solve::line::multigrid::CycleType;
 use std::collections::BTreeMap;
-use std::fmt;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 use toml::de::DeTable;
+use toml::Spanned;
 
+mod axes;
 mod contacts;
 mod ctx;
+mod error;
+mod models;
 mod numerics;
 #[cfg(test)]
 mod tests;
+mod types;
 
-use ctx::Ctx;
+pub use axes::{canonical, expand_range, MAX_AXIS_VALUES};
+use contacts::ContactAxes;
+use ctx::{Ctx, Table};
+pub use error::SpecError;
+pub use types::{Contact, ContactSpec, Numerics, OutputSpec, SweepSpec, ViscositySpec};
 
-/// Largest number of values one axis may expand to.
-pub const MAX_AXIS_VALUES: usize = 100_000;
 /// Largest number of cases one spec may expand to.
 pub const MAX_CASES: usize = 1_000_000;
 
-/// A spec error: file, line (1-based) and key of the offending entry.
-#[derive(Clone, Debug, PartialEq)]
-pub struct SpecError {
-    pub file: String,
-    pub line: usize,
-    pub key: String,
-    pub message: String,
-}
-
-impl fmt::Display for SpecError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.key.is_empty() {
-            write!(f, "{}:{}: {}", self.file, self.line, self.message)
-        } else {
-            write!(
-                f,
-                "{}:{}: {}: {}",
-                self.file, self.line, self.key, self.message
-            )
-        }
-    }
-}
-
-impl std::error::Error for SpecError {}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Contact {
-    Line,
-    Point,
-}
-
-impl Contact {
-    /// Smallest and largest `numerics.grid` (points per direction for point contacts).
-    pub fn grid_range(&self) -> (usize, usize) {
-        match self {
-            Contact::Line => (33, (1 << 20) + 1),
-            Contact::Point => (17, 2049),
-        }
-    }
-
-    pub fn as_str(&self) -> &'static str {
-        match self {
-            Contact::Line => "line",
-            Contact::Point => "point",
-        }
-    }
-}
-
-/// The viscosity model as the spec gives it (Roelands from eta0 is resolved per case, since z
-/// depends on alpha_bar and so on M and L).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum ViscositySpec {
-    Barus,
-    RoelandsZ { z: f64, ph_pa: f64 },
-    RoelandsEta0 { eta0: f64, ph_pa: f64 },
-}
-
-/// Numerical settings of every solve of the sweep.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Numerics {
-    pub grid: usize,
-    pub cycle: CycleType,
-    pub max_cycles: usize,
-    pub fallback: bool,
-    pub tol_load: f64,
-    pub tol_h: f64,
-    pub error_estimate: bool,
-    /// Target relative accuracy of H_c and H_min: refine from 257 points up to `grid` until the
-    /// error estimate meets it (`ehlmap solve --accuracy`); the estimate goes to H_c_err/H_min_err.
-    pub accuracy: Option<f64>,
-}
-
-impl Default for Numerics {
-    fn default() -> Self {
-        Numerics {
-            grid: 2049,
-            cycle: CycleType::V,
-            max_cycles: 60,
-            fallback: true,
-            tol_load: 1e-7,
-            tol_h: 1e-6,
-            error_estimate: false,
-            accuracy: None,
-        }
-    }
-}
-
-impl Numerics {
-    /// The defaults of a contact: 2049 points for line contacts, 129 per direction for point
-    /// contacts; the rest as [`Numerics::default`].
-    pub fn for_contact(contact: Contact) -> Self {
-        match contact {
-            Contact::Line => Numerics::default(),
-            Contact::Point => Numerics {
-                grid: 129,
-                ..Numerics::default()
-            },
-        }
-    }
-}
-
-/// Where and how often results are written.
-#[derive(Clone, Debug, PartialEq)]
-pub struct OutputSpec {
-    pub dir: PathBuf,
-    pub batch: usize,
-    pub flush_seconds: f64,
-}
-
-/// One contact type of a spec: its M and L axes (the spec's, or its own `[axes.line]` /
-/// `[axes.point]`) and the numerical settings of its cases.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ContactSpec {
-    pub contact: Contact,
-    pub m: Vec<f64>,
-    pub l: Vec<f64>,
-    pub numerics: Numerics,
-}
-
-/// A validated sweep spec.
-#[derive(Clone, Debug, PartialEq)]
-pub struct SweepSpec {
-    /// The file as given on the command line (used in messages).
-    pub file: String,
-    /// The full TOML text (stored in every Parquet footer).
-    pub text: String,
-    pub name: String,
-    /// The contact types of the sweep with their numerical settings, in the order given (one,
-    /// or line and point for a mixed spec).
-    pub contacts: Vec<ContactSpec>,
-    pub description: Option<String>,
-    /// Axis values after expansion, in the order given (each contact's own M and L are in
-    /// `contacts`).
-    pub m: Vec<f64>,
-    pub l: Vec<f64>,
-    pub d: Option<Vec<f64>>,
-    pub elasticity: Elasticity,
-    pub viscosity: ViscositySpec,
-    pub density: Density,
-    pub output: OutputSpec,
-    /// Line of each key that was given (dotted path, e.g. "axes.M"), for later messages.
-    pub lines: BTreeMap<String, usize>,
-}
-
-impl SweepSpec {
-    /// The numerics of `contact`, when the spec has that contact.
-    pub fn numerics(&self, contact: Contact) -> Option<&Numerics> {
-        self.contacts
-            .iter()
-            .find(|c| c.contact == contact)
-            .map(|c| &c.numerics)
-    }
-
-    pub fn has(&self, contact: Contact) -> bool {
-        self.numerics(contact).is_some()
-    }
-
-    /// An error about `key` at the line where the spec gives it (line 1 if absent).
-    pub fn error(&self, key: &str, message: impl Into<String>) -> SpecError {
-        SpecError {
-            file: self.file.clone(),
-            line: self.lines.get(key).copied().unwrap_or(1),
-            key: key.to_string(),
-            message: message.into(),
-        }
-    }
-}
+/// The keys of a spec's top level.
+const ROOT_KEYS: [&str; 7] = [
+    "name",
+    "contact",
+    "description",
+    "axes",
+    "models",
+    "numerics",
+    "output",
+];
 
 /// Read and validate a spec file.
 pub fn load(path: &Path) -> Result<SweepSpec, SpecError> {
@@ -245,37 +91,6 @@ pub fn load(path: &Path) -> Result<SweepSpec, SpecError> {
     parse(&file, &text, &stem)
 }
 
-/// Round to 12 significant digits, so that values computed from ranges (and their case ids) do
-/// not depend on the last bits of `powf`.
-pub fn canonical(x: f64) -> f64 {
-    if x == 0.0 {
-        return 0.0; // also turns -0 into 0
-    }
-    format!("{x:.11e}").parse().unwrap_or(x)
-}
-
-/// `count` values from `from` to `to` (both included), evenly spaced in x or in log x.
-pub fn expand_range(from: f64, to: f64, count: usize, log: bool) -> Vec<f64> {
-    if count == 1 {
-        return vec![canonical(from)];
-    }
-    (0..count)
-        .map(|i| {
-            let t = i as f64 / (count - 1) as f64;
-            let x = if i == 0 {
-                from
-            } else if i == count - 1 {
-                to
-            } else if log {
-                from * (to / from).powf(t)
-            } else {
-                from + (to - from) * t
-            };
-            canonical(x)
-        })
-        .collect()
-}
-
 /// Parse and validate a spec given as text. `file` names it in messages; `default_name` is the
 /// dataset name when the spec has no `name`.
 pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, SpecError> {
@@ -284,28 +99,51 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
         text,
         lines: BTreeMap::new(),
     };
-    let doc = DeTable::parse(text).map_err(|e| {
+    let doc = parse_toml(&cx, text)?;
+    let root = doc.get_ref();
+    cx.keys(root, "", &ROOT_KEYS)?;
+    let name = parse_name(&cx, root, default_name)?;
+    let contacts = parse_contact(&cx, root)?;
+    let description = match root.get("description") {
+        Some(v) => Some(cx.string(v, "description")?.to_string()),
+        None => None,
+    };
+    let axes = parse_axes(&mut cx, root, &contacts)?;
+    let models = models::parse(&mut cx, root, &axes.l, &axes.l_span)?;
+    let contacts_numerics = numerics::parse(&mut cx, root, axes.of_contact)?;
+    let output = parse_output(&mut cx, root)?;
+    check_case_count(&cx, &contacts_numerics, axes.d.as_deref(), &axes.span)?;
+    // Contact-specific rules, after every value has been checked.
+    check_d_axis(&cx, &contacts, axes.d_span, &axes.span)?;
+    Ok(SweepSpec {
+        file: file.to_string(),
+        text: text.to_string(),
+        name,
+        contacts: contacts_numerics,
+        description,
+        m: axes.m,
+        l: axes.l,
+        d: axes.d,
+        elasticity: models.elasticity,
+        viscosity: models.viscosity,
+        density: models.density,
+        output,
+        lines: cx.lines,
+    })
+}
+
+/// The TOML document of `text`; an error names the line of the first syntax error.
+fn parse_toml<'i>(cx: &Ctx, text: &'i str) -> Result<Spanned<DeTable<'i>>, SpecError> {
+    DeTable::parse(text).map_err(|e| {
         let span = e.span().unwrap_or(0..0);
         let msg = e.message().lines().next().unwrap_or("invalid TOML").trim();
         cx.err(&span, "", format!("invalid TOML: {msg}"))
-    })?;
-    let root = doc.get_ref();
-    cx.keys(
-        root,
-        "",
-        &[
-            "name",
-            "contact",
-            "description",
-            "axes",
-            "models",
-            "numerics",
-            "output",
-        ],
-    )?;
-    let doc_span = 0..0;
+    })
+}
 
-    // name
+/// The dataset name: `name`, else `default_name`; letters, digits, '-', '_' and '.', not
+/// starting with '.'.
+fn parse_name(cx: &Ctx, root: &Table, default_name: &str) -> Result<String, SpecError> {
     let name = match root.get("name") {
         Some(v) => cx.string(v, "name")?.to_string(),
         None => default_name.to_string(),
@@ -316,7 +154,7 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
             .chars()
             .all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c));
     if !name_ok {
-        let span = root.get("name").map_or(doc_span.clone(), |v| v.span());
+        let span = root.get("name").map_or(0..0, |v| v.span());
         return Err(cx.err(
             &span,
             "name",
@@ -325,25 +163,39 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
             ),
         ));
     }
+    Ok(name)
+}
 
-    // contact
+/// The contacts of `contact`, which every spec gives.
+fn parse_contact(cx: &Ctx, root: &Table) -> Result<Vec<Contact>, SpecError> {
     let contact_v = root.get("contact").ok_or_else(|| {
         cx.err(
-            &doc_span,
+            &(0..0),
             "contact",
             "missing: give contact = \"line\" or \"point\"",
         )
     })?;
-    let contacts = contacts::parse_contacts(&cx, contact_v)?;
-    let description = match root.get("description") {
-        Some(v) => Some(cx.string(v, "description")?.to_string()),
-        None => None,
-    };
+    contacts::parse_contacts(cx, contact_v)
+}
 
-    // axes
+/// The `[axes]` of a spec: the values and where they are given.
+struct Axes {
+    m: Vec<f64>,
+    l: Vec<f64>,
+    d: Option<Vec<f64>>,
+    /// Each contact with its own M and L axes.
+    of_contact: Vec<ContactAxes>,
+    /// The spans of the `[axes]` table, of `L` and of `D`.
+    span: Range<usize>,
+    l_span: Range<usize>,
+    d_span: Option<Range<usize>>,
+}
+
+/// The `[axes]` table: M and L (required), each contact's own M and L, and D.
+fn parse_axes(cx: &mut Ctx, root: &Table, contacts: &[Contact]) -> Result<Axes, SpecError> {
     let axes_v = root
         .get("axes")
-        .ok_or_else(|| cx.err(&doc_span, "axes", "missing: an [axes] table with M and L"))?;
+        .ok_or_else(|| cx.err(&(0..0), "axes", "missing: an [axes] table with M and L"))?;
     let axes = cx.table(axes_v, "axes")?;
     cx.keys(axes, "axes", &["M", "L", "D", "line", "point"])?;
     let need = |k: &str| {
@@ -358,196 +210,101 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
     let (mv, lv) = (need("M")?, need("L")?);
     let m = cx.axis(mv, "axes.M", &contacts::m_ok)?;
     let l = cx.axis(lv, "axes.L", &contacts::l_ok)?;
-    let axes_of = contacts::contact_axes(&mut cx, axes, &contacts, &m, &l)?;
+    let of_contact = contacts::contact_axes(cx, axes, contacts, &m, &l)?;
     let d = match axes.get("D") {
         Some(dv) => Some(cx.axis(dv, "axes.D", &|x| {
             (!(x > 0.0 && x <= 1.0)).then_some("the ellipticity must be in (0, 1]")
         })?),
         None => None,
     };
+    Ok(Axes {
+        m,
+        l,
+        d,
+        of_contact,
+        span: axes_v.span(),
+        l_span: lv.span(),
+        d_span: axes.get("D").map(|dv| dv.span()),
+    })
+}
 
-    // models
-    let mut elasticity = Elasticity::Elastic;
-    let mut viscosity = ViscositySpec::Barus;
-    let mut density = Density::Incompressible;
-    if let Some(mv) = root.get("models") {
-        let t = cx.table(mv, "models")?;
-        cx.keys(
-            t,
-            "models",
-            &["elasticity", "viscosity", "density", "ph", "eta0", "z"],
-        )?;
-        if let Some(v) = t.get("elasticity") {
-            if cx.choice(v, "models.elasticity", &["elastic", "rigid"])? == "rigid" {
-                elasticity = Elasticity::Rigid;
-            }
-        }
-        let pos = |k: &str, why: &'static str| -> Result<Option<(f64, Range<usize>)>, SpecError> {
-            match t.get(k) {
-                None => Ok(None),
-                Some(v) => {
-                    let key = format!("models.{k}");
-                    let x = cx.number(v, &key)?;
-                    if x > 0.0 {
-                        Ok(Some((x, v.span())))
-                    } else {
-                        Err(cx.err(&v.span(), &key, format!("{k} = {x} is invalid: {why}")))
-                    }
-                }
-            }
-        };
-        let ph = pos("ph", "the Hertzian pressure must be > 0 (Pa)")?;
-        let eta0 = pos("eta0", "the ambient viscosity must be > 0 (Pa s)")?;
-        let z = pos("z", "the Roelands index must be > 0")?;
-        let visc = match t.get("viscosity") {
-            Some(v) => cx.choice(v, "models.viscosity", &["barus", "roelands"])?,
-            None => "barus",
-        };
-        let dens = match t.get("density") {
-            Some(v) => cx.choice(v, "models.density", &["incompressible", "dowson-higginson"])?,
-            None => "incompressible",
-        };
-        let model_span = |k: &str| t.get(k).map_or(mv.span(), |v| v.span());
-        let need_ph = |what: &str| {
-            ph.as_ref().map(|p| p.0).ok_or_else(|| {
-                cx.err(
-                    &model_span(what),
-                    &format!("models.{what}"),
-                    "needs the Hertzian pressure models.ph (Pa)",
-                )
-            })
-        };
-        if visc == "roelands" {
-            let ph_pa = need_ph("viscosity")?;
-            viscosity = match (eta0, z) {
-                (Some((eta0, span)), None) => {
-                    if eta0.ln() + 9.67 <= 0.0 {
-                        return Err(cx.err(
-                            &span,
-                            "models.eta0",
-                            format!("eta0 = {eta0} is invalid: Roelands needs ln(eta0) + 9.67 > 0"),
-                        ));
-                    }
-                    if l.contains(&0.0) {
-                        return Err(cx.err(
-                            &lv.span(),
-                            "axes.L",
-                            "L = 0 with Roelands from eta0 gives z = 0: use L > 0 or give models.z",
-                        ));
-                    }
-                    ViscositySpec::RoelandsEta0 { eta0, ph_pa }
-                }
-                (None, Some((z, _))) => ViscositySpec::RoelandsZ { z, ph_pa },
-                _ => {
-                    return Err(cx.err(
-                        &model_span("viscosity"),
-                        "models.viscosity",
-                        "roelands needs exactly one of models.eta0 (Pa s) or models.z",
-                    ))
-                }
-            };
-        } else {
-            for (k, given) in [("eta0", eta0.is_some()), ("z", z.is_some())] {
-                if given {
-                    return Err(cx.err(
-                        &model_span(k),
-                        &format!("models.{k}"),
-                        "applies to viscosity = \"roelands\" only",
-                    ));
-                }
-            }
-        }
-        if dens == "dowson-higginson" {
-            density = Density::DowsonHigginson {
-                ph_pa: need_ph("density")?,
-            };
-        }
-        if ph.is_some() && visc != "roelands" && dens != "dowson-higginson" {
-            return Err(cx.err(
-                &model_span("ph"),
-                "models.ph",
-                "is used only by viscosity = \"roelands\" and density = \"dowson-higginson\"",
-            ));
-        }
-    }
-
-    // numerics, per contact
-    let contacts_numerics = numerics::parse(&mut cx, root, axes_of)?;
-
-    // output
+/// The `[output]` table, defaults where absent.
+fn parse_output(cx: &mut Ctx, root: &Table) -> Result<OutputSpec, SpecError> {
     let mut output = OutputSpec {
         dir: PathBuf::from("outputs"),
         batch: 32,
         flush_seconds: 30.0,
     };
-    if let Some(ov) = root.get("output") {
-        let t = cx.table(ov, "output")?;
-        cx.keys(t, "output", &["dir", "batch", "flush_seconds"])?;
-        if let Some(v) = t.get("dir") {
-            let s = cx.string(v, "output.dir")?;
-            if s.is_empty() {
-                return Err(cx.err(&v.span(), "output.dir", "must not be empty"));
-            }
-            output.dir = PathBuf::from(s);
+    let Some(ov) = root.get("output") else {
+        return Ok(output);
+    };
+    let t = cx.table(ov, "output")?;
+    cx.keys(t, "output", &["dir", "batch", "flush_seconds"])?;
+    if let Some(v) = t.get("dir") {
+        let s = cx.string(v, "output.dir")?;
+        if s.is_empty() {
+            return Err(cx.err(&v.span(), "output.dir", "must not be empty"));
         }
-        if let Some(v) = t.get("batch") {
-            output.batch = cx.integer(v, "output.batch", 1, 1_000_000)? as usize;
-        }
-        if let Some(v) = t.get("flush_seconds") {
-            let x = cx.number(v, "output.flush_seconds")?;
-            if x <= 0.0 {
-                return Err(cx.err(
-                    &v.span(),
-                    "output.flush_seconds",
-                    format!("flush_seconds = {x} is invalid: must be > 0"),
-                ));
-            }
-            output.flush_seconds = x;
-        }
+        output.dir = PathBuf::from(s);
     }
+    if let Some(v) = t.get("batch") {
+        output.batch = cx.integer(v, "output.batch", 1, 1_000_000)? as usize;
+    }
+    if let Some(v) = t.get("flush_seconds") {
+        let x = cx.number(v, "output.flush_seconds")?;
+        if x <= 0.0 {
+            return Err(cx.err(
+                &v.span(),
+                "output.flush_seconds",
+                format!("flush_seconds = {x} is invalid: must be > 0"),
+            ));
+        }
+        output.flush_seconds = x;
+    }
+    Ok(output)
+}
 
-    let n_d = d.as_ref().map_or(1, |d| d.len());
-    let n_cases: usize = contacts_numerics
+/// At most [`MAX_CASES`] cases over all contacts (point cases once per D value).
+fn check_case_count(
+    cx: &Ctx,
+    contacts: &[ContactSpec],
+    d: Option<&[f64]>,
+    axes_span: &Range<usize>,
+) -> Result<(), SpecError> {
+    let n_d = d.map_or(1, |d| d.len());
+    let n_cases: usize = contacts
         .iter()
         .map(|c| c.m.len() * c.l.len() * if c.contact == Contact::Point { n_d } else { 1 })
         .sum();
     if n_cases > MAX_CASES {
         return Err(cx.err(
-            &axes_v.span(),
+            axes_span,
             "axes",
             format!("{n_cases} cases: at most {MAX_CASES} per spec"),
         ));
     }
+    Ok(())
+}
 
-    // Contact-specific rules, after every value has been checked.
-    if contacts.contains(&Contact::Point) && d.is_none() {
-        return Err(cx.err(
-            &axes_v.span(),
+/// The axis D (given at `d_span`) is required by point contacts and an error without them.
+fn check_d_axis(
+    cx: &Ctx,
+    contacts: &[Contact],
+    d_span: Option<Range<usize>>,
+    axes_span: &Range<usize>,
+) -> Result<(), SpecError> {
+    let point = contacts.contains(&Contact::Point);
+    match (point, d_span) {
+        (true, None) => Err(cx.err(
+            axes_span,
             "axes.D",
             "missing: contact = \"point\" needs the ellipticity axis D = Rx/Ry, values in (0, 1]",
-        ));
-    }
-    if let (false, Some(dv)) = (contacts.contains(&Contact::Point), axes.get("D")) {
-        return Err(cx.err(
-            &dv.span(),
+        )),
+        (false, Some(span)) => Err(cx.err(
+            &span,
             "axes.D",
             "the ellipticity axis D applies to contact = \"point\" only",
-        ));
+        )),
+        _ => Ok(()),
     }
-
-    Ok(SweepSpec {
-        file: file.to_string(),
-        text: text.to_string(),
-        name,
-        contacts: contacts_numerics,
-        description,
-        m,
-        l,
-        d,
-        elasticity,
-        viscosity,
-        density,
-        output,
-        lines: cx.lines,
-    })
 }

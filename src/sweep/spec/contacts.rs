@@ -3,7 +3,8 @@
 //! `[axes.point]`.
 
 use super::ctx::{Ctx, Table, Value};
-use super::{Contact, SpecError};
+use super::error::SpecError;
+use super::types::Contact;
 
 /// One contact with its M and L axes.
 pub(super) type ContactAxes = (Contact, Vec<f64>, Vec<f64>);

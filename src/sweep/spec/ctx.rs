@@ -1,7 +1,8 @@
 //! Reading spec values with their positions: [`Ctx`] turns TOML values into numbers, strings,
 //! choices and axes, and every error into a [`SpecError`] naming the file, line and key.
 
-use super::{canonical, expand_range, SpecError, MAX_AXIS_VALUES};
+use super::axes::{canonical, expand_range, MAX_AXIS_VALUES};
+use super::error::SpecError;
 use std::collections::BTreeMap;
 use std::ops::Range;
 use toml::de::{DeTable, DeValue};

@@ -6,7 +6,8 @@
 
 use super::contacts::ContactAxes;
 use super::ctx::{join, Ctx, Table};
-use super::{Contact, ContactSpec, Numerics, SpecError};
+use super::error::SpecError;
+use super::types::{Contact, ContactSpec, Numerics};
 use crate::solve::line::multigrid::CycleType;
 use std::ops::Range;
 

@@ -1,0 +1,116 @@
+//! The style and drawing helpers shared by the chart modules: the bundled DejaVu Sans font
+//! (registered once as "sans-serif" by [`ensure_font`], so nothing is needed from the system),
+//! PNG plus SVG output of one drawing ([`both`]), the error type of drawing ([`Res`], [`e`]),
+//! what a fit chart draws ([`Ctx`]) and log-spaced sampling ([`log_grid`]).
+
+use crate::model::formulas::{moes_line_hc, nvm_point_hc};
+use crate::report::{FitPoint, FittedModel};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::{Path, PathBuf};
+use std::sync::Once;
+
+static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+static REGISTER: Once = Once::new();
+
+/// Register the bundled font as "sans-serif" (once per process).
+pub fn ensure_font() {
+    REGISTER.call_once(|| {
+        // The bundled font is a valid TrueType file; failure would only lose the labels.
+        let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
+    });
+}
+
+pub(crate) type Res = Result<(), String>;
+
+/// Series colours of the charts, in order.
+pub const COLORS: [RGBColor; 6] = [
+    RGBColor(31, 119, 180),
+    RGBColor(214, 39, 40),
+    RGBColor(44, 160, 44),
+    RGBColor(255, 127, 14),
+    RGBColor(148, 103, 189),
+    RGBColor(140, 86, 75),
+];
+
+pub(crate) fn e<T: std::fmt::Debug>(x: T) -> String {
+    format!("{x:?}")
+}
+
+/// Draw with `f` into `stem.png` and with `g` into `stem.svg` (shared by every chart module).
+pub(crate) fn both(
+    stem: &Path,
+    size: (u32, u32),
+    f: impl Fn(&DrawingArea<BitMapBackend, Shift>) -> Res,
+    g: impl Fn(&DrawingArea<SVGBackend, Shift>) -> Res,
+) -> Res {
+    ensure_font();
+    // Appended, not `with_extension`: a stem may hold a dot (`film-D0.5`).
+    let png = PathBuf::from(format!("{}.png", stem.display()));
+    let svg = PathBuf::from(format!("{}.svg", stem.display()));
+    {
+        let root = BitMapBackend::new(&png, size).into_drawing_area();
+        root.fill(&WHITE).map_err(e)?;
+        f(&root)?;
+        root.present().map_err(e)?;
+    }
+    let root = SVGBackend::new(&svg, size).into_drawing_area();
+    root.fill(&WHITE).map_err(e)?;
+    g(&root)?;
+    root.present().map_err(e)?;
+    Ok(())
+}
+
+/// What a chart draws: the points, the fitted model and the contact's published formula.
+pub(crate) struct Ctx<'a> {
+    pub pts: &'a [FitPoint],
+    pub model: &'a FittedModel,
+    /// D at which curves and maps are drawn (1 for line contacts).
+    pub d: f64,
+}
+
+impl Ctx<'_> {
+    pub fn published(&self, m: f64, l: f64, d: f64) -> f64 {
+        match self.model {
+            FittedModel::Line(_) => moes_line_hc(m, l),
+            FittedModel::Point(_) => nvm_point_hc(m, l, d),
+        }
+    }
+    pub fn published_name(&self) -> &'static str {
+        match self.model {
+            FittedModel::Line(_) => "Moes 1992",
+            FittedModel::Point(_) => "NVM 1994",
+        }
+    }
+    pub fn eval(&self, m: f64, l: f64) -> f64 {
+        self.model.eval(m, l, self.d)
+    }
+    /// The four asymptotes at (M, L) and the chart's D.
+    pub fn asymptotes(&self, m: f64, l: f64) -> [f64; 4] {
+        match self.model {
+            FittedModel::Line(x) => x.asymptotes(m, l),
+            FittedModel::Point(x) => x.asymptotes(m, l, self.d),
+        }
+    }
+    /// The points at the chart's D.
+    pub fn at_d(&self) -> Vec<FitPoint> {
+        self.pts
+            .iter()
+            .filter(|p| p.d.is_none_or(|d| (d - self.d).abs() < 1e-9))
+            .copied()
+            .collect()
+    }
+    pub fn suffix(&self) -> String {
+        match self.model {
+            FittedModel::Line(_) => String::new(),
+            FittedModel::Point(_) => format!(", point contact, D = {}", self.d),
+        }
+    }
+}
+
+/// Log-spaced grid of n + 1 values from lo to hi.
+pub(crate) fn log_grid(lo: f64, hi: f64, n: usize) -> Vec<f64> {
+    (0..=n)
+        .map(|i| lo * (hi / lo).powf(i as f64 / n as f64))
+        .collect()
+}

@@ -1,0 +1,152 @@
+//! The data of a validated spec: its contacts with their axes and numerical settings, the
+//! models, the output settings, and the line of every key given (for later messages).
+
+use super::error::SpecError;
+use crate::model::case::Elasticity;
+use crate::model::lubricant::Density;
+use crate::solve::line::multigrid::CycleType;
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Contact {
+    Line,
+    Point,
+}
+
+impl Contact {
+    /// Smallest and largest `numerics.grid` (points per direction for point contacts).
+    pub fn grid_range(&self) -> (usize, usize) {
+        match self {
+            Contact::Line => (33, (1 << 20) + 1),
+            Contact::Point => (17, 2049),
+        }
+    }
+
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Contact::Line => "line",
+            Contact::Point => "point",
+        }
+    }
+}
+
+/// The viscosity model as the spec gives it (Roelands from eta0 is resolved per case, since z
+/// depends on alpha_bar and so on M and L).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ViscositySpec {
+    Barus,
+    RoelandsZ { z: f64, ph_pa: f64 },
+    RoelandsEta0 { eta0: f64, ph_pa: f64 },
+}
+
+/// Numerical settings of every solve of the sweep.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Numerics {
+    pub grid: usize,
+    pub cycle: CycleType,
+    pub max_cycles: usize,
+    pub fallback: bool,
+    pub tol_load: f64,
+    pub tol_h: f64,
+    pub error_estimate: bool,
+    /// Target relative accuracy of H_c and H_min: refine from 257 points up to `grid` until the
+    /// error estimate meets it (`ehlmap solve --accuracy`); the estimate goes to H_c_err/H_min_err.
+    pub accuracy: Option<f64>,
+}
+
+impl Default for Numerics {
+    fn default() -> Self {
+        Numerics {
+            grid: 2049,
+            cycle: CycleType::V,
+            max_cycles: 60,
+            fallback: true,
+            tol_load: 1e-7,
+            tol_h: 1e-6,
+            error_estimate: false,
+            accuracy: None,
+        }
+    }
+}
+
+impl Numerics {
+    /// The defaults of a contact: 2049 points for line contacts, 129 per direction for point
+    /// contacts; the rest as [`Numerics::default`].
+    pub fn for_contact(contact: Contact) -> Self {
+        match contact {
+            Contact::Line => Numerics::default(),
+            Contact::Point => Numerics {
+                grid: 129,
+                ..Numerics::default()
+            },
+        }
+    }
+}
+
+/// Where and how often results are written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OutputSpec {
+    pub dir: PathBuf,
+    pub batch: usize,
+    pub flush_seconds: f64,
+}
+
+/// One contact type of a spec: its M and L axes (the spec's, or its own `[axes.line]` /
+/// `[axes.point]`) and the numerical settings of its cases.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactSpec {
+    pub contact: Contact,
+    pub m: Vec<f64>,
+    pub l: Vec<f64>,
+    pub numerics: Numerics,
+}
+
+/// A validated sweep spec.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SweepSpec {
+    /// The file as given on the command line (used in messages).
+    pub file: String,
+    /// The full TOML text (stored in every Parquet footer).
+    pub text: String,
+    pub name: String,
+    /// The contact types of the sweep with their numerical settings, in the order given (one,
+    /// or line and point for a mixed spec).
+    pub contacts: Vec<ContactSpec>,
+    pub description: Option<String>,
+    /// Axis values after expansion, in the order given (each contact's own M and L are in
+    /// `contacts`).
+    pub m: Vec<f64>,
+    pub l: Vec<f64>,
+    pub d: Option<Vec<f64>>,
+    pub elasticity: Elasticity,
+    pub viscosity: ViscositySpec,
+    pub density: Density,
+    pub output: OutputSpec,
+    /// Line of each key that was given (dotted path, e.g. "axes.M"), for later messages.
+    pub lines: BTreeMap<String, usize>,
+}
+
+impl SweepSpec {
+    /// The numerics of `contact`, when the spec has that contact.
+    pub fn numerics(&self, contact: Contact) -> Option<&Numerics> {
+        self.contacts
+            .iter()
+            .find(|c| c.contact == contact)
+            .map(|c| &c.numerics)
+    }
+
+    pub fn has(&self, contact: Contact) -> bool {
+        self.numerics(contact).is_some()
+    }
+
+    /// An error about `key` at the line where the spec gives it (line 1 if absent).
+    pub fn error(&self, key: &str, message: impl Into<String>) -> SpecError {
+        SpecError {
+            file: self.file.clone(),
+            line: self.lines.get(key).copied().unwrap_or(1),
+            key: key.to_string(),
+            message: message.into(),
+        }
+    }
+}
