@@ -71,8 +71,9 @@ fn sweep_rows_count_the_warm_start_chain() {
             .unwrap()
             .remove(0)
     };
-    let cold =
-        |c: &ehlmap::sweep::plan::Case| solve_line(&c.line_case().unwrap(), &solve_params(c, 257).line_params());
+    let cold = |c: &ehlmap::sweep::plan::Case| {
+        solve_line(&c.line_case().unwrap(), &solve_params(c, 257).line_params())
+    };
     let failing = spec(1);
     let c = cold(&failing);
     assert_ne!(
