@@ -61,7 +61,7 @@ pub struct RunReport {
 }
 
 fn is_failure(r: &CaseRow) -> bool {
-    r.status != Status::Converged.as_str() || !r.valid
+    r.status != Status::Converged || !r.valid
 }
 
 /// ISO 8601 UTC time of `t`, e.g. `2025-01-31T12:00:00Z`.
@@ -251,7 +251,7 @@ pub fn execute(spec: &SweepSpec, cases: &[Case], opts: &RunOptions) -> Result<Ru
     let start = Instant::now();
     let dir = &opts.dataset;
     std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-    let stored = results::stored_ids(dir)?;
+    let stored = results::stored_ids(dir).map_err(|e| e.to_string())?;
     let shard_cases: Vec<&Case> = cases.iter().filter(|c| opts.shard.contains(c.id)).collect();
     let todo: Vec<&Case> = shard_cases
         .iter()
@@ -341,7 +341,7 @@ pub fn execute(spec: &SweepSpec, cases: &[Case], opts: &RunOptions) -> Result<Ru
             let mut meta = meta_base.clone();
             meta.push(("run".to_string(), run.to_string()));
             meta.push(("rows".to_string(), rows.len().to_string()));
-            results::write_part(path, rows, &meta)
+            results::write_part(path, rows, &meta).map_err(|e| e.to_string())
         };
         loop {
             let wait = flush_every.saturating_sub(last_flush.elapsed());
@@ -349,10 +349,10 @@ pub fn execute(spec: &SweepSpec, cases: &[Case], opts: &RunOptions) -> Result<Ru
                 Ok(row) => {
                     report.solved += 1;
                     report.failed += is_failure(&row) as usize;
-                    *report.models.entry(row.model_used.clone()).or_default() += 1;
+                    *report.models.entry(row.model_used.to_string()).or_default() += 1;
                     *report
                         .model_seconds
-                        .entry(row.model_used.clone())
+                        .entry(row.model_used.to_string())
                         .or_default() += row.wall_s.unwrap_or(0.0);
                     rows.push(row);
                     pending += 1;
