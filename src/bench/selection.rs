@@ -8,7 +8,7 @@
 //! Reported: total time of (a) and (b), cases per model, and the deviation of (a) from (b),
 //! which the target should bound wherever (b) is itself converged to better than the target.
 
-use crate::store::results::CaseRow;
+use crate::store::results::{CaseRow, RowStatus};
 use crate::sweep::executor::solve_case;
 use crate::sweep::plan::Case;
 use rayon::prelude::*;
@@ -25,7 +25,7 @@ pub struct Pair {
 impl Pair {
     /// max(|H_c,a / H_c,b - 1|, |H_min,a / H_min,b - 1|), when both converged.
     pub fn deviation(&self) -> Option<f64> {
-        let ok = |r: &CaseRow| r.status == "converged" && r.valid;
+        let ok = |r: &CaseRow| r.status == RowStatus::Converged && r.valid;
         if !(ok(&self.selected) && ok(&self.full)) {
             return None;
         }
@@ -66,8 +66,12 @@ pub fn summary(pairs: &[Pair], target: f64, spec: &str) -> String {
     let devs: Vec<f64> = pairs.iter().filter_map(Pair::deviation).collect();
     let within = devs.iter().filter(|&&d| d <= target).count();
     let max_dev = devs.iter().cloned().fold(0.0, f64::max);
-    let conv =
-        |f: fn(&Pair) -> &CaseRow| pairs.iter().filter(|p| f(p).status == "converged").count();
+    let conv = |f: fn(&Pair) -> &CaseRow| {
+        pairs
+            .iter()
+            .filter(|p| f(p).status == RowStatus::Converged)
+            .count()
+    };
     let mut md = format!("# Model selection and accuracy target {target} on `{spec}`\n\n");
     let _ = writeln!(
         md,

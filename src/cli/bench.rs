@@ -101,7 +101,7 @@ pub fn run_bench(a: &BenchArgs) -> Result<i32, InputError> {
             serde_json::to_string(&refs).expect("serialise"),
         )],
     )
-    .map_err(InputError)?;
+    .map_err(|e| InputError(e.to_string()))?;
     let panels: Vec<(String, Vec<Series>)> = refs
         .iter()
         .map(|r| {
@@ -188,7 +188,7 @@ fn run_selection(a: &BenchArgs, spec_path: &Path) -> Result<i32, InputError> {
             ),
             Column::Str(
                 "contact",
-                pairs.iter().map(|p| p.full.contact.clone()).collect(),
+                pairs.iter().map(|p| p.full.contact.to_string()).collect(),
             ),
             Column::F64("M", col_f(&|p| Some(p.full.m))),
             Column::F64("L", col_f(&|p| Some(p.full.l))),
@@ -197,7 +197,7 @@ fn run_selection(a: &BenchArgs, spec_path: &Path) -> Result<i32, InputError> {
                 "model_used",
                 pairs
                     .iter()
-                    .map(|p| p.selected.model_used.clone())
+                    .map(|p| p.selected.model_used.to_string())
                     .collect(),
             ),
             Column::F64(
@@ -213,11 +213,14 @@ fn run_selection(a: &BenchArgs, spec_path: &Path) -> Result<i32, InputError> {
             Column::F64("deviation", col_f(&selection::Pair::deviation)),
             Column::Str(
                 "status_selected",
-                pairs.iter().map(|p| p.selected.status.clone()).collect(),
+                pairs
+                    .iter()
+                    .map(|p| p.selected.status.to_string())
+                    .collect(),
             ),
             Column::Str(
                 "status_full",
-                pairs.iter().map(|p| p.full.status.clone()).collect(),
+                pairs.iter().map(|p| p.full.status.to_string()).collect(),
             ),
         ],
         &[
@@ -225,7 +228,7 @@ fn run_selection(a: &BenchArgs, spec_path: &Path) -> Result<i32, InputError> {
             ("accuracy", a.accuracy.to_string()),
         ],
     )
-    .map_err(InputError)?;
+    .map_err(|e| InputError(e.to_string()))?;
     let md = selection::summary(&pairs, a.accuracy, &spec_path.display().to_string());
     std::fs::write(a.out.join("selection.md"), &md)
         .map_err(|x| InputError(format!("--out {}: {x}", a.out.display())))?;
@@ -275,7 +278,7 @@ pub fn run_stability(a: &StabilityArgs) -> Result<i32, InputError> {
         ],
         &[],
     )
-    .map_err(InputError)?;
+    .map_err(|e| InputError(e.to_string()))?;
     let names: Vec<String> = stability::map_methods(1025)
         .iter()
         .map(|m| m.0.to_string())

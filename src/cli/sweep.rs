@@ -111,7 +111,7 @@ pub fn run_sweep(args: &SweepArgs) -> Result<i32, InputError> {
     let threads = resolve_threads(args.threads)?;
     let base = args.out.clone().unwrap_or_else(|| spec.output.dir.clone());
     let dataset = base.join(&spec.name);
-    let parts = results::part_files(&dataset).map_err(InputError)?;
+    let parts = results::part_files(&dataset).map_err(|e| InputError(e.to_string()))?;
     if args.resume && parts.is_empty() {
         return Err(InputError(format!(
             "--resume: {} holds no dataset to resume (run without --resume to start one)",
@@ -119,7 +119,7 @@ pub fn run_sweep(args: &SweepArgs) -> Result<i32, InputError> {
         )));
     }
     if args.dry_run {
-        let stored = results::stored_ids(&dataset).map_err(InputError)?;
+        let stored = results::stored_ids(&dataset).map_err(|e| InputError(e.to_string()))?;
         let mine: Vec<_> = cases.iter().filter(|c| shard.contains(c.id)).collect();
         println!(
             "# sweep {}: {} cases, shard {shard}: {}, dataset {}",

@@ -17,10 +17,10 @@
 //! the report).
 
 use crate::discrete::point::domain::PointDomain;
-use crate::model::case::{Elasticity, PointCase};
+use crate::model::case::{Contact, PointCase};
 use crate::solve::film::Film;
 use crate::solve::solution::ModelUsed;
-use crate::store::results::{read_dataset, CaseRow};
+use crate::store::results::{read_dataset, CaseRow, RowStatus};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -95,7 +95,7 @@ pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, String> {
         if !dir.is_dir() {
             return Err(format!("{}: not a dataset directory", dir.display()));
         }
-        for row in read_dataset(dir)? {
+        for row in read_dataset(dir).map_err(|e| e.to_string())? {
             if by_id.contains_key(&row.case_id) {
                 duplicates += 1;
             } else {
@@ -109,7 +109,7 @@ pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, String> {
         ..FitInput::default()
     };
     for row in by_id.values() {
-        let ok = row.status == "converged" && row.valid;
+        let ok = row.status == RowStatus::Converged && row.valid;
         let point = match (row.h_c, row.h_min) {
             (Some(h_c), Some(h_min)) if ok && h_c > 0.0 && h_min > 0.0 => Some(FitPoint {
                 m: row.m,
@@ -161,11 +161,11 @@ pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, String> {
                 100.0 * MAX_ERROR_ESTIMATE
             ));
         }
-        match (row.contact.as_str(), point) {
-            ("line", Some(p)) => input.line.push(p),
-            ("point", Some(p)) if p.d.is_some() => input.point.push(p),
-            ("point", _) => input.failed_point += 1,
-            _ => input.failed_line += 1,
+        match (row.contact, point) {
+            (Contact::Line, Some(p)) => input.line.push(p),
+            (Contact::Point, Some(p)) if p.d.is_some() => input.point.push(p),
+            (Contact::Point, _) => input.failed_point += 1,
+            (Contact::Line, None) => input.failed_line += 1,
         }
     }
     Ok(input)
@@ -185,14 +185,12 @@ fn label(row: &CaseRow) -> String {
 /// The domain-truncation error estimate of a point row solved on a point grid (0 otherwise).
 fn domain_truncation(row: &CaseRow) -> f64 {
     let Some(d) = row.d else { return 0.0 };
-    if row.contact != "point" || row.model_used == ModelUsed::SlenderLine.as_str() {
+    if row.contact != Contact::Point || row.model_used == ModelUsed::SlenderLine {
         return 0.0;
     }
     let Ok(mut case) = PointCase::new(row.m, row.l, d) else {
         return 0.0;
     };
-    if row.elasticity == Elasticity::Rigid.to_string() {
-        case.models.elasticity = Elasticity::Rigid;
-    }
+    case.models.elasticity = row.elasticity;
     PointDomain::of_case(&case, &Default::default()).truncation_error()
 }

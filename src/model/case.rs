@@ -27,12 +27,39 @@ pub enum Elasticity {
     Rigid,
 }
 
-impl fmt::Display for Elasticity {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
+impl Elasticity {
+    /// The name stored in TOML, JSON and Parquet (`elastic`, `rigid`).
+    pub fn as_str(&self) -> &'static str {
+        match self {
             Elasticity::Elastic => "elastic",
             Elasticity::Rigid => "rigid",
-        })
+        }
+    }
+}
+
+impl fmt::Display for Elasticity {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+impl std::str::FromStr for Elasticity {
+    type Err = ParamError;
+    fn from_str(s: &str) -> Result<Self, ParamError> {
+        [Elasticity::Elastic, Elasticity::Rigid]
+            .into_iter()
+            .find(|e| e.as_str() == s)
+            .ok_or_else(|| ParamError::Unknown {
+                what: "elasticity",
+                name: s.to_string(),
+                expected: "elastic or rigid",
+            })
+    }
+}
+
+impl PartialEq<&str> for Elasticity {
+    fn eq(&self, other: &&str) -> bool {
+        self.as_str() == *other
     }
 }
 

@@ -4,6 +4,7 @@
 //! version in the footer key-value metadata. A non-finite value is stored as null.
 
 use crate::solve::point::PointFields;
+use crate::store::error::StoreError;
 use crate::store::table::{write_table, Column};
 use std::path::Path;
 
@@ -14,15 +15,16 @@ pub fn write_fields(
     path: &Path,
     fields: &PointFields,
     meta: &[(&str, String)],
-) -> Result<(), String> {
+) -> Result<(), StoreError> {
     let (nx, ny) = (fields.x.len(), fields.y.len());
     let n = nx * ny;
     if fields.p.len() != n || fields.h.len() != n {
-        return Err(format!(
-            "fields of {nx} x {ny} nodes need {n} values of P and H (got {} and {})",
-            fields.p.len(),
-            fields.h.len()
-        ));
+        return Err(StoreError::FieldsShape {
+            nx,
+            ny,
+            p: fields.p.len(),
+            h: fields.h.len(),
+        });
     }
     let mut x = Vec::with_capacity(n);
     let mut y = Vec::with_capacity(n);

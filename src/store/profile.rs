@@ -3,6 +3,7 @@
 //! key-value metadata.
 
 use crate::solve::solution::Profile;
+use crate::store::error::StoreError;
 use crate::store::table::{write_table, Column};
 use std::path::Path;
 
@@ -11,7 +12,7 @@ pub fn write_profile(
     path: &Path,
     profile: &Profile,
     meta: &[(&str, String)],
-) -> Result<(), String> {
+) -> Result<(), StoreError> {
     let cols = vec![
         Column::F64("X", profile.x.clone()),
         Column::F64("P", profile.p.clone()),

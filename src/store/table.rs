@@ -2,6 +2,7 @@
 //! footer key-value metadata headed by `ehlmap_version`); [`write_table`] builds a small columnar
 //! table (f64, i64, string; NaN stored as null) for profiles, bench and stability results.
 
+use crate::store::error::StoreError;
 use arrow_array::{ArrayRef, Float64Array, Int64Array, RecordBatch, StringArray};
 use arrow_schema::{DataType, Field, Schema};
 use parquet::arrow::ArrowWriter;
@@ -12,15 +13,22 @@ use std::fs::File;
 use std::path::Path;
 use std::sync::Arc;
 
-/// One column of a table.
+/// One column of a table: its name and values.
 pub enum Column {
+    /// Floats (nullable: a non-finite value is stored as null).
     F64(&'static str, Vec<f64>),
+    /// Integers.
     I64(&'static str, Vec<i64>),
+    /// Strings.
     Str(&'static str, Vec<String>),
 }
 
 /// Write the columns (equal lengths) to `path` with `meta` in the footer.
-pub fn write_table(path: &Path, cols: Vec<Column>, meta: &[(&str, String)]) -> Result<(), String> {
+pub fn write_table(
+    path: &Path,
+    cols: Vec<Column>,
+    meta: &[(&str, String)],
+) -> Result<(), StoreError> {
     let mut fields = vec![];
     let mut arrays: Vec<ArrayRef> = vec![];
     for c in cols {
@@ -42,7 +50,10 @@ pub fn write_table(path: &Path, cols: Vec<Column>, meta: &[(&str, String)]) -> R
         }
     }
     let schema = Arc::new(Schema::new(fields));
-    let batch = RecordBatch::try_new(schema, arrays).map_err(|e| e.to_string())?;
+    let batch = RecordBatch::try_new(schema, arrays).map_err(|source| StoreError::Arrow {
+        path: path.to_path_buf(),
+        source,
+    })?;
     let meta: Vec<(String, String)> = meta
         .iter()
         .map(|(k, v)| (k.to_string(), v.clone()))
@@ -56,7 +67,7 @@ pub fn write_batch_file(
     path: &Path,
     batch: &RecordBatch,
     meta: &[(String, String)],
-) -> Result<File, String> {
+) -> Result<File, StoreError> {
     let mut kv = vec![KeyValue::new(
         "ehlmap_version".into(),
         env!("CARGO_PKG_VERSION").to_string(),
@@ -69,8 +80,15 @@ pub fn write_batch_file(
         .set_compression(Compression::ZSTD(ZstdLevel::default()))
         .set_key_value_metadata(Some(kv))
         .build();
-    let at = |e: parquet::errors::ParquetError| format!("{}: {e}", path.display());
-    let file = File::create(path).map_err(|e| format!("cannot create {}: {e}", path.display()))?;
+    let at = |source| StoreError::Parquet {
+        path: path.to_path_buf(),
+        source,
+    };
+    let file = File::create(path).map_err(|source| StoreError::Io {
+        op: "create",
+        path: path.to_path_buf(),
+        source,
+    })?;
     let mut w = ArrowWriter::try_new(file, batch.schema(), Some(props)).map_err(at)?;
     w.write(batch).map_err(at)?;
     w.into_inner().map_err(at)

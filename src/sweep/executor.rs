@@ -61,7 +61,7 @@ pub struct RunReport {
 }
 
 fn is_failure(r: &CaseRow) -> bool {
-    r.status != Status::Converged.as_str() || !r.valid
+    r.status != Status::Converged || !r.valid
 }
 
 /// ISO 8601 UTC time of `t`, e.g. `2025-01-31T12:00:00Z`.
@@ -301,7 +301,7 @@ fn cases_to_solve<'c>(
     cases: &'c [Case],
     shard: &Shard,
 ) -> Result<(Vec<&'c Case>, Vec<&'c Case>), String> {
-    let stored = results::stored_ids(dir)?;
+    let stored = results::stored_ids(dir).map_err(|e| e.to_string())?;
     let shard_cases: Vec<&Case> = cases.iter().filter(|c| shard.contains(c.id)).collect();
     let todo: Vec<&Case> = shard_cases
         .iter()
@@ -398,7 +398,7 @@ impl PartWriter<'_> {
         let mut meta = self.meta.clone();
         meta.push(("run".to_string(), run.to_string()));
         meta.push(("rows".to_string(), self.rows.len().to_string()));
-        results::write_part(path, &self.rows, &meta)
+        results::write_part(path, &self.rows, &meta).map_err(|e| e.to_string())
     }
 }
 
@@ -406,10 +406,10 @@ impl PartWriter<'_> {
 fn tally(report: &mut RunReport, row: &CaseRow) {
     report.solved += 1;
     report.failed += is_failure(row) as usize;
-    *report.models.entry(row.model_used.clone()).or_default() += 1;
+    *report.models.entry(row.model_used.to_string()).or_default() += 1;
     *report
         .model_seconds
-        .entry(row.model_used.clone())
+        .entry(row.model_used.to_string())
         .or_default() += row.wall_s.unwrap_or(0.0);
 }
 

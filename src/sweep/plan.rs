@@ -9,7 +9,6 @@
 
 use crate::model::case::{LineCase, Models, ParamError, PointCase};
 use crate::model::lubricant::{Density, Viscosity};
-use crate::solve::line::multigrid::CycleType;
 use crate::sweep::spec::{Contact, ContactSpec, Numerics, SpecError, SweepSpec, ViscositySpec};
 use std::collections::HashSet;
 use std::fmt;
@@ -49,13 +48,6 @@ pub fn id_hex(id: u64) -> String {
     format!("{id:016x}")
 }
 
-fn cycle_str(c: CycleType) -> &'static str {
-    match c {
-        CycleType::V => "v",
-        CycleType::W => "w",
-    }
-}
-
 impl Case {
     /// The canonical description that the id hashes.
     pub fn canonical(&self) -> String {
@@ -78,7 +70,7 @@ impl Case {
             self.l,
             self.models.elasticity,
             n.grid,
-            cycle_str(n.cycle),
+            n.cycle.as_str(),
             n.max_cycles,
             n.fallback,
             n.tol_load,

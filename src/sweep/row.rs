@@ -5,11 +5,10 @@
 
 use crate::model::case::{Case as ModelCase, ParamError};
 use crate::model::lubricant::{Density, Viscosity};
-use crate::solve::line::multigrid::CycleType;
 use crate::solve::solution::ModelUsed;
 use crate::solve::solution::{Outputs, Solution};
 use crate::solve::Status;
-use crate::store::results::{finite, larger_error, CaseRow};
+use crate::store::results::{finite, larger_error, CaseRow, RowStatus};
 use crate::strategy::accuracy::relative_error;
 use crate::strategy::accuracy::ESTIMATE_ORDER;
 use crate::strategy::solve_case::{solve, SolveParams};
@@ -30,31 +29,27 @@ pub fn input_row(case: &Case, sweep: &str) -> CaseRow {
     CaseRow {
         case_id: case.id_hex(),
         sweep: sweep.to_string(),
-        contact: case.contact.as_str().to_string(),
+        contact: case.contact,
         m: case.m,
         l: case.l,
         d: case.d,
         // Exact Hertz ellipse ratio of D (point contacts), known before any solve.
         k: case.point_case().ok().map(|p| p.ellipse().k),
-        elasticity: case.models.elasticity.to_string(),
+        elasticity: case.models.elasticity,
         viscosity: case.models.viscosity.name().to_string(),
         density: case.models.density.name().to_string(),
         z,
         eta0: case.eta0,
         ph: ph_v.or(ph_d),
         grid_requested: n.grid as i64,
-        cycle: match n.cycle {
-            CycleType::V => "v",
-            CycleType::W => "w",
-        }
-        .to_string(),
+        cycle: n.cycle,
         max_cycles: n.max_cycles as i64,
         fallback: n.fallback,
         tol_load: n.tol_load,
         tol_h: n.tol_h,
         half_grid_estimate: n.error_estimate,
         accuracy: n.accuracy,
-        model_used: "full".to_string(),
+        model_used: ModelUsed::Full,
         level: None,
         error_estimate: None,
         warm_start: None,
@@ -73,7 +68,7 @@ pub fn input_row(case: &Case, sweep: &str) -> CaseRow {
         load_error: None,
         h_c_err: None,
         h_min_err: None,
-        status: "not-run".to_string(),
+        status: RowStatus::NotRun,
         reason: String::new(),
         attempt: None,
         work_units: None,
@@ -154,7 +149,7 @@ fn warm_start(
 /// A row for a case that is not a valid case.
 fn invalid_row(case: &Case, sweep: &str, e: ParamError) -> CaseRow {
     let mut row = input_row(case, sweep);
-    row.status = "invalid".into();
+    row.status = RowStatus::Invalid;
     row.reason = e.to_string();
     row.valid = false;
     row
@@ -187,12 +182,11 @@ fn half_grid_errors(fine: &Outputs, coarse: &Outputs) -> (Option<f64>, Option<f6
 
 /// Copy a solve's outputs into `row` (non-finite values become null and clear `valid`).
 fn fill_outputs(row: &mut CaseRow, o: &Outputs, attempt: usize, valid: &mut bool) {
-    row.model_used = o.model_used.as_str().to_string();
+    row.model_used = o.model_used;
     row.level = o.level.map(|l| l as i64);
     // A closed-form answer has no grid, pressure maximum or traction, a slender-line one no
     // point film constant or traction: null, not invalid.
-    let partial = o.model_used == ModelUsed::ClosedForm.as_str()
-        || o.model_used == ModelUsed::SlenderLine.as_str();
+    let partial = o.model_used == ModelUsed::ClosedForm || o.model_used == ModelUsed::SlenderLine;
     let opt = |v: f64, valid: &mut bool| {
         if partial && v.is_nan() {
             None
@@ -215,7 +209,7 @@ fn fill_outputs(row: &mut CaseRow, o: &Outputs, attempt: usize, valid: &mut bool
     row.h0 = opt(o.h0, valid);
     row.f = opt(o.f, valid);
     row.load_error = finite(o.load_error, valid);
-    row.status = o.status.as_str().to_string();
+    row.status = o.status.into();
     row.reason = o.reason.clone();
     row.attempt = Some(attempt as i64);
 }
@@ -261,7 +255,7 @@ pub(crate) fn solve_guarded(case: &Case, sweep: &str) -> CaseRow {
                 .or_else(|| p.downcast_ref::<String>().cloned())
                 .unwrap_or_else(|| "unknown panic".to_string());
             let mut row = input_row(case, sweep);
-            row.status = "panic".into();
+            row.status = RowStatus::Panic;
             row.reason = format!("the solver panicked: {msg}");
             row.valid = false;
             row

@@ -36,11 +36,33 @@ pub enum CycleType {
 }
 
 impl CycleType {
+    /// The name stored in TOML and Parquet (`v`, `w`).
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            CycleType::V => "v",
+            CycleType::W => "w",
+        }
+    }
+
     pub(crate) fn gamma(self) -> usize {
         match self {
             CycleType::V => 1,
             CycleType::W => 2,
         }
+    }
+}
+
+impl std::str::FromStr for CycleType {
+    type Err = crate::model::error::ParamError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        [CycleType::V, CycleType::W]
+            .into_iter()
+            .find(|c| c.as_str() == s)
+            .ok_or_else(|| crate::model::error::ParamError::Unknown {
+                what: "cycle",
+                name: s.to_string(),
+                expected: "v or w",
+            })
     }
 }
 

@@ -1,9 +1,18 @@
 //! Reading sweep datasets back: one part file ([`read_part`]) or a whole directory deduplicated
-//! by case id ([`read_dataset`]). Files of schema 1 (before `model_used`, `level`,
-//! `error_estimate` and `accuracy`; their boolean `error_estimate` is today's
-//! `half_grid_estimate`) are read too, with `model_used = "full"`.
+//! by case id ([`read_dataset`], [`stored_ids`]), driven by the column table
+//! [`COLUMNS`].
+//!
+//! Files of every schema are read. A file whose `error_estimate` column is boolean is of schema
+//! 1: that column is today's `half_grid_estimate`, the columns introduced later (`since` > 1)
+//! keep the [`CaseRow::default`] value (`model_used = "full"`, the rest null), and
+//! `error_estimate` is derived by [`larger_error`] from `H_c_err` and `H_min_err`. A missing
+//! column of the file's schema, a column of another type, or an unknown name (status, contact
+//! ...) is an error naming the file and the column.
 
-use super::{larger_error, part_files, CaseRow};
+use crate::store::error::StoreError;
+use crate::store::results::columns::{Access, Column, COLUMNS, SCHEMA_VERSION};
+use crate::store::results::files::part_files;
+use crate::store::results::row::{larger_error, CaseRow, RowStatus};
 use arrow_array::{Array, BooleanArray, Float64Array, Int64Array, RecordBatch, StringArray};
 use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
 use std::collections::{BTreeMap, HashSet};
@@ -13,24 +22,145 @@ use std::path::{Path, PathBuf};
 /// One part file read back: its rows and its footer key-value metadata.
 #[derive(Clone, Debug)]
 pub struct Part {
+    /// The file.
     pub path: PathBuf,
+    /// Its rows, in file order.
     pub rows: Vec<CaseRow>,
+    /// Its footer key-value metadata (`ehlmap_version`, `ehlmap_schema`, `spec`, ...).
     pub meta: BTreeMap<String, String>,
 }
 
-fn col<'a, T: 'static>(b: &'a RecordBatch, name: &str, path: &Path) -> Result<&'a T, String> {
-    b.column_by_name(name)
-        .ok_or_else(|| format!("{}: no column `{name}`", path.display()))?
-        .as_any()
-        .downcast_ref::<T>()
-        .ok_or_else(|| format!("{}: column `{name}` has an unexpected type", path.display()))
+/// Columns renamed since: (today's name, the last schema of the old name, the old name).
+const RENAMED: &[(&str, u32, &str)] = &[("half_grid_estimate", 1, "error_estimate")];
+
+/// The schema version of a batch: 1 when `error_estimate` is boolean, else [`SCHEMA_VERSION`].
+fn schema_of(b: &RecordBatch) -> u32 {
+    let v1 = b
+        .column_by_name("error_estimate")
+        .is_some_and(|c| c.as_any().is::<BooleanArray>());
+    if v1 {
+        1
+    } else {
+        SCHEMA_VERSION
+    }
 }
 
-/// Read one part file.
-pub fn read_part(path: &Path) -> Result<Part, String> {
-    let err = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
-    let file = File::open(path).map_err(|e| err(&e))?;
-    let builder = ParquetRecordBatchReaderBuilder::try_new(file).map_err(|e| err(&e))?;
+/// The name of column `c` in a file of schema `schema`.
+fn name_in(c: &Column, schema: u32) -> &'static str {
+    RENAMED
+        .iter()
+        .find(|(now, last, _)| *now == c.name && schema <= *last)
+        .map_or(c.name, |(_, _, old)| old)
+}
+
+/// Puts the value of row `j` of one column into a row; `Err` holds why a name is not understood
+/// together with the stored value.
+type Setter<'a> = Box<dyn Fn(&mut CaseRow, usize) -> Result<(), (String, String)> + 'a>;
+
+/// The setter of column `c` over the batch's array `a`, or `None` when `a` has another type.
+fn bind<'a>(c: &Column, a: &'a dyn Array) -> Option<Setter<'a>> {
+    let any = a.as_any();
+    let opt = move |j: usize| !a.is_null(j);
+    Some(match c.access {
+        Access::Str { set, .. } => {
+            let a = any.downcast_ref::<StringArray>()?;
+            Box::new(move |r, j| set(r, a.value(j)).map_err(|e| (a.value(j).to_string(), e)))
+        }
+        Access::OptStr { set, .. } => {
+            let a = any.downcast_ref::<StringArray>()?;
+            Box::new(move |r, j| {
+                set(r, opt(j).then(|| a.value(j)));
+                Ok(())
+            })
+        }
+        Access::F64 { set, .. } => {
+            let a = any.downcast_ref::<Float64Array>()?;
+            Box::new(move |r, j| {
+                set(r, a.value(j));
+                Ok(())
+            })
+        }
+        Access::OptF64 { set, .. } => {
+            let a = any.downcast_ref::<Float64Array>()?;
+            Box::new(move |r, j| {
+                set(r, opt(j).then(|| a.value(j)));
+                Ok(())
+            })
+        }
+        Access::I64 { set, .. } => {
+            let a = any.downcast_ref::<Int64Array>()?;
+            Box::new(move |r, j| {
+                set(r, a.value(j));
+                Ok(())
+            })
+        }
+        Access::OptI64 { set, .. } => {
+            let a = any.downcast_ref::<Int64Array>()?;
+            Box::new(move |r, j| {
+                set(r, opt(j).then(|| a.value(j)));
+                Ok(())
+            })
+        }
+        Access::Bool { set, .. } => {
+            let a = any.downcast_ref::<BooleanArray>()?;
+            Box::new(move |r, j| {
+                set(r, a.value(j));
+                Ok(())
+            })
+        }
+    })
+}
+
+/// The rows of one record batch of the file `path`.
+fn batch_rows(b: &RecordBatch, path: &Path) -> Result<Vec<CaseRow>, StoreError> {
+    let schema = schema_of(b);
+    let mut setters = vec![];
+    for c in COLUMNS.iter().filter(|c| c.since <= schema) {
+        let name = name_in(c, schema);
+        let a = b.column_by_name(name).ok_or_else(|| StoreError::NoColumn {
+            path: path.to_path_buf(),
+            column: name.to_string(),
+        })?;
+        let set = bind(c, a.as_ref()).ok_or_else(|| StoreError::ColumnType {
+            path: path.to_path_buf(),
+            column: name.to_string(),
+        })?;
+        setters.push((c.name, set));
+    }
+    let derive_error = COLUMNS
+        .iter()
+        .any(|c| c.name == "error_estimate" && c.since > schema);
+    let mut rows = Vec::with_capacity(b.num_rows());
+    for j in 0..b.num_rows() {
+        let mut r = CaseRow::default();
+        for (column, set) in &setters {
+            set(&mut r, j).map_err(|(value, reason)| StoreError::BadValue {
+                path: path.to_path_buf(),
+                column,
+                value,
+                reason,
+            })?;
+        }
+        if derive_error {
+            r.error_estimate = larger_error(r.h_c_err, r.h_min_err);
+        }
+        rows.push(r);
+    }
+    Ok(rows)
+}
+
+/// Read one part file: its rows (see the module docs for older schemas) and footer.
+pub fn read_part(path: &Path) -> Result<Part, StoreError> {
+    let parquet = |source| StoreError::Parquet {
+        path: path.to_path_buf(),
+        source,
+    };
+    let file = File::open(path).map_err(|source| StoreError::Io {
+        op: "open",
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let builder = ParquetRecordBatchReaderBuilder::try_new(file).map_err(parquet)?;
     let meta: BTreeMap<String, String> = builder
         .metadata()
         .file_metadata()
@@ -42,114 +172,12 @@ pub fn read_part(path: &Path) -> Result<Part, String> {
         })
         .unwrap_or_default();
     let mut rows = vec![];
-    for batch in builder.build().map_err(|e| err(&e))? {
-        let b = batch.map_err(|e| err(&e))?;
-        let s = |n: &str| col::<StringArray>(&b, n, path);
-        let f = |n: &str| col::<Float64Array>(&b, n, path);
-        let i = |n: &str| col::<Int64Array>(&b, n, path);
-        let bo = |n: &str| col::<BooleanArray>(&b, n, path);
-        let of = |a: &Float64Array, j: usize| (!a.is_null(j)).then(|| a.value(j));
-        let oi = |a: &Int64Array, j: usize| (!a.is_null(j)).then(|| a.value(j));
-        let (case_id, sweep, contact) = (s("case_id")?, s("sweep")?, s("contact")?);
-        let (m, l, d, k) = (f("M")?, f("L")?, f("D")?, f("k")?);
-        let (elasticity, viscosity, density) = (s("elasticity")?, s("viscosity")?, s("density")?);
-        let (z, eta0, ph) = (f("z")?, f("eta0")?, f("ph")?);
-        let (grid_requested, cycle, max_cycles) =
-            (i("grid_requested")?, s("cycle")?, i("max_cycles")?);
-        let (fallback, tol_load, tol_h) = (bo("fallback")?, f("tol_load")?, f("tol_h")?);
-        // Schema 1 had a boolean `error_estimate` and none of the selection columns.
-        let v1 = b
-            .column_by_name("error_estimate")
-            .is_some_and(|c| c.as_any().is::<BooleanArray>());
-        let half = bo(if v1 {
-            "error_estimate"
-        } else {
-            "half_grid_estimate"
+    for batch in builder.build().map_err(parquet)? {
+        let b = batch.map_err(|source| StoreError::Arrow {
+            path: path.to_path_buf(),
+            source,
         })?;
-        let opt_f = |n: &str| if v1 { Ok(None) } else { f(n).map(Some) };
-        let (accuracy, error_estimate) = (opt_f("accuracy")?, opt_f("error_estimate")?);
-        let (model_used, warm_start, level) = if v1 {
-            (None, None, None)
-        } else {
-            (
-                Some(s("model_used")?),
-                Some(s("warm_start")?),
-                Some(i("level")?),
-            )
-        };
-        let (grid, levels) = (i("grid")?, i("levels")?);
-        let (h_c, h_c_pmax, h_min, x_min, y_min, p_max) = (
-            f("H_c")?,
-            f("H_c_pmax")?,
-            f("H_min")?,
-            f("X_min")?,
-            f("Y_min")?,
-            f("P_max")?,
-        );
-        let (spike_x, spike_p, h0, ff, load_error) = (
-            f("spike_X")?,
-            f("spike_P")?,
-            f("H0")?,
-            f("f")?,
-            f("load_error")?,
-        );
-        let (h_c_err, h_min_err) = (f("H_c_err")?, f("H_min_err")?);
-        let (status, reason, attempt) = (s("status")?, s("reason")?, i("attempt")?);
-        let (work_units, wall_s, valid) = (f("work_units")?, f("wall_s")?, bo("valid")?);
-        for j in 0..b.num_rows() {
-            rows.push(CaseRow {
-                case_id: case_id.value(j).to_string(),
-                sweep: sweep.value(j).to_string(),
-                contact: contact.value(j).to_string(),
-                m: m.value(j),
-                l: l.value(j),
-                d: of(d, j),
-                k: of(k, j),
-                elasticity: elasticity.value(j).to_string(),
-                viscosity: viscosity.value(j).to_string(),
-                density: density.value(j).to_string(),
-                z: of(z, j),
-                eta0: of(eta0, j),
-                ph: of(ph, j),
-                grid_requested: grid_requested.value(j),
-                cycle: cycle.value(j).to_string(),
-                max_cycles: max_cycles.value(j),
-                fallback: fallback.value(j),
-                tol_load: tol_load.value(j),
-                tol_h: tol_h.value(j),
-                half_grid_estimate: half.value(j),
-                accuracy: accuracy.and_then(|a| of(a, j)),
-                model_used: model_used.map_or("full".to_string(), |a| a.value(j).to_string()),
-                level: level.and_then(|a| oi(a, j)),
-                error_estimate: match error_estimate {
-                    Some(a) => of(a, j),
-                    None => larger_error(of(h_c_err, j), of(h_min_err, j)),
-                },
-                warm_start: warm_start
-                    .and_then(|a| (!a.is_null(j)).then(|| a.value(j).to_string())),
-                grid: oi(grid, j),
-                levels: oi(levels, j),
-                h_c: of(h_c, j),
-                h_c_pmax: of(h_c_pmax, j),
-                h_min: of(h_min, j),
-                x_min: of(x_min, j),
-                y_min: of(y_min, j),
-                p_max: of(p_max, j),
-                spike_x: of(spike_x, j),
-                spike_p: of(spike_p, j),
-                h0: of(h0, j),
-                f: of(ff, j),
-                load_error: of(load_error, j),
-                h_c_err: of(h_c_err, j),
-                h_min_err: of(h_min_err, j),
-                status: status.value(j).to_string(),
-                reason: reason.value(j).to_string(),
-                attempt: oi(attempt, j),
-                work_units: of(work_units, j),
-                wall_s: of(wall_s, j),
-                valid: valid.value(j),
-            });
-        }
+        rows.extend(batch_rows(&b, path)?);
     }
     Ok(Part {
         path: path.to_path_buf(),
@@ -160,7 +188,7 @@ pub fn read_part(path: &Path) -> Result<Part, String> {
 
 /// Is `a` a better record of the same case than `b` (converged and valid beats the rest)?
 fn better(a: &CaseRow, b: &CaseRow) -> bool {
-    let score = |r: &CaseRow| (r.status == "converged") as u8 * 2 + r.valid as u8;
+    let score = |r: &CaseRow| (r.status == RowStatus::Converged) as u8 * 2 + r.valid as u8;
     score(a) > score(b)
 }
 
@@ -168,7 +196,7 @@ fn better(a: &CaseRow, b: &CaseRow) -> bool {
 /// more than once (an overlap of reruns), a converged valid row is preferred, then the first
 /// one in file-name order. Temporary files are ignored; a part file that cannot be read is an
 /// error naming it. A directory that does not exist is an empty dataset.
-pub fn read_dataset(dir: &Path) -> Result<Vec<CaseRow>, String> {
+pub fn read_dataset(dir: &Path) -> Result<Vec<CaseRow>, StoreError> {
     let mut by_id: BTreeMap<String, CaseRow> = BTreeMap::new();
     for path in part_files(dir)? {
         for r in read_part(&path)?.rows {
@@ -184,7 +212,7 @@ pub fn read_dataset(dir: &Path) -> Result<Vec<CaseRow>, String> {
 }
 
 /// The case ids stored in a dataset directory.
-pub fn stored_ids(dir: &Path) -> Result<HashSet<String>, String> {
+pub fn stored_ids(dir: &Path) -> Result<HashSet<String>, StoreError> {
     let mut ids = HashSet::new();
     for path in part_files(dir)? {
         for r in read_part(&path)?.rows {
@@ -192,4 +220,81 @@ pub fn stored_ids(dir: &Path) -> Result<HashSet<String>, String> {
         }
     }
     Ok(ids)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::case::Contact;
+    use crate::solve::solution::ModelUsed;
+    use crate::store::results::files::temp_path;
+    use crate::store::results::row::sample;
+    use crate::store::results::write::{to_batch, write_part};
+
+    #[test]
+    fn round_trip_and_nan_flagged() {
+        let dir = std::env::temp_dir().join(format!("ehlmap-results-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut bad = sample("00000000000000bb");
+        bad.h_c = Some(f64::NAN);
+        bad.f = Some(f64::INFINITY);
+        bad.status = RowStatus::Diverged;
+        let good = sample("00000000000000aa");
+        let path = dir.join("part-1of1-0001.parquet");
+        write_part(&path, &[bad.clone(), good.clone()], &[]).unwrap();
+        // Stray files that are not parts are ignored by the reader.
+        std::fs::write(dir.join(".part-1of1-0002.parquet.tmp"), b"garbage").unwrap();
+        std::fs::write(dir.join("notes.txt"), b"garbage").unwrap();
+        let rows = read_dataset(&dir).unwrap();
+        assert_eq!(rows.len(), 2);
+        assert_eq!(rows[0], good);
+        assert_eq!(rows[1].h_c, None);
+        assert_eq!(rows[1].f, None);
+        assert!(!rows[1].valid);
+        assert_eq!(rows[1].h_min, bad.h_min);
+        // Duplicates across files: the converged row wins.
+        let mut dup = sample("00000000000000bb");
+        dup.h_c = Some(7.0);
+        write_part(&dir.join("part-1of1-0003.parquet"), &[dup], &[]).unwrap();
+        let rows = read_dataset(&dir).unwrap();
+        assert_eq!(rows.len(), 2);
+        assert_eq!(rows[1].h_c, Some(7.0));
+        assert!(!temp_path(&path).exists());
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn unknown_names_are_errors_naming_file_column_and_value() {
+        let b = to_batch(&[sample("00000000000000aa")]).unwrap();
+        let i = b.schema().index_of("model_used").unwrap();
+        let mut cols = b.columns().to_vec();
+        cols[i] = std::sync::Arc::new(StringArray::from(vec!["magic"]));
+        let b = RecordBatch::try_new(b.schema(), cols).unwrap();
+        let e = batch_rows(&b, Path::new("d/part-1of1-0001.parquet"))
+            .unwrap_err()
+            .to_string();
+        for want in ["d/part-1of1-0001.parquet", "`model_used`", "\"magic\""] {
+            assert!(e.contains(want), "{e}");
+        }
+    }
+
+    /// The committed datasets: schema 1 (`smoke-line`, a boolean `error_estimate`) and 2.
+    #[test]
+    fn committed_datasets_of_schema_1_and_2_read() {
+        let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+        let old = read_dataset(&data.join("smoke-line")).unwrap();
+        assert!(!old.is_empty());
+        for r in &old {
+            assert_eq!((r.contact, r.model_used), (Contact::Line, ModelUsed::Full));
+            assert_eq!((r.accuracy, r.level, &r.warm_start), (None, None, &None));
+            assert_eq!(r.error_estimate, larger_error(r.h_c_err, r.h_min_err));
+        }
+        assert!(old
+            .iter()
+            .any(|r| r.half_grid_estimate && r.error_estimate.is_some()));
+        let new = read_dataset(&data.join("point-257")).unwrap();
+        assert!(!new.is_empty() && new.iter().all(|r| r.contact == Contact::Point));
+        assert!(new.iter().any(|r| r.status == RowStatus::Converged));
+    }
 }

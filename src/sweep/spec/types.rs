@@ -2,34 +2,12 @@
 //! models, the output settings, and the line of every key given (for later messages).
 
 use super::error::SpecError;
+pub use crate::model::case::Contact;
 use crate::model::case::Elasticity;
 use crate::model::lubricant::Density;
 use crate::solve::line::multigrid::CycleType;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Contact {
-    Line,
-    Point,
-}
-
-impl Contact {
-    /// Smallest and largest `numerics.grid` (points per direction for point contacts).
-    pub fn grid_range(&self) -> (usize, usize) {
-        match self {
-            Contact::Line => (33, (1 << 20) + 1),
-            Contact::Point => (17, 2049),
-        }
-    }
-
-    pub fn as_str(&self) -> &'static str {
-        match self {
-            Contact::Line => "line",
-            Contact::Point => "point",
-        }
-    }
-}
 
 /// The viscosity model as the spec gives it (Roelands from eta0 is resolved per case, since z
 /// depends on alpha_bar and so on M and L).
