@@ -43,8 +43,8 @@ pub mod sweep;
 
 pub use model::case::{Case, Contact, Elasticity, LineCase, Models, ParamError, PointCase};
 pub use model::lubricant::{Density, Viscosity};
-pub use solve::line::multigrid::CycleType;
-pub use solve::line::Method;
+pub use solve::params::CycleType;
+pub use solve::params::Method;
 pub use solve::solution::{ModelUsed, Outputs, Solution};
 pub use solve::{CycleEvent, CycleRecord, Observer, SolveInfo, Status};
 pub use strategy::solve_case::{solve, SolveParams};

@@ -2,7 +2,8 @@
 //! problem as the multigrid: on the same grid they must give the same answer.
 
 use ehlmap::model::case::{Elasticity, LineCase, Models};
-use ehlmap::solve::line::{solve_line, LineSolveParams, Method};
+use ehlmap::solve::line::{solve_line, LineSolveParams};
+use ehlmap::solve::params::Method;
 use ehlmap::solve::Status;
 
 fn run(case: &LineCase, method: Method, grid: usize) -> ehlmap::solve::solution::Outputs {

@@ -14,7 +14,7 @@ fn solve(m: f64, l: f64, models: Models, grid: usize) -> Solution {
     let case = LineCase::with_models(m, l, models).unwrap();
     let mut p = LineSolveParams::default();
     p.mg.grid = grid;
-    p.keep_profile = true;
+    p.keep_fields = true;
     solve_line(&case, &p)
 }
 

@@ -5,7 +5,7 @@
 use ehlmap::discrete::point::operator::PointPhysics;
 use ehlmap::model::case::PointCase;
 use ehlmap::solve::fmg::fmg_solve;
-use ehlmap::solve::line::Method;
+use ehlmap::solve::params::Method;
 use ehlmap::solve::point::multigrid::PointMultigrid;
 use ehlmap::solve::point::{solve_point, PointMgParams, PointSolveParams};
 use ehlmap::solve::Status;

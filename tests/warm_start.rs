@@ -9,7 +9,7 @@ use ehlmap::solve::Status;
 fn params(grid: usize) -> LineSolveParams {
     let mut p = LineSolveParams::default();
     p.mg.grid = grid;
-    p.keep_profile = true;
+    p.keep_fields = true;
     p
 }
 

@@ -8,7 +8,8 @@
 
 use crate::model::case::{LineCase, PointCase};
 use crate::solve::line::relax::Smoother;
-use crate::solve::line::{solve_line, LineSolveParams, Method};
+use crate::solve::line::{solve_line, LineSolveParams};
+use crate::solve::params::Method;
 use crate::solve::point::{solve_point, PointSolveParams};
 use crate::solve::solution::Outputs;
 use serde::Serialize;

@@ -9,7 +9,7 @@ use clap::ValueEnum;
 use ehlmap::model::case::{Case, Elasticity, LineCase, Models, ParamError, PointCase};
 use ehlmap::model::lubricant::{Density, Viscosity};
 use ehlmap::solve::line::multigrid::CycleType;
-use ehlmap::solve::line::Method;
+use ehlmap::solve::params::Method;
 use ehlmap::solve::solution::{ModelUsed, Outputs, Solution};
 use ehlmap::solve::{CycleEvent, Observer};
 use ehlmap::strategy::solve_case::{solve, SolveParams};

@@ -4,6 +4,7 @@
 //! attempts made, and a converged solve whose H_min <= 0 carries a warning (the grid does not
 //! resolve the film).
 
+use crate::solve::params::{FinerCoarsest, MgParams, Rung};
 use crate::solve::solution::{Outputs, Solution};
 use crate::solve::{SolveInfo, Status};
 
@@ -65,6 +66,19 @@ pub fn run_ladder<S: Attempt>(names: &[&str], mut run: impl FnMut(usize) -> S) -
     out.work_units = spent_wu;
     out.wall_s = spent_s;
     s
+}
+
+/// Run the ladder `rungs` over the settings `p` (only the first rung without `fallback`):
+/// `run` solves with each rung's settings; see [`run_ladder`].
+pub fn run_rungs<D: Copy + FinerCoarsest, S: Attempt>(
+    rungs: &[Rung],
+    p: &MgParams<D>,
+    fallback: bool,
+    mut run: impl FnMut(&MgParams<D>) -> S,
+) -> S {
+    let rungs = if fallback { rungs } else { &rungs[..1] };
+    let names: Vec<&str> = rungs.iter().map(|r| r.name()).collect();
+    run_ladder(&names, |k| run(&rungs[k].apply(p)))
 }
 
 impl Attempt for Solution {

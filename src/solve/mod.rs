@@ -8,6 +8,7 @@ pub mod ladder;
 pub mod line;
 pub mod load_balance;
 pub mod newton;
+pub mod params;
 pub mod point;
 pub mod single_grid;
 pub mod solution;

@@ -11,6 +11,7 @@ use crate::discrete::point::domain::PointDomain;
 use crate::model::case::{LineCase, PointCase};
 use crate::solve::ladder::Attempt;
 use crate::solve::line::{solve_line, LineSolveParams};
+use crate::solve::params::ContactParams;
 use crate::solve::point::{solve_point, PointSolveParams};
 use crate::solve::solution::Solution;
 use crate::solve::Status;
@@ -150,14 +151,8 @@ pub fn solve_line_to_accuracy(
     target: f64,
     max_grid: usize,
 ) -> Solution {
-    refine_to_accuracy(257, max_grid, target, ESTIMATE_ORDER, |grid, last| {
-        let mut p = *params;
-        p.mg.grid = grid;
-        p.fallback = params.fallback && last;
-        if !last {
-            p.mg.max_cycles = p.mg.max_cycles.min(COARSE_LADDER_CYCLES);
-        }
-        solve_line(case, &p)
+    refine(257, ESTIMATE_ORDER, params, target, max_grid, |p| {
+        solve_line(case, p)
     })
 }
 
@@ -176,7 +171,9 @@ pub fn solve_point_to_accuracy(
     target: f64,
     max_grid: usize,
 ) -> Solution {
-    let mut s = refine_point(case, params, target, max_grid);
+    let mut s = refine(33, POINT_ESTIMATE_ORDER, params, target, max_grid, |p| {
+        solve_point(case, p)
+    });
     let t = PointDomain::of_case(case, &params.mg.domain).truncation_error();
     let o = &mut s.outputs;
     if let Some(e) = o.error_estimate {
@@ -194,20 +191,24 @@ pub fn solve_point_to_accuracy(
     s
 }
 
-fn refine_point(
-    case: &PointCase,
-    params: &PointSolveParams,
+/// [`refine_to_accuracy`] of a contact's solve from `start` points: the fallback ladder only on
+/// the finest allowed grid, and at most [`COARSE_LADDER_CYCLES`] cycles below it.
+fn refine<D: Copy>(
+    start: usize,
+    order: f64,
+    params: &ContactParams<D>,
     target: f64,
     max_grid: usize,
+    solve: impl Fn(&ContactParams<D>) -> Solution,
 ) -> Solution {
-    refine_to_accuracy(33, max_grid, target, POINT_ESTIMATE_ORDER, |grid, last| {
+    refine_to_accuracy(start, max_grid, target, order, |grid, last| {
         let mut p = *params;
         p.mg.grid = grid;
         p.fallback = params.fallback && last;
         if !last {
             p.mg.max_cycles = p.mg.max_cycles.min(COARSE_LADDER_CYCLES);
         }
-        solve_point(case, &p)
+        solve(&p)
     })
 }
 

@@ -270,7 +270,7 @@ pub fn solve_line_selected(
     let screened = select(case.m, case.l, None, &case.models, target);
     let mut cp = *params;
     cp.mg.grid = CHECK_GRID_LINE;
-    cp.keep_profile = false;
+    cp.keep_fields = false;
     let (sel, wu, wall) = verify(screened, target, |model| solve_line_model(case, &cp, model));
     let full = |p: &LineSolveParams| solve_line_to_accuracy(case, p, target, max_grid);
     let s = match sel.model {

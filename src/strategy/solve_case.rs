@@ -14,7 +14,9 @@ use crate::discrete::line::domain::DomainParams;
 use crate::discrete::point::domain::PointDomainParams;
 use crate::model::case::{Case, Contact};
 use crate::solve::line::multigrid::CycleType;
-use crate::solve::line::{solve_line, LineSolveParams, Method};
+use crate::solve::line::{solve_line, LineSolveParams};
+use crate::solve::params::Method;
+use crate::solve::params::{ContactParams, MgParams};
 use crate::solve::point::{solve_point, PointSolveParams};
 use crate::solve::solution::Solution;
 use crate::solve::Observer;
@@ -91,42 +93,19 @@ impl Default for SolveParams {
 }
 
 impl SolveParams {
-    /// The line solver's parameters: its defaults with these controls over them.
-    pub fn line_params(&self) -> LineSolveParams {
-        let mut p = LineSolveParams {
-            method: self.method,
-            fallback: self.fallback,
-            keep_profile: self.keep_fields,
-            ..LineSolveParams::default()
-        };
-        p.mg.cycle = self.cycle;
-        p.mg.domain = self.line_domain;
-        p.mg.observer = self.observer;
-        if let Some(g) = self.grid {
-            p.mg.grid = g;
-        }
-        if let Some(n) = self.max_cycles {
-            p.mg.max_cycles = n;
-        }
-        if let Some(t) = self.tol_load {
-            p.mg.tol_load = t;
-        }
-        if let Some(t) = self.tol_h {
-            p.mg.tol_h = t;
-        }
-        p
-    }
-
-    /// The point solver's parameters: its defaults with these controls over them.
-    pub fn point_params(&self) -> PointSolveParams {
-        let mut p = PointSolveParams {
+    /// A contact's solve parameters: its defaults with these controls over them and `domain`.
+    pub fn contact_params<D: Copy>(&self, domain: D) -> ContactParams<D>
+    where
+        MgParams<D>: Default,
+    {
+        let mut p = ContactParams {
             method: self.method,
             fallback: self.fallback,
             keep_fields: self.keep_fields,
-            ..PointSolveParams::default()
+            ..ContactParams::default()
         };
         p.mg.cycle = self.cycle;
-        p.mg.domain = self.point_domain;
+        p.mg.domain = domain;
         p.mg.observer = self.observer;
         p.mg.parallel = self.parallel;
         if let Some(g) = self.grid {
@@ -142,6 +121,16 @@ impl SolveParams {
             p.mg.tol_h = t;
         }
         p
+    }
+
+    /// The line solver's parameters.
+    pub fn line_params(&self) -> LineSolveParams {
+        self.contact_params(self.line_domain)
+    }
+
+    /// The point solver's parameters.
+    pub fn point_params(&self) -> PointSolveParams {
+        self.contact_params(self.point_domain)
     }
 
     /// The finest grid this solve starts from for `contact`.

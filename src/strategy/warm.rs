@@ -26,7 +26,7 @@ pub fn warm_start_line(
     spent: &mut (f64, f64),
 ) -> Option<Solution> {
     let mut keep = *params;
-    keep.keep_profile = true;
+    keep.keep_fields = true;
     let at = |k: u32| -> Option<LineCase> {
         LineCase::with_models(case.m / 2f64.powi(k as i32), case.l, case.models).ok()
     };

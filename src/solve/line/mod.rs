@@ -19,88 +19,32 @@ pub mod jacobian;
 pub mod multigrid;
 pub mod relax;
 
+use crate::discrete::line::domain::DomainParams;
 use crate::model::case::LineCase;
 use crate::model::formulas::moes_line_hc;
-use crate::solve::ladder::run_ladder;
-use crate::solve::line::multigrid::{CycleType, LineMgParams, LineMultigrid, WarmGuess};
+use crate::solve::ladder::run_rungs;
+use crate::solve::line::multigrid::{LineMgParams, LineMultigrid, WarmGuess};
+use crate::solve::params::{ContactParams, Method, Rung};
 use crate::solve::single_grid::solve_relax;
 use crate::solve::solution::{line_outputs, Profile, Solution};
 use crate::solve::SolveInfo;
 
-/// Which solver.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Method {
-    /// Full multigrid (FAS), the default.
-    #[default]
-    Multigrid,
-    /// Damped Newton-Raphson on the finest grid with a dense Jacobian (baseline; O(N^3)).
-    Newton,
-    /// The multigrid smoother alone on the finest grid (baseline).
-    Relax,
-}
-
-impl Method {
-    pub fn as_str(&self) -> &'static str {
-        match self {
-            Method::Multigrid => "multigrid",
-            Method::Newton => "newton",
-            Method::Relax => "relax",
-        }
-    }
-}
-
 /// Parameters of a line solve.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LineSolveParams {
-    pub method: Method,
-    /// Sweeps allowed to the single-grid relaxation baseline.
-    pub relax_max_sweeps: usize,
-    pub mg: LineMgParams,
-    /// Retry with conservative settings when the first attempt fails.
-    pub fallback: bool,
-    /// Return the P(X), H(X) profile.
-    pub keep_profile: bool,
-}
+pub type LineSolveParams = ContactParams<DomainParams>;
 
-impl Default for LineSolveParams {
-    fn default() -> Self {
-        LineSolveParams {
-            method: Method::Multigrid,
-            relax_max_sweeps: 20_000,
-            mg: LineMgParams::default(),
-            fallback: true,
-            keep_profile: false,
-        }
-    }
-}
-
-/// The fallback ladder (module doc), each attempt with the name its reason carries.
-fn attempts(p: &LineMgParams) -> Vec<(&'static str, LineMgParams)> {
-    let mut smooth = *p;
-    smooth.pre = p.pre.max(4);
-    smooth.post = p.post.max(4);
-    let mut damped = *p;
-    damped.relax.omega_line = (0.6 * p.relax.omega_line).min(0.3);
-    let mut a2 = *p;
-    a2.relax.xi_threshold = f64::INFINITY;
-    let mut a3 = a2;
-    a3.cycle = CycleType::W;
-    a3.domain.coarse_h_max *= 0.5;
-    a3.domain.coarse_lh *= 0.5;
-    vec![
-        ("default smoother", *p),
-        ("default smoother, V(4, 4) cycles", smooth),
-        ("default smoother, under-relaxation 0.3", damped),
-        ("distributive line relaxation everywhere", a2),
-        ("distributive relaxation, W cycles, finer coarsest grid", a3),
-    ]
-}
+/// The fallback ladder (module doc).
+const LADDER: [Rung; 5] = [
+    Rung::Default,
+    Rung::Smooth44,
+    Rung::Damped,
+    Rung::Distributive,
+    Rung::DistributiveWFiner,
+];
 
 fn run(
     case: &LineCase,
     p: &LineMgParams,
-    keep_profile: bool,
+    keep_fields: bool,
     guess: Option<&WarmGuess>,
 ) -> Solution {
     let mut mg = LineMultigrid::new(case, p);
@@ -108,15 +52,15 @@ fn run(
         mg.set_guess(g.clone());
     }
     let info = mg.solve();
-    package(case, &mg, info, keep_profile)
+    package(case, &mg, info, keep_fields)
 }
 
-fn package(case: &LineCase, mg: &LineMultigrid, info: SolveInfo, keep_profile: bool) -> Solution {
+fn package(case: &LineCase, mg: &LineMultigrid, info: SolveInfo, keep_fields: bool) -> Solution {
     let fine = mg.levels.last().expect("levels");
     let ic = mg.domain.centre_index(fine.len() - 1);
     let hs = 8.0 * case.m / std::f64::consts::PI;
     let outputs = line_outputs(&fine.x, &fine.p, &fine.film, mg.h0, hs, ic, &info);
-    let profile = keep_profile.then(|| Profile {
+    let profile = keep_fields.then(|| Profile {
         x: fine.x.clone(),
         p: fine.p.clone(),
         h: fine.film.iter().map(|v| v * hs).collect(),
@@ -169,20 +113,15 @@ pub fn solve_line_from(
         Method::Newton => {
             let mut p = single_level(&params.mg);
             p.newton_max_iter = p.newton_max_iter.max(200);
-            return run(case, &p, params.keep_profile, None);
+            return run(case, &p, params.keep_fields, None);
         }
         Method::Relax => {
             let mut mg = LineMultigrid::new(case, &single_level(&params.mg));
             let info = solve_relax(&mut mg, params.relax_max_sweeps, 10);
-            return package(case, &mg, info, params.keep_profile);
+            return package(case, &mg, info, params.keep_fields);
         }
     }
-    let mut list = attempts(&params.mg);
-    if !params.fallback {
-        list.truncate(1);
-    }
-    let names: Vec<&str> = list.iter().map(|a| a.0).collect();
-    run_ladder(&names, |k| {
-        run(case, &list[k].1, params.keep_profile, guess)
+    run_rungs(&LADDER, &params.mg, params.fallback, |p| {
+        run(case, p, params.keep_fields, guess)
     })
 }

@@ -21,89 +21,18 @@ use crate::model::case::LineCase;
 use crate::solve::fmg::{fmg_solve, Fas, FmgControl};
 use crate::solve::line::relax::{relax, LineScratch, RelaxParams};
 use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
+pub use crate::solve::params::CycleType;
+use crate::solve::params::{FinerCoarsest, MgParams};
 use crate::solve::{CycleRecord, SolveInfo, Status};
-use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 use std::time::Instant;
 
-/// V or W cycles.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
-#[serde(rename_all = "lowercase")]
-pub enum CycleType {
-    #[default]
-    V,
-    W,
-}
+/// Multigrid settings of a line solve.
+pub type LineMgParams = MgParams<DomainParams>;
 
-impl CycleType {
-    /// The name stored in TOML and Parquet (`v`, `w`).
-    pub fn as_str(&self) -> &'static str {
-        match self {
-            CycleType::V => "v",
-            CycleType::W => "w",
-        }
-    }
-
-    pub(crate) fn gamma(self) -> usize {
-        match self {
-            CycleType::V => 1,
-            CycleType::W => 2,
-        }
-    }
-}
-
-impl std::str::FromStr for CycleType {
-    type Err = crate::model::error::ParamError;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        [CycleType::V, CycleType::W]
-            .into_iter()
-            .find(|c| c.as_str() == s)
-            .ok_or_else(|| crate::model::error::ParamError::Unknown {
-                what: "cycle",
-                name: s.to_string(),
-                expected: "v or w",
-            })
-    }
-}
-
-/// Multigrid settings; `Default` gives the settings the stability map supports.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LineMgParams {
-    /// Points of the finest level (2^k n0 + 1 for the domain rule's n0; other values are rounded
-    /// up to the next such size).
-    pub grid: usize,
-    pub cycle: CycleType,
-    pub pre: usize,
-    pub post: usize,
-    /// Cycles on each FMG level before moving to the next finer one.
-    pub fmg_cycles: usize,
-    /// Cycles allowed on the finest level after FMG.
-    pub max_cycles: usize,
-    pub relax: RelaxParams,
-    /// Damping of the secant load-balance step on H0 (`None`: 1).
-    pub load_factor: Option<f64>,
-    pub coarse_sweeps: usize,
-    /// Converged when |load error| < tol_load and the relative change of H_c and H_min over a
-    /// cycle is below tol_h.
-    pub tol_load: f64,
-    pub tol_h: f64,
-    /// Load tolerance on the coarser FMG levels before moving up.
-    pub tol_load_fmg: f64,
-    pub domain: DomainParams,
-    /// Override the coarsest grid's interval count (a power of two >= 8).
-    pub coarse_intervals: Option<usize>,
-    pub second_order: bool,
-    /// Newton iterations allowed for the first coarsest-grid solve (and for the Newton method).
-    pub newton_max_iter: usize,
-    /// Deformation by the O(N^2) direct sum on every level instead of the FFT (baseline).
-    pub direct_deformation: bool,
-    /// Receives every cycle of the solve.
-    pub observer: Option<crate::solve::Observer>,
-}
-
-impl Default for LineMgParams {
+impl Default for MgParams<DomainParams> {
     fn default() -> Self {
-        LineMgParams {
+        MgParams {
             grid: 2049,
             cycle: CycleType::V,
             pre: 2,
@@ -121,8 +50,17 @@ impl Default for LineMgParams {
             second_order: true,
             newton_max_iter: 40,
             direct_deformation: false,
+            parallel: false,
             observer: None,
         }
+    }
+}
+
+impl FinerCoarsest for DomainParams {
+    /// Halve the coarsest spacing's limits.
+    fn finer_coarsest(&mut self) {
+        self.coarse_h_max *= 0.5;
+        self.coarse_lh *= 0.5;
     }
 }
 
@@ -481,16 +419,7 @@ impl LineMultigrid {
 
 impl Fas for LineMultigrid {
     fn control(&self) -> FmgControl {
-        let p = &self.params;
-        FmgControl {
-            fmg_cycles: p.fmg_cycles,
-            max_cycles: p.max_cycles,
-            tol_load: p.tol_load,
-            tol_h: p.tol_h,
-            tol_load_fmg: p.tol_load_fmg,
-            load_factor: p.load_factor,
-            coarse_budget_growth: 1,
-        }
+        self.params.control(1)
     }
     fn top(&self) -> usize {
         self.levels.len() - 1

@@ -15,12 +15,12 @@ pub mod jacobian;
 pub mod multigrid;
 pub mod relax;
 
+use crate::discrete::point::domain::PointDomainParams;
 use crate::discrete::point::domain::BIAS_CAUTION;
 use crate::model::case::PointCase;
 use crate::solve::fmg::fmg_solve;
-use crate::solve::ladder::run_ladder;
-use crate::solve::line::multigrid::CycleType;
-use crate::solve::line::Method;
+use crate::solve::ladder::run_rungs;
+use crate::solve::params::{ContactParams, Method, Rung};
 pub use crate::solve::point::multigrid::PointMgParams;
 use crate::solve::point::multigrid::PointMultigrid;
 use crate::solve::single_grid::solve_relax;
@@ -30,42 +30,7 @@ use crate::solve::solution::{line_outputs, parabola_vertex, Outputs, Solution};
 use crate::solve::SolveInfo;
 
 /// Parameters of a point solve.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PointSolveParams {
-    /// Multigrid (default); `Relax`: the smoother alone on the finest grid; `Newton`: dense
-    /// semi-smooth Newton on the finest grid (baselines; Newton's O(N^3) cost limits it to
-    /// 33 x 33 points or so).
-    pub method: Method,
-    /// Sweeps allowed to the single-grid relaxation baseline.
-    pub relax_max_sweeps: usize,
-    pub mg: PointMgParams,
-    /// Retry with conservative settings when the first attempt fails.
-    pub fallback: bool,
-    /// Return the P(X, Y), H(X, Y) fields.
-    pub keep_fields: bool,
-}
-
-impl Default for PointSolveParams {
-    fn default() -> Self {
-        PointSolveParams {
-            method: Method::Multigrid,
-            relax_max_sweeps: 20_000,
-            mg: PointMgParams::default(),
-            fallback: true,
-            keep_fields: false,
-        }
-    }
-}
-
-fn attempts(p: &PointMgParams) -> Vec<PointMgParams> {
-    let mut damped = *p;
-    damped.relax.omega_line = (0.6 * p.relax.omega_line).min(0.3);
-    let mut a2 = *p;
-    a2.relax.xi_threshold = f64::INFINITY;
-    let mut a3 = a2;
-    a3.cycle = CycleType::W;
-    vec![*p, damped, a2, a3]
-}
+pub type PointSolveParams = ContactParams<PointDomainParams>;
 
 /// The outputs of a finished solve (see the module docs).
 pub fn point_outputs(mg: &PointMultigrid, info: &SolveInfo) -> Outputs {
@@ -166,12 +131,12 @@ fn package(mg: &PointMultigrid, info: SolveInfo, keep_fields: bool) -> Solution 
     }
 }
 
-/// What each attempt of the ladder changes.
-const ATTEMPT_NAMES: [&str; 4] = [
-    "default smoother",
-    "default smoother, under-relaxation 0.3",
-    "distributive line relaxation everywhere",
-    "distributive relaxation, W cycles",
+/// The fallback ladder (module doc).
+const LADDER: [Rung; 4] = [
+    Rung::Default,
+    Rung::Damped,
+    Rung::Distributive,
+    Rung::DistributiveW,
 ];
 
 /// The baselines run on one level: the finest grid itself.
@@ -196,12 +161,7 @@ pub fn solve_point(case: &PointCase, params: &PointSolveParams) -> Solution {
             return package(&mg, info, params.keep_fields);
         }
     }
-    let list = if params.fallback {
-        attempts(&params.mg)
-    } else {
-        vec![params.mg]
-    };
-    run_ladder(&ATTEMPT_NAMES[..list.len()], |k| {
-        run(case, &list[k], params.keep_fields)
+    run_rungs(&LADDER, &params.mg, params.fallback, |p| {
+        run(case, p, params.keep_fields)
     })
 }

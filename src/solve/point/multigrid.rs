@@ -16,48 +16,19 @@ use crate::discrete::point::domain::PointDomainParams;
 use crate::discrete::point::operator::{PointLevel, PointPhysics};
 use crate::model::case::{Elasticity, PointCase};
 use crate::solve::fmg::{Fas, FmgControl};
-use crate::solve::line::multigrid::CycleType;
 use crate::solve::line::relax::RelaxParams;
 use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
+use crate::solve::params::{CycleType, FinerCoarsest, MgParams};
 use crate::solve::point::relax::{point_line_sweep, PointScratch};
 use crate::solve::{CycleRecord, SolveInfo, Status};
 use std::time::Instant;
 
-/// Multigrid settings of a point solve; `Default` gives the settings the stability map supports.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PointMgParams {
-    /// Points per direction of the finest level (rounded up to 2^k n0 + 1).
-    pub grid: usize,
-    pub cycle: CycleType,
-    pub pre: usize,
-    pub post: usize,
-    /// Cycles on each FMG level before moving on.
-    pub fmg_cycles: usize,
-    /// Cycles allowed on the finest level after FMG.
-    pub max_cycles: usize,
-    pub tol_load: f64,
-    pub tol_h: f64,
-    pub tol_load_fmg: f64,
-    pub load_factor: Option<f64>,
-    pub relax: RelaxParams,
-    /// Relaxations of the coarsest level when its Newton solve fails.
-    pub coarse_sweeps: usize,
-    pub newton_max_iter: usize,
-    pub second_order: bool,
-    pub domain: PointDomainParams,
-    /// Relax the rows of each colour in parallel (zebra order) on the current rayon pool, on
-    /// levels of 65 rows or more. Off by default: a sweep already runs one solve per thread, and
-    /// the default Gauss-Seidel row order converges faster per sweep.
-    pub parallel: bool,
-    /// Deformation by the O(N^2) direct sum on every level instead of the FFT (baseline).
-    pub direct_deformation: bool,
-    /// Receives every cycle of the solve.
-    pub observer: Option<crate::solve::Observer>,
-}
+/// Multigrid settings of a point solve.
+pub type PointMgParams = MgParams<PointDomainParams>;
 
-impl Default for PointMgParams {
+impl Default for MgParams<PointDomainParams> {
     fn default() -> Self {
-        PointMgParams {
+        MgParams {
             grid: 129,
             cycle: CycleType::V,
             pre: 2,
@@ -75,9 +46,16 @@ impl Default for PointMgParams {
             domain: PointDomainParams::default(),
             parallel: false,
             direct_deformation: false,
+            coarse_intervals: None,
             observer: None,
         }
     }
+}
+
+impl FinerCoarsest for PointDomainParams {
+    /// The point coarsest grid has a fixed interval count ([`PointDomainParams::n0`]) and no
+    /// spacing limit: nothing to refine (no point rung asks for it).
+    fn finer_coarsest(&mut self) {}
 }
 
 /// The state of a point multigrid solve.
@@ -284,16 +262,7 @@ fn mid(v: &[f64], i: usize) -> f64 {
 
 impl Fas for PointMultigrid {
     fn control(&self) -> FmgControl {
-        let p = &self.params;
-        FmgControl {
-            fmg_cycles: p.fmg_cycles,
-            max_cycles: p.max_cycles,
-            tol_load: p.tol_load,
-            tol_h: p.tol_h,
-            tol_load_fmg: p.tol_load_fmg,
-            load_factor: p.load_factor,
-            coarse_budget_growth: 2,
-        }
+        self.params.control(2)
     }
 
     fn top(&self) -> usize {

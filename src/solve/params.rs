@@ -1,0 +1,237 @@
+//! The settings of a solve, shared by line and point contacts: the method, the cycle type, the
+//! multigrid settings ([`MgParams`]) and a contact's solve parameters ([`ContactParams`]), each
+//! generic over the contact's domain rule; and the fallback ladder's rungs ([`Rung`]), the
+//! conservative settings a failed attempt is retried with.
+
+use crate::solve::fmg::FmgControl;
+use crate::solve::line::relax::RelaxParams;
+use serde::{Deserialize, Serialize};
+
+/// V or W cycles.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum CycleType {
+    #[default]
+    V,
+    W,
+}
+
+impl CycleType {
+    /// The name stored in TOML and Parquet (`v`, `w`).
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            CycleType::V => "v",
+            CycleType::W => "w",
+        }
+    }
+
+    pub(crate) fn gamma(self) -> usize {
+        match self {
+            CycleType::V => 1,
+            CycleType::W => 2,
+        }
+    }
+}
+
+impl std::str::FromStr for CycleType {
+    type Err = crate::model::error::ParamError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        [CycleType::V, CycleType::W]
+            .into_iter()
+            .find(|c| c.as_str() == s)
+            .ok_or_else(|| crate::model::error::ParamError::Unknown {
+                what: "cycle",
+                name: s.to_string(),
+                expected: "v or w",
+            })
+    }
+}
+
+impl std::fmt::Display for CycleType {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// Which solver.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Method {
+    /// Full multigrid (FAS), the default.
+    #[default]
+    Multigrid,
+    /// Damped Newton-Raphson on the finest grid with a dense Jacobian (baseline; O(N^3)).
+    Newton,
+    /// The multigrid smoother alone on the finest grid (baseline).
+    Relax,
+}
+
+impl Method {
+    /// The name on the command line and in reports.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Method::Multigrid => "multigrid",
+            Method::Newton => "newton",
+            Method::Relax => "relax",
+        }
+    }
+}
+
+/// Multigrid settings of a solve, shared by line and point contacts; `D` is the contact's domain
+/// rule ([`crate::discrete::line::domain::DomainParams`] or
+/// [`crate::discrete::point::domain::PointDomainParams`]). `Default` (per contact) gives the
+/// settings the stability map supports.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MgParams<D> {
+    /// Points of the finest level (2^k n0 + 1 for the domain rule's n0; other values are rounded
+    /// up to the next such size).
+    pub grid: usize,
+    pub cycle: CycleType,
+    pub pre: usize,
+    pub post: usize,
+    /// Cycles on each FMG level before moving to the next finer one.
+    pub fmg_cycles: usize,
+    /// Cycles allowed on the finest level after FMG.
+    pub max_cycles: usize,
+    pub relax: RelaxParams,
+    /// Damping of the secant load-balance step on H0 (`None`: 1).
+    pub load_factor: Option<f64>,
+    pub coarse_sweeps: usize,
+    /// Converged when |load error| < tol_load and the relative change of H_c and H_min over a
+    /// cycle is below tol_h.
+    pub tol_load: f64,
+    pub tol_h: f64,
+    /// Load tolerance on the coarser FMG levels before moving up.
+    pub tol_load_fmg: f64,
+    /// The contact's domain rule.
+    pub domain: D,
+    /// Line contacts: override the coarsest grid's interval count (a power of two >= 8).
+    pub coarse_intervals: Option<usize>,
+    pub second_order: bool,
+    /// Newton iterations allowed for the first coarsest-grid solve (and for the Newton method).
+    pub newton_max_iter: usize,
+    /// Deformation by the O(N^2) direct sum on every level instead of the FFT (baseline).
+    pub direct_deformation: bool,
+    /// Point contacts: relax the rows of each colour in parallel (zebra order) on the current
+    /// rayon pool, on levels of 65 rows or more. Off by default: a sweep already runs one solve
+    /// per thread, and the default Gauss-Seidel row order converges faster per sweep.
+    pub parallel: bool,
+    /// Receives every cycle of the solve.
+    pub observer: Option<crate::solve::Observer>,
+}
+
+impl<D> MgParams<D> {
+    /// The FMG driver's controls; a coarser level's cycle budget grows by
+    /// `coarse_budget_growth` per level below the finest.
+    pub fn control(&self, coarse_budget_growth: usize) -> FmgControl {
+        FmgControl {
+            fmg_cycles: self.fmg_cycles,
+            max_cycles: self.max_cycles,
+            tol_load: self.tol_load,
+            tol_h: self.tol_h,
+            tol_load_fmg: self.tol_load_fmg,
+            load_factor: self.load_factor,
+            coarse_budget_growth,
+        }
+    }
+}
+
+/// A domain rule whose coarsest grid can be made finer (a rung of the fallback ladder).
+pub trait FinerCoarsest {
+    /// Halve the coarsest grid's spacing.
+    fn finer_coarsest(&mut self);
+}
+
+/// A rung of the fallback ladder: how an attempt changes the first attempt's settings.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Rung {
+    /// The settings as given.
+    Default,
+    /// V(4, 4) cycles: four pre- and post-relaxations at least.
+    Smooth44,
+    /// The line smoother under-relaxed to 0.3 at most.
+    Damped,
+    /// Distributive line relaxation at every node.
+    Distributive,
+    /// Distributive relaxation with W cycles.
+    DistributiveW,
+    /// Distributive relaxation with W cycles and a finer coarsest grid.
+    DistributiveWFiner,
+}
+
+impl Rung {
+    /// The name a solve's reason carries when this rung answered.
+    pub fn name(self) -> &'static str {
+        match self {
+            Rung::Default => "default smoother",
+            Rung::Smooth44 => "default smoother, V(4, 4) cycles",
+            Rung::Damped => "default smoother, under-relaxation 0.3",
+            Rung::Distributive => "distributive line relaxation everywhere",
+            Rung::DistributiveW => "distributive relaxation, W cycles",
+            Rung::DistributiveWFiner => "distributive relaxation, W cycles, finer coarsest grid",
+        }
+    }
+
+    /// `p` changed as this rung says.
+    pub fn apply<D: Copy + FinerCoarsest>(self, p: &MgParams<D>) -> MgParams<D> {
+        let mut q = *p;
+        match self {
+            Rung::Default => {}
+            Rung::Smooth44 => {
+                q.pre = p.pre.max(4);
+                q.post = p.post.max(4);
+            }
+            Rung::Damped => q.relax.omega_line = (0.6 * p.relax.omega_line).min(0.3),
+            Rung::Distributive => q.relax.xi_threshold = f64::INFINITY,
+            Rung::DistributiveW | Rung::DistributiveWFiner => {
+                q.relax.xi_threshold = f64::INFINITY;
+                q.cycle = CycleType::W;
+                if self == Rung::DistributiveWFiner {
+                    q.domain.finer_coarsest();
+                }
+            }
+        }
+        q
+    }
+}
+
+/// Parameters of a solve of one contact; `Default` (per contact) is the library's default.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactParams<D> {
+    /// Multigrid (default), or a baseline on the finest grid: the smoother alone (`Relax`) or
+    /// dense semi-smooth Newton (`Newton`; its O(N^3) cost limits it to small grids).
+    pub method: Method,
+    /// Sweeps allowed to the single-grid relaxation baseline.
+    pub relax_max_sweeps: usize,
+    /// The multigrid settings.
+    pub mg: MgParams<D>,
+    /// Retry with conservative settings when the first attempt fails.
+    pub fallback: bool,
+    /// Return the finest-grid profile (line) or fields (point).
+    pub keep_fields: bool,
+}
+
+impl<D> ContactParams<D>
+where
+    MgParams<D>: Default,
+{
+    /// The default method and ladder over the given multigrid settings.
+    pub fn with_mg(mg: MgParams<D>) -> Self {
+        ContactParams {
+            method: Method::Multigrid,
+            relax_max_sweeps: 20_000,
+            mg,
+            fallback: true,
+            keep_fields: false,
+        }
+    }
+}
+
+impl<D> Default for ContactParams<D>
+where
+    MgParams<D>: Default,
+{
+    fn default() -> Self {
+        ContactParams::with_mg(MgParams::default())
+    }
+}
