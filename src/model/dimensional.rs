@@ -32,7 +32,7 @@ use crate::model::error::ParamError;
 use crate::model::formulas::{
     dowson_higginson_line_hmin, dowson_toyoda_line_hc, elliptic_g_params, elliptic_regime_hmin,
     hamrock_dowson_hc, hamrock_dowson_hmin, line_g_params, line_regime_hmin, moes_line_hc,
-    nvm_point_hc, HdGroups,
+    nvm_point_hc, GParams, HdGroups, Regime,
 };
 use crate::model::hertz::ellipse_from_d;
 use crate::model::lubricant::{Density, Viscosity};
@@ -406,38 +406,29 @@ fn line_groups(spec: &CaseSpec) -> Result<Derived, CaseError> {
         ),
     ];
     let models = spec.models(eta0, alpha, p_h)?;
-    let case = LineCase::with_models(m, l, models)?;
-    let venner = case.venner();
-    Ok(Derived {
-        case: Case::Line(case),
-        grid,
-        u_s,
-        groups: Groups {
-            r,
-            ry: None,
-            d: None,
-            k: None,
-            a: None,
-            e_reduced: e_red,
-            eta0,
-            alpha,
-            lubricant: lub,
-            models,
-            w_prime,
-            u_mean: u_m,
-            g,
-            m,
-            l,
-            lambda: venner.lambda,
-            alpha_bar: venner.alpha_bar,
-            b,
-            p_h,
-            g_v: gp.g_v,
-            g_e: gp.g_e,
-            regime: format!("{regime:?}"),
-        },
-        films,
-    })
+    let case = Case::Line(LineCase::with_models(m, l, models)?);
+    let lubricant = Lubricant {
+        eta0,
+        alpha,
+        lub,
+        models,
+    };
+    let loads = Loads {
+        e_reduced: e_red,
+        w_prime,
+        u_mean: u_m,
+        g,
+        b,
+        p_h,
+    };
+    let shape = Shape {
+        r,
+        ry: None,
+        ellipse: None,
+    };
+    Ok(assemble(
+        case, grid, u_s, shape, lubricant, loads, gp, regime, films,
+    ))
 }
 
 fn inv_radius(r: Option<f64>) -> f64 {
@@ -526,36 +517,102 @@ fn point_groups(spec: &CaseSpec) -> Result<Derived, CaseError> {
         ),
     ];
     let models = spec.models(eta0, alpha, p_h)?;
-    let case = PointCase::with_models(m, l, d, models)?;
-    let venner = case.venner();
-    Ok(Derived {
-        case: Case::Point(case),
+    let case = Case::Point(PointCase::with_models(m, l, d, models)?);
+    let lubricant = Lubricant {
+        eta0,
+        alpha,
+        lub,
+        models,
+    };
+    let loads = Loads {
+        e_reduced: e_red,
+        w_prime: w,
+        u_mean: u_m,
+        g,
+        b,
+        p_h,
+    };
+    let shape = Shape {
+        r: rx,
+        ry: Some(ry),
+        ellipse: Some((d, el.k, a)),
+    };
+    Ok(assemble(
+        case, grid, u_s, shape, lubricant, loads, gp, regime, films,
+    ))
+}
+
+/// A contact's radii: R (line) or Rx, Ry and the ellipse (D, k, a) (point).
+struct Shape {
+    r: f64,
+    ry: Option<f64>,
+    ellipse: Option<(f64, f64, f64)>,
+}
+
+/// The lubricant of a case: its viscosity, pressure-viscosity coefficient, oil and models.
+struct Lubricant {
+    eta0: f64,
+    alpha: f64,
+    lub: Option<Resolved>,
+    models: Models,
+}
+
+/// The reduced modulus, the load, speed and materials groups, and the Hertz width and pressure.
+struct Loads {
+    e_reduced: f64,
+    w_prime: f64,
+    u_mean: f64,
+    g: f64,
+    b: f64,
+    p_h: f64,
+}
+
+/// One case's [`Derived`] from its contact-specific parts.
+#[allow(clippy::too_many_arguments)]
+fn assemble(
+    case: Case,
+    grid: usize,
+    u_s: f64,
+    shape: Shape,
+    lubricant: Lubricant,
+    loads: Loads,
+    gp: GParams,
+    regime: Regime,
+    films: Vec<(String, String, f64)>,
+) -> Derived {
+    let (lambda, alpha_bar) = match &case {
+        Case::Line(c) => (c.venner().lambda, c.venner().alpha_bar),
+        Case::Point(c) => (c.venner().lambda, c.venner().alpha_bar),
+    };
+    let groups = Groups {
+        r: shape.r,
+        ry: shape.ry,
+        d: shape.ellipse.map(|e| e.0),
+        k: shape.ellipse.map(|e| e.1),
+        a: shape.ellipse.map(|e| e.2),
+        e_reduced: loads.e_reduced,
+        eta0: lubricant.eta0,
+        alpha: lubricant.alpha,
+        lubricant: lubricant.lub,
+        models: lubricant.models,
+        w_prime: loads.w_prime,
+        u_mean: loads.u_mean,
+        g: loads.g,
+        m: case.m(),
+        l: case.l(),
+        lambda,
+        alpha_bar,
+        b: loads.b,
+        p_h: loads.p_h,
+        g_v: gp.g_v,
+        g_e: gp.g_e,
+        regime: format!("{regime:?}"),
+    };
+    Derived {
+        case,
         grid,
         u_s,
-        groups: Groups {
-            r: rx,
-            ry: Some(ry),
-            d: Some(d),
-            k: Some(el.k),
-            a: Some(a),
-            e_reduced: e_red,
-            eta0,
-            alpha,
-            lubricant: lub,
-            models,
-            w_prime: w,
-            u_mean: u_m,
-            g,
-            m,
-            l,
-            lambda: venner.lambda,
-            alpha_bar: venner.alpha_bar,
-            b,
-            p_h,
-            g_v: gp.g_v,
-            g_e: gp.g_e,
-            regime: format!("{regime:?}"),
-        },
+        groups,
         films,
-    })
+    }
 }

@@ -33,6 +33,7 @@
 //! corrections of the wrong kind. Invariant: X_in is shifted so that X = 0 is a node of every
 //! level.
 
+use crate::discrete::grid::align_origin;
 use crate::model::formulas::{moes_line_asymptotes, moes_line_hc};
 use std::f64::consts::PI;
 
@@ -126,12 +127,10 @@ impl LineDomain {
 
     /// Shift [x_in, x_out] to the nearest domain of the same width with X = 0 on a node.
     pub fn aligned(x_in: f64, x_out: f64, n0: usize, h_estimate: f64) -> Self {
-        let h0 = (x_out - x_in) / n0 as f64;
-        let i0 = (-x_in / h0).round().clamp(1.0, n0 as f64 - 1.0);
-        let x_in = -i0 * h0;
+        let (x_in, x_out) = align_origin(x_in, x_out, n0);
         LineDomain {
             x_in,
-            x_out: x_in + n0 as f64 * h0,
+            x_out,
             n0,
             h_estimate,
         }

@@ -40,6 +40,7 @@
 //! out rows whose truncation estimate is above 2 %. (Measurements: docs/known-limits.md, "Point
 //! contacts below M of about 10-20 are biased low by the truncated domain".)
 
+use crate::discrete::grid::align_origin;
 use crate::model::formulas::{nvm_point_asymptotes, nvm_point_hc};
 
 /// Relative rise of H_c and H_min per unit rigid weight w when the inlet and side extents are
@@ -144,12 +145,10 @@ impl PointDomain {
             )
         };
         let n0 = p.n0.max(4).next_power_of_two();
-        let h0 = (x_out - x_in) / n0 as f64;
-        let i0 = (-x_in / h0).round().clamp(1.0, n0 as f64 - 1.0);
-        let x_in = -i0 * h0;
+        let (x_in, x_out) = align_origin(x_in, x_out, n0);
         PointDomain {
             x_in,
-            x_out: x_in + n0 as f64 * h0,
+            x_out,
             y_half,
             n0,
             h_estimate: h_e,
