@@ -27,6 +27,7 @@
 
 // Stencil and kernel loops index several arrays by node number; iterator chains would hide that.
 #![allow(clippy::needless_range_loop)]
+#![warn(missing_docs)]
 
 pub mod bench;
 pub mod cases;

@@ -71,13 +71,29 @@ pub trait Fas {
     fn install_guess(&mut self, _l: usize) -> bool {
         false
     }
+    /// Work units spent so far (relaxation sweeps in finest-grid equivalents).
+    fn work_units(&self) -> f64;
+    /// Points (per direction for point contacts) of level `l`.
+    fn points(&self, l: usize) -> usize;
+    /// The solve's info: its status and reason, the finest level's history, the cost since
+    /// `start`, the finest grid and the level count.
     fn finish(
         &self,
         start: Instant,
         status: Status,
         reason: String,
         history: Vec<CycleRecord>,
-    ) -> SolveInfo;
+    ) -> SolveInfo {
+        SolveInfo {
+            status,
+            reason,
+            history,
+            work_units: self.work_units(),
+            wall_s: start.elapsed().as_secs_f64(),
+            grid: self.points(self.top()),
+            levels: self.top() + 1,
+        }
+    }
 }
 
 /// Run full multigrid with the load balance (see the module docs).

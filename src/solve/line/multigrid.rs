@@ -23,9 +23,8 @@ use crate::solve::line::relax::{relax, LineScratch, RelaxParams};
 use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
 pub use crate::solve::params::CycleType;
 use crate::solve::params::{FinerCoarsest, MgParams};
-use crate::solve::{CycleRecord, SolveInfo, Status};
+use crate::solve::{CycleRecord, SolveInfo};
 use std::f64::consts::PI;
-use std::time::Instant;
 
 /// Multigrid settings of a line solve.
 pub type LineMgParams = MgParams<DomainParams>;
@@ -396,25 +395,6 @@ impl LineMultigrid {
     pub fn solve(&mut self) -> SolveInfo {
         fmg_solve(self)
     }
-
-    fn finish(
-        &self,
-        start: Instant,
-        status: Status,
-        reason: String,
-        history: Vec<CycleRecord>,
-    ) -> SolveInfo {
-        let fine = self.levels.last().expect("levels");
-        SolveInfo {
-            status,
-            reason,
-            history,
-            work_units: self.work_units,
-            wall_s: start.elapsed().as_secs_f64(),
-            grid: fine.len(),
-            levels: self.levels.len(),
-        }
-    }
 }
 
 impl Fas for LineMultigrid {
@@ -468,13 +448,10 @@ impl Fas for LineMultigrid {
     fn install_guess(&mut self, l: usize) -> bool {
         LineMultigrid::install_guess(self, l)
     }
-    fn finish(
-        &self,
-        start: Instant,
-        status: Status,
-        reason: String,
-        history: Vec<CycleRecord>,
-    ) -> SolveInfo {
-        LineMultigrid::finish(self, start, status, reason, history)
+    fn work_units(&self) -> f64 {
+        self.work_units
+    }
+    fn points(&self, l: usize) -> usize {
+        self.levels[l].len()
     }
 }

@@ -20,8 +20,7 @@ use crate::solve::line::relax::RelaxParams;
 use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
 use crate::solve::params::{CycleType, FinerCoarsest, MgParams};
 use crate::solve::point::relax::{point_line_sweep, PointScratch};
-use crate::solve::{CycleRecord, SolveInfo, Status};
-use std::time::Instant;
+use crate::solve::CycleRecord;
 
 /// Multigrid settings of a point solve.
 pub type PointMgParams = MgParams<PointDomainParams>;
@@ -435,22 +434,11 @@ impl Fas for PointMultigrid {
         self.params.observer
     }
 
-    fn finish(
-        &self,
-        start: Instant,
-        status: Status,
-        reason: String,
-        history: Vec<CycleRecord>,
-    ) -> SolveInfo {
-        let fine = self.levels.last().expect("levels");
-        SolveInfo {
-            status,
-            reason,
-            history,
-            work_units: self.work_units,
-            wall_s: start.elapsed().as_secs_f64(),
-            grid: fine.nx,
-            levels: self.levels.len(),
-        }
+    fn work_units(&self) -> f64 {
+        self.work_units
+    }
+
+    fn points(&self, l: usize) -> usize {
+        self.levels[l].nx
     }
 }
