@@ -34,7 +34,7 @@ use crate::model::formulas::{
     hamrock_dowson_hc, hamrock_dowson_hmin, line_g_params, line_regime_hmin, moes_line_hc,
     nvm_point_hc, GParams, HdGroups, Regime,
 };
-use crate::model::hertz::ellipse_from_d;
+use crate::model::hertz::{ellipse_from_d, Ellipse};
 use crate::model::lubricant::{Density, Viscosity};
 use crate::model::oils::{LubricantSpec, Resolved};
 use serde::{Deserialize, Serialize};
@@ -48,8 +48,11 @@ pub const POINT_CASE_GRID: usize = 129;
 /// A case file that cannot be read or is not a valid case; the message names the input.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum CaseError {
+    /// The file cannot be read or parsed, or an input is missing, contradictory or out of its
+    /// domain; the message names the file or the input.
     #[error("{0}")]
     Invalid(String),
+    /// The derived Moes case or the lubricant was rejected by the model layer.
     #[error(transparent)]
     Param(#[from] ParamError),
 }
@@ -65,12 +68,18 @@ impl CaseError {
 #[derive(Clone, Copy, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Body {
+    /// Radius in the rolling direction x (m); negative for a concave surface, never zero.
     pub radius_x: f64,
+    /// Radius across the rolling direction (m), point contacts only; omitted or `inf` for a
+    /// cylinder axis, negative for a concave surface.
     #[serde(default)]
     pub radius_y: Option<f64>,
+    /// Young's modulus E (Pa), positive; the TOML key is `E`.
     #[serde(rename = "E")]
     pub e: f64,
+    /// Poisson's ratio, in (-1, 0.5).
     pub nu: f64,
+    /// RMS surface roughness Rq (m), >= 0; used only for the film parameter `Lambda`.
     #[serde(default)]
     pub rq: Option<f64>,
 }
@@ -81,20 +90,26 @@ pub struct Body {
 pub struct CaseSpec {
     /// Line or point contact (`contact = "line"` or `"point"`).
     pub contact: Contact,
+    /// The first body (`[body1]`).
     pub body1: Body,
+    /// The second body (`[body2]`).
     pub body2: Body,
-    /// Load (N): over the contact `length` (m) for a line contact.
+    /// Load (N), positive: over the contact `length` (m) for a line contact.
     pub load: f64,
+    /// Contact length (m) of a line contact, required there; not allowed for a point contact.
     #[serde(default)]
     pub length: Option<f64>,
-    /// Surface speeds (m/s).
+    /// Surface speed of body 1 in the rolling direction (m/s); `u1 + u2` must be positive.
     pub u1: f64,
+    /// Surface speed of body 2 in the rolling direction (m/s).
     pub u2: f64,
-    /// Ambient viscosity (Pa s) and pressure-viscosity coefficient (1/Pa), or `[lubricant]`.
+    /// Ambient viscosity eta0 (Pa s), given with `alpha` instead of `[lubricant]`.
     #[serde(default)]
     pub eta0: Option<f64>,
+    /// Pressure-viscosity coefficient alpha (1/Pa), given with `eta0` instead of `[lubricant]`.
     #[serde(default)]
     pub alpha: Option<f64>,
+    /// The `[lubricant]` table (a Walther oil at a temperature), instead of `eta0` and `alpha`.
     #[serde(default)]
     pub lubricant: Option<LubricantSpec>,
     /// Finest grid: points (line, default [`LINE_CASE_GRID`]) or points per direction (point,
@@ -270,15 +285,19 @@ pub fn read_case(path: &std::path::Path) -> Result<CaseSpec, CaseError> {
 pub struct Groups {
     /// Line: R; point: Rx (m).
     pub r: f64,
-    /// Point: Ry (m), D = Rx/Ry, exact k = a/b, a = semi-axis across rolling (m).
+    /// Point: Ry (m).
     pub ry: Option<f64>,
+    /// Point: ellipticity D = Rx/Ry.
     pub d: Option<f64>,
+    /// Point: exact k = a/b >= 1.
     pub k: Option<f64>,
+    /// Point: Hertz semi-axis across the rolling direction a (m).
     pub a: Option<f64>,
     /// Reduced modulus E' (Pa).
     pub e_reduced: f64,
-    /// Ambient viscosity (Pa s) and pressure-viscosity coefficient (1/Pa).
+    /// Ambient viscosity eta0 (Pa s).
     pub eta0: f64,
+    /// Pressure-viscosity coefficient alpha (1/Pa).
     pub alpha: f64,
     /// The Walther oil the viscosity came from, when the case file named one.
     pub lubricant: Option<Resolved>,
@@ -286,21 +305,27 @@ pub struct Groups {
     pub models: Models,
     /// Load group (u_m convention): W' (line) or W (point).
     pub w_prime: f64,
-    /// Speed group U (u_m convention) and materials group G = alpha E'.
+    /// Speed group U (u_m convention): `eta0 u_m/(E'R)` (line) or `eta0 u_m/(E'Rx)` (point).
     pub u_mean: f64,
+    /// Materials group G = alpha E'.
     pub g: f64,
-    /// Moes' parameters (u_s convention).
+    /// Moes' load parameter M (u_s convention).
     pub m: f64,
+    /// Moes' lubricant parameter L (u_s convention).
     pub l: f64,
-    /// Solver (Venner) groups lambda and alpha_bar.
+    /// Solver (Venner) Reynolds coefficient lambda.
     pub lambda: f64,
+    /// Solver (Venner) pressure-viscosity group alpha_bar = alpha p_h.
     pub alpha_bar: f64,
-    /// Hertz semi-width along x (m) and maximum Hertz pressure (Pa).
+    /// Hertz semi-width along x (m).
     pub b: f64,
+    /// Maximum Hertz pressure p_h (Pa).
     pub p_h: f64,
-    /// The textbook's viscosity and elasticity parameters and its regime.
+    /// The textbook's viscosity parameter g_v (line or elliptic definition).
     pub g_v: f64,
+    /// The textbook's elasticity parameter g_e (line or elliptic definition).
     pub g_e: f64,
+    /// The textbook regime (the formula with the largest g_h), as the [`Regime`] variant's name.
     pub regime: String,
 }
 
@@ -338,7 +363,8 @@ impl CaseSpec {
     }
 }
 
-fn line_groups(spec: &CaseSpec) -> Result<Derived, CaseError> {
+/// A line case's radius R and contact length (m), validated.
+fn line_geometry(spec: &CaseSpec) -> Result<(f64, f64), CaseError> {
     for (n, b) in [("body1", &spec.body1), ("body2", &spec.body2)] {
         if matches!(b.radius_y, Some(r) if r.is_finite()) {
             return Err(CaseError::invalid(format!(
@@ -362,28 +388,17 @@ fn line_groups(spec: &CaseSpec) -> Result<Derived, CaseError> {
         length > 0.0,
         "the contact length must be positive (m)",
     )?;
-    let (eta0, alpha, lub) = spec.lubricant()?;
-    let grid = spec.grid.unwrap_or(LINE_CASE_GRID);
-    if grid < 33 {
-        return Err(CaseError::invalid(format!(
-            "grid = {grid} is too small: at least 33 points"
-        )));
-    }
-    let r = 1.0 / inv;
-    let e_red = e_reduced(&spec.body1, &spec.body2);
-    let w_prime = spec.load / length / (e_red * r);
-    let u_m = eta0 * 0.5 * (spec.u1 + spec.u2) / (e_red * r);
-    let g = alpha * e_red;
-    let gr = HdGroups {
-        u: u_m,
-        g,
-        w: w_prime,
-    };
-    let u_s = 2.0 * u_m;
-    let m = w_prime / u_s.sqrt();
-    let l = g * u_s.powf(0.25);
-    let b = r * (8.0 * w_prime / PI).sqrt();
-    let p_h = e_red * b / (4.0 * r);
+    Ok((1.0 / inv, length))
+}
+
+/// A line case's textbook parameters, regime and the published formulas' films (m).
+fn line_films(
+    gr: HdGroups,
+    m: f64,
+    l: f64,
+    r: f64,
+    u_s: f64,
+) -> (GParams, Regime, Vec<(String, String, f64)>) {
     let gp = line_g_params(gr);
     let (regime, hmin_regime) = line_regime_hmin(gr);
     let to_h = |h_moes: f64| h_moes * r * u_s.sqrt();
@@ -405,6 +420,33 @@ fn line_groups(spec: &CaseSpec) -> Result<Derived, CaseError> {
             hmin_regime * r,
         ),
     ];
+    (gp, regime, films)
+}
+
+fn line_groups(spec: &CaseSpec) -> Result<Derived, CaseError> {
+    let (r, length) = line_geometry(spec)?;
+    let (eta0, alpha, lub) = spec.lubricant()?;
+    let grid = spec.grid.unwrap_or(LINE_CASE_GRID);
+    if grid < 33 {
+        return Err(CaseError::invalid(format!(
+            "grid = {grid} is too small: at least 33 points"
+        )));
+    }
+    let e_red = e_reduced(&spec.body1, &spec.body2);
+    let w_prime = spec.load / length / (e_red * r);
+    let u_m = eta0 * 0.5 * (spec.u1 + spec.u2) / (e_red * r);
+    let g = alpha * e_red;
+    let gr = HdGroups {
+        u: u_m,
+        g,
+        w: w_prime,
+    };
+    let u_s = 2.0 * u_m;
+    let m = w_prime / u_s.sqrt();
+    let l = g * u_s.powf(0.25);
+    let b = r * (8.0 * w_prime / PI).sqrt();
+    let p_h = e_red * b / (4.0 * r);
+    let (gp, regime, films) = line_films(gr, m, l, r, u_s);
     let models = spec.models(eta0, alpha, p_h)?;
     let case = Case::Line(LineCase::with_models(m, l, models)?);
     let lubricant = Lubricant {
@@ -435,7 +477,8 @@ fn inv_radius(r: Option<f64>) -> f64 {
     r.map_or(0.0, |r| 1.0 / r)
 }
 
-fn point_groups(spec: &CaseSpec) -> Result<Derived, CaseError> {
+/// A point case's radii Rx, Ry (m) and D = Rx/Ry, validated.
+fn point_geometry(spec: &CaseSpec) -> Result<(f64, f64, f64), CaseError> {
     if spec.length.is_some() {
         return Err(CaseError::invalid(
             "length applies to line contacts only (a point contact's load is in N)",
@@ -475,6 +518,45 @@ fn point_groups(spec: &CaseSpec) -> Result<Derived, CaseError> {
             ry * 1e3
         )));
     }
+    Ok((rx, ry, d))
+}
+
+/// A point case's textbook parameters, regime and the published formulas' films (m).
+fn point_films(
+    gr: HdGroups,
+    el: &Ellipse,
+    m: f64,
+    l: f64,
+    d: f64,
+    rx: f64,
+    u_s: f64,
+) -> (GParams, Regime, Vec<(String, String, f64)>) {
+    let gp = elliptic_g_params(gr);
+    let (regime, hmin_regime) = elliptic_regime_hmin(gr, el);
+    let to_h = |h_moes: f64| h_moes * rx * u_s.sqrt();
+    let films = vec![
+        ("NVM 1994".into(), "h_c".into(), to_h(nvm_point_hc(m, l, d))),
+        (
+            "Hamrock-Dowson 1977".into(),
+            "h_c".into(),
+            hamrock_dowson_hc(gr, el.k) * rx,
+        ),
+        (
+            "Hamrock-Dowson 1977".into(),
+            "h_min".into(),
+            hamrock_dowson_hmin(gr, el.k) * rx,
+        ),
+        (
+            format!("textbook elliptic regime formula ({regime:?})"),
+            "h_min".into(),
+            hmin_regime * rx,
+        ),
+    ];
+    (gp, regime, films)
+}
+
+fn point_groups(spec: &CaseSpec) -> Result<Derived, CaseError> {
+    let (rx, ry, d) = point_geometry(spec)?;
     let (eta0, alpha, lub) = spec.lubricant()?;
     let grid = spec.grid.unwrap_or(POINT_CASE_GRID);
     if !(17..=2049).contains(&grid) {
@@ -495,27 +577,7 @@ fn point_groups(spec: &CaseSpec) -> Result<Derived, CaseError> {
     let b = (6.0 * el.e * spec.load * r_eq / (PI * el.k * e_red)).cbrt();
     let a = el.k * b;
     let p_h = 3.0 * spec.load / (2.0 * PI * a * b);
-    let gp = elliptic_g_params(gr);
-    let (regime, hmin_regime) = elliptic_regime_hmin(gr, &el);
-    let to_h = |h_moes: f64| h_moes * rx * u_s.sqrt();
-    let films = vec![
-        ("NVM 1994".into(), "h_c".into(), to_h(nvm_point_hc(m, l, d))),
-        (
-            "Hamrock-Dowson 1977".into(),
-            "h_c".into(),
-            hamrock_dowson_hc(gr, el.k) * rx,
-        ),
-        (
-            "Hamrock-Dowson 1977".into(),
-            "h_min".into(),
-            hamrock_dowson_hmin(gr, el.k) * rx,
-        ),
-        (
-            format!("textbook elliptic regime formula ({regime:?})"),
-            "h_min".into(),
-            hmin_regime * rx,
-        ),
-    ];
+    let (gp, regime, films) = point_films(gr, &el, m, l, d, rx, u_s);
     let models = spec.models(eta0, alpha, p_h)?;
     let case = Case::Point(PointCase::with_models(m, l, d, models)?);
     let lubricant = Lubricant {
