@@ -4,10 +4,11 @@
 
 use crate::cli::error::InputError;
 use ehlmap::fit::dataset::load_fit_input;
+use ehlmap::fit::dataset::FitInput;
 use ehlmap::render::charts::write_charts;
-use ehlmap::report::fit_report;
 use ehlmap::report::markdown::to_markdown;
-use std::path::PathBuf;
+use ehlmap::report::{fit_report, FitReport};
+use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Debug)]
 pub struct FitArgs {
@@ -27,41 +28,34 @@ pub struct FitArgs {
     pub no_limit_solves: bool,
 }
 
-/// Run the fit report; returns the exit code.
+/// Run `ehlmap fit`; returns the exit code.
 pub fn run_fit(a: &FitArgs) -> Result<i32, InputError> {
-    let input = load_fit_input(&a.datasets).map_err(InputError)?;
-    if !a.no_limit_solves && !input.point.is_empty() {
+    fit_datasets(&a.datasets, a.out.clone(), a.json, !a.no_limit_solves)
+}
+
+/// Fit the datasets and write the report, fit.json and charts to `out` (default beside the
+/// first dataset); prints the report (or fit.json with `json`). Also the second step of
+/// `ehlmap sweep --fit`.
+pub fn fit_datasets(
+    datasets: &[PathBuf],
+    out: Option<PathBuf>,
+    json: bool,
+    limit_solves: bool,
+) -> Result<i32, InputError> {
+    let input = load_fit_input(datasets).map_err(|e| InputError(e.to_string()))?;
+    if limit_solves && !input.point.is_empty() {
         eprintln!(
             "fitting; the point asymptote checks solve the limit cases on the data's grid \
              (minutes for fine grids; --no-limit-solves skips them)"
         );
     }
-    let report = fit_report(&input, !a.no_limit_solves).map_err(|e| InputError(e.to_string()))?;
-    // Default beside the first dataset, outside it: the dataset folder holds only Parquet parts
-    // (polars' scan_parquet on the folder fails on anything else).
-    let out = a.out.clone().unwrap_or_else(|| {
-        let d = &a.datasets[0];
-        let name = d
-            .file_name()
-            .map_or("dataset".into(), |n| n.to_string_lossy().into_owned());
-        d.with_file_name(format!("{name}-report"))
-    });
+    let report = fit_report(&input, limit_solves).map_err(|e| InputError(e.to_string()))?;
+    let out = out.unwrap_or_else(|| default_out(&datasets[0]));
     std::fs::create_dir_all(&out)
         .map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
-    let json = serde_json::to_string_pretty(&report).expect("report serialises");
+    let text = serde_json::to_string_pretty(&report).expect("report serialises");
     let mut md = to_markdown(&report);
-    let mut charts = vec![];
-    for (prefix, pts, c) in [
-        ("", &input.line, &report.line),
-        ("point_", &input.point, &report.point),
-    ] {
-        if let Some(q) = &c.h_c {
-            charts.extend(
-                write_charts(&out, prefix, pts, &q.model)
-                    .map_err(|e| InputError(format!("charts: {e}")))?,
-            );
-        }
-    }
+    let charts = charts(&out, &input, &report)?;
     if !charts.is_empty() {
         md.push_str("\n## Charts\n\n");
         for c in &charts {
@@ -73,9 +67,9 @@ pub fn run_fit(a: &FitArgs) -> Result<i32, InputError> {
             .map_err(|e| InputError(format!("{}: {e}", out.join(name).display())))
     };
     write("report.md", &md)?;
-    write("fit.json", &json)?;
-    if a.json {
-        println!("{json}");
+    write("fit.json", &text)?;
+    if json {
+        println!("{text}");
     } else {
         println!("{md}");
         eprintln!(
@@ -85,4 +79,30 @@ pub fn run_fit(a: &FitArgs) -> Result<i32, InputError> {
         );
     }
     Ok(0)
+}
+
+/// DATASET-report beside the dataset, outside it: the dataset folder holds only Parquet parts
+/// (polars' scan_parquet on the folder fails on anything else).
+fn default_out(dataset: &Path) -> PathBuf {
+    let name = dataset
+        .file_name()
+        .map_or("dataset".into(), |n| n.to_string_lossy().into_owned());
+    dataset.with_file_name(format!("{name}-report"))
+}
+
+/// The charts of each fitted contact (point ones prefixed `point_`); returns their stems.
+fn charts(out: &Path, input: &FitInput, report: &FitReport) -> Result<Vec<String>, InputError> {
+    let mut charts = vec![];
+    for (prefix, pts, c) in [
+        ("", &input.line, &report.line),
+        ("point_", &input.point, &report.point),
+    ] {
+        if let Some(q) = &c.h_c {
+            charts.extend(
+                write_charts(out, prefix, pts, &q.model)
+                    .map_err(|e| InputError(format!("charts: {e}")))?,
+            );
+        }
+    }
+    Ok(charts)
 }

@@ -119,41 +119,18 @@ pub fn run_sweep(args: &SweepArgs) -> Result<i32, InputError> {
         )));
     }
     if args.dry_run {
-        let stored = results::stored_ids(&dataset).map_err(|e| InputError(e.to_string()))?;
-        let mine: Vec<_> = cases.iter().filter(|c| shard.contains(c.id)).collect();
-        println!(
-            "# sweep {}: {} cases, shard {shard}: {}, dataset {}",
-            spec.name,
-            cases.len(),
-            mine.len(),
-            dataset.display()
-        );
-        println!("# case_id contact M L D cost stored");
-        for c in mine {
-            let d = c.d.map_or("-".to_string(), |d| d.to_string());
-            println!(
-                "{} {} {} {} {d} {:.0} {}",
-                c.id_hex(),
-                c.contact.as_str(),
-                c.m,
-                c.l,
-                c.cost,
-                stored.contains(&c.id_hex())
-            );
-        }
-        return Ok(0);
+        return dry_run(&spec, &cases, shard, &dataset);
     }
-    let progress = match args.progress {
-        ProgressArg::Auto => Progress::Auto,
-        ProgressArg::Bar => Progress::Bar,
-        ProgressArg::Log => Progress::Log,
-        ProgressArg::None => Progress::None,
-    };
     let opts = RunOptions {
         dataset: dataset.clone(),
         threads,
         shard,
-        progress,
+        progress: match args.progress {
+            ProgressArg::Auto => Progress::Auto,
+            ProgressArg::Bar => Progress::Bar,
+            ProgressArg::Log => Progress::Log,
+            ProgressArg::None => Progress::None,
+        },
     };
     eprintln!(
         "sweep {}: {} cases, shard {shard} holds {}; {} threads -> {}",
@@ -165,37 +142,9 @@ pub fn run_sweep(args: &SweepArgs) -> Result<i32, InputError> {
     );
     match executor::execute(&spec, &cases, &opts) {
         Ok(r) => {
-            let file = r
-                .file
-                .as_ref()
-                .map_or("no file written".to_string(), |p| p.display().to_string());
-            eprintln!(
-                "sweep {}: {} already stored, {} solved ({} failed) in {:.1} s; {}",
-                spec.name, r.already_stored, r.solved, r.failed, r.wall_s, file
-            );
-            if r.models.keys().any(|m| m != "full") {
-                let counts: Vec<String> = r
-                    .models
-                    .iter()
-                    .map(|(m, n)| {
-                        let t = r.model_seconds.get(m).copied().unwrap_or(0.0);
-                        format!("{m} {n} ({t:.1} s)")
-                    })
-                    .collect();
-                eprintln!(
-                    "sweep {}: models used: {} (ehlmap bench --selection SPEC measures the saving)",
-                    spec.name,
-                    counts.join(", ")
-                );
-            }
+            report_run(&spec.name, &r);
             if args.fit {
-                let fa = crate::cli::fit::FitArgs {
-                    datasets: vec![dataset.clone()],
-                    out: None,
-                    json: false,
-                    no_limit_solves: false,
-                };
-                return crate::cli::fit::run_fit(&fa);
+                return crate::cli::fit::fit_datasets(&[dataset], None, false, true);
             }
             Ok(0)
         }
@@ -203,5 +152,63 @@ pub fn run_sweep(args: &SweepArgs) -> Result<i32, InputError> {
             eprintln!("ehlmap: sweep {}: {e}", spec.name);
             Ok(1)
         }
+    }
+}
+
+/// `--dry-run`: the shard's cases, one a line, with whether each is stored already.
+fn dry_run(
+    spec: &spec::SweepSpec,
+    cases: &[plan::Case],
+    shard: Shard,
+    dataset: &std::path::Path,
+) -> Result<i32, InputError> {
+    let stored = results::stored_ids(dataset).map_err(|e| InputError(e.to_string()))?;
+    let mine: Vec<_> = cases.iter().filter(|c| shard.contains(c.id)).collect();
+    println!(
+        "# sweep {}: {} cases, shard {shard}: {}, dataset {}",
+        spec.name,
+        cases.len(),
+        mine.len(),
+        dataset.display()
+    );
+    println!("# case_id contact M L D cost stored");
+    for c in mine {
+        let d = c.d.map_or("-".to_string(), |d| d.to_string());
+        println!(
+            "{} {} {} {} {d} {:.0} {}",
+            c.id_hex(),
+            c.contact.as_str(),
+            c.m,
+            c.l,
+            c.cost,
+            stored.contains(&c.id_hex())
+        );
+    }
+    Ok(0)
+}
+
+/// What a finished run did (stderr): cases stored, solved, failed, the file, the models used.
+fn report_run(name: &str, r: &executor::RunReport) {
+    let file = r
+        .file
+        .as_ref()
+        .map_or("no file written".to_string(), |p| p.display().to_string());
+    eprintln!(
+        "sweep {name}: {} already stored, {} solved ({} failed) in {:.1} s; {}",
+        r.already_stored, r.solved, r.failed, r.wall_s, file
+    );
+    if r.models.keys().any(|m| m != "full") {
+        let counts: Vec<String> = r
+            .models
+            .iter()
+            .map(|(m, n)| {
+                let t = r.model_seconds.get(m).copied().unwrap_or(0.0);
+                format!("{m} {n} ({t:.1} s)")
+            })
+            .collect();
+        eprintln!(
+            "sweep {name}: models used: {} (ehlmap bench --selection SPEC measures the saving)",
+            counts.join(", ")
+        );
     }
 }
