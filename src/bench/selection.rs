@@ -18,7 +18,9 @@ use std::fmt::Write as _;
 /// One case, solved both ways.
 #[derive(Clone, Debug)]
 pub struct Pair {
+    /// (a): the row solved with the accuracy target (selected model, coarsest adequate grid).
     pub selected: CaseRow,
+    /// (b): the row solved with the full model on the spec's finest grid, no target.
     pub full: CaseRow,
 }
 

@@ -15,8 +15,11 @@ use std::time::Instant;
 /// A benchmarked method: a label, its parameters and the largest grid it is run on.
 #[derive(Clone, Debug)]
 pub struct MethodSpec {
+    /// The method's name in rows and charts, e.g. "multigrid-V", "newton", "relax".
     pub label: &'static str,
+    /// The line-solve parameters of the method (point cases set theirs from the label).
     pub params: LineSolveParams,
+    /// The largest line grid (points) the method is run on.
     pub max_grid: usize,
 }
 
@@ -78,26 +81,42 @@ pub fn methods() -> Vec<MethodSpec> {
 /// One measurement.
 #[derive(Clone, Debug, Serialize)]
 pub struct BenchRow {
+    /// The reference case's name.
     pub case: String,
+    /// The method's label ([`MethodSpec::label`]).
     pub method: String,
+    /// Grid points of the solve (per direction for point contacts).
     pub grid: usize,
+    /// Median wall time of the repeats, s.
     pub wall_s: f64,
+    /// Work units of the solve (one relaxation sweep on the finest grid each).
     pub work_units: f64,
+    /// Central film H_c, Moes units.
     pub h_c: f64,
+    /// Minimum film H_min, Moes units.
     pub h_min: f64,
+    /// Relative error |H_c / H_c,ref - 1| against the case's [`Reference`].
     pub err_h_c: f64,
+    /// Relative error |H_min / H_min,ref - 1| against the case's [`Reference`].
     pub err_h_min: f64,
+    /// The solve's status: "converged", "diverged", "stalled" or "max-iterations".
     pub status: String,
 }
 
 /// A reference case and its Richardson-extrapolated reference values.
 #[derive(Clone, Debug, Serialize)]
 pub struct Reference {
+    /// The case's name.
     pub case: String,
+    /// Moes' load parameter M.
     pub m: f64,
+    /// Moes' lubricant parameter L.
     pub l: f64,
+    /// Richardson-extrapolated central film H_c, Moes units.
     pub h_c: f64,
+    /// Richardson-extrapolated minimum film H_min, Moes units.
     pub h_min: f64,
+    /// The two grids extrapolated from (coarse, fine), points (per direction for point contacts).
     pub grids: (usize, usize),
 }
 
@@ -109,7 +128,9 @@ fn median(mut v: Vec<f64>) -> f64 {
 /// A benchmark case: a line or a point contact.
 #[derive(Clone, Copy, Debug)]
 pub enum BenchCase {
+    /// A line contact.
     Line(LineCase),
+    /// A point contact.
     Point(PointCase),
 }
 
@@ -196,7 +217,10 @@ pub fn reference(name: &str, case: &BenchCase, fine: usize) -> Reference {
     }
 }
 
-/// Run every method on every case over `grids`, `repeats` times each (median wall time).
+/// Run every method on every case over `grids`, `repeats` times each (median wall time), each
+/// method only on the grids of its ladder; the reference of each case comes from `ref_grid`
+/// ([`reference()`]). `log` receives one progress line per reference and per row. Returns the
+/// references and the rows.
 pub fn run(
     cases: &[(&str, BenchCase)],
     grids: &[usize],

@@ -22,13 +22,23 @@ pub const SLOW_FLOOR_S: f64 = 0.05;
 /// One cell of the map.
 #[derive(Clone, Debug, Serialize)]
 pub struct Cell {
+    /// The method's name ([`map_methods`], or "multigrid" / "multigrid-no-fallback" for point
+    /// maps).
     pub method: String,
+    /// Moes' load parameter M.
     pub m: f64,
+    /// Moes' lubricant parameter L.
     pub l: f64,
+    /// Grid points of the solve (per direction for point contacts).
     pub grid: usize,
+    /// The solve's status ("converged", "diverged", "stalled", "max-iterations"), or "too-slow"
+    /// after [`classify_slow`].
     pub status: String,
+    /// The attempt of the fallback ladder (1-based) that produced the result.
     pub attempt: usize,
+    /// The solve's reason (for a too-slow cell prefixed by its timing).
     pub reason: String,
+    /// Wall time of the solve, all attempts included, s.
     pub wall_s: f64,
 }
 

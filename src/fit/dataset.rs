@@ -32,22 +32,32 @@ pub const MAX_ERROR_ESTIMATE: f64 = 0.02;
 /// dataset carries it, `h_pm` the film at the pressure maximum when it does).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FitPoint {
+    /// Moes' dimensionless load parameter M.
     pub m: f64,
+    /// Moes' dimensionless lubricant parameter L.
     pub l: f64,
+    /// Ellipticity D = Rx/Ry of a point contact; None for a line contact.
     pub d: Option<f64>,
+    /// Dimensionless central film H_c (at X = 0, and Y = 0 for a point contact); positive.
     pub h_c: f64,
+    /// Dimensionless minimum film H_min; positive.
     pub h_min: f64,
+    /// Dimensionless material parameter G = alpha E' (None: the dataset does not carry it, as
+    /// for every dataset read by [`load_fit_input`]).
     pub g: Option<f64>,
+    /// Dimensionless film at the pressure maximum H_pm (the dataset's `H_c_pmax`; None when it
+    /// is missing, not finite or not positive).
     #[serde(default)]
     pub h_pm: Option<f64>,
     /// Points per direction of the solve (the limit checks solve point cases on at least this).
     #[serde(default)]
     pub grid: Option<usize>,
-    /// Richardson error estimates of H_c and H_min (None: not estimated). A film whose estimate
+    /// Richardson error estimate of H_c, relative (None: not estimated). A film whose estimate
     /// exceeds [`MAX_ERROR_ESTIMATE`] is left out of that film's fit
     /// ([`FitPoint::film`]); H_pm, which has no estimate of its own, needs both within it.
     #[serde(default)]
     pub h_c_err: Option<f64>,
+    /// Richardson error estimate of H_min, relative (None: not estimated); see `h_c_err`.
     #[serde(default)]
     pub h_min_err: Option<f64>,
 }
@@ -74,11 +84,17 @@ impl FitPoint {
 /// What the fit reads: converged points per contact plus counts of what was left out.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct FitInput {
+    /// The dataset directories read, in the order given.
     pub datasets: Vec<String>,
+    /// The converged valid line-contact cases used by the fit (each has `d` None).
     pub line: Vec<FitPoint>,
+    /// The converged valid point-contact cases used by the fit (each has `d` set).
     pub point: Vec<FitPoint>,
+    /// Line rows not converged, not valid, or without a positive H_c and H_min.
     pub failed_line: usize,
+    /// Point rows not converged, not valid, without a positive H_c and H_min, or without D.
     pub failed_point: usize,
+    /// Rows whose case id was already read (the first row read of a case id is kept).
     pub duplicates: usize,
     /// Rows left out with the reason (e.g. an error estimate above the threshold).
     pub excluded: Vec<String>,
@@ -87,7 +103,11 @@ pub struct FitInput {
     pub one_film: Vec<String>,
 }
 
-/// Load the fit input from one or more dataset directories.
+/// Load the fit input from one or more dataset directories (module doc: which rows are kept,
+/// left out or counted as failed).
+///
+/// Errors: a path that is not a directory, or a dataset that cannot be read (the message names
+/// it).
 pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, String> {
     let mut by_id = BTreeMap::new();
     let mut duplicates = 0;

@@ -9,8 +9,16 @@ use serde::{Deserialize, Serialize};
 /// A fitted parameter with its one-sigma uncertainty (0: held fixed).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Param {
+    /// The parameter's name ([`PARAM_NAMES`] or [`POINT_PARAM_NAMES`]; `ln_` marks a constant
+    /// held as its logarithm).
+    ///
+    /// [`PARAM_NAMES`]: crate::fit::model::PARAM_NAMES
+    /// [`POINT_PARAM_NAMES`]: crate::fit::point_model::POINT_PARAM_NAMES
     pub name: String,
+    /// The value: fitted, or where it was held (the start, or an earlier stage's fit).
     pub value: f64,
+    /// One-sigma uncertainty from the least-squares covariance (0: held in the final fit; NaN:
+    /// not identified, J^T J singular).
     pub sigma: f64,
 }
 
@@ -18,11 +26,14 @@ pub struct Param {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "lowercase")]
 pub enum FittedModel {
+    /// A line-contact law (Moes 1992 form).
     Line(LineModel),
+    /// A point-contact law (Nijenbanning-Venner-Moes 1994 form).
     Point(PointModel),
 }
 
 impl FittedModel {
+    /// The fitted film H at (M, L, D) in Moes units; a line law ignores D.
     pub fn eval(&self, m: f64, l: f64, d: f64) -> f64 {
         match self {
             FittedModel::Line(x) => x.eval(m, l),
@@ -34,17 +45,29 @@ impl FittedModel {
 /// The fit of one quantity.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct QuantityFit {
+    /// The film fitted: "H_c", "H_pm" or "H_min".
     pub quantity: String,
+    /// The fitted law.
     pub model: FittedModel,
+    /// Every parameter of the law's vector, in vector order, fitted or held (the line law's
+    /// fixed c_RI is not among them; it is in `model`).
     pub params: Vec<Param>,
+    /// RMS of the log residuals ln(H_fit) - ln(H_data) over the cases fitted.
     pub rms_log: f64,
+    /// Whether Levenberg-Marquardt ended successfully.
     pub converged: bool,
+    /// Relative errors fit/data - 1 over every case that carries the film.
     pub overall: ErrStats,
+    /// The same errors per region of the (M, L) plane (M decades x L bands; empty regions left
+    /// out).
     pub regions: Vec<RegionStats>,
-    /// Per D (point contacts).
+    /// The same errors per ellipticity D, in increasing D (point contacts; empty for line
+    /// contacts).
     pub per_d: Vec<RegionStats>,
     /// The M range over which the fit meets the 2 % target ([`MAX_ERROR_TARGET`]); None when no
     /// M value of the data has all its cases within it.
+    ///
+    /// [`MAX_ERROR_TARGET`]: crate::report::MAX_ERROR_TARGET
     #[serde(default)]
     pub within_target: Option<TargetRange>,
 }

@@ -13,9 +13,13 @@ use nalgebra::{DMatrix, DVector, Dyn};
 /// One data point: (M, L, D) and the film value to fit (`d` is ignored by line models).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sample {
+    /// Moes' load parameter M (positive).
     pub m: f64,
+    /// Moes' lubricant parameter L (non-negative).
     pub l: f64,
+    /// Ellipticity D = Rx/Ry (1 for a line contact).
     pub d: f64,
+    /// The film H to fit, in Moes units (positive, finite).
     pub h: f64,
 }
 
@@ -90,17 +94,26 @@ impl<Mo: FilmModel> LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_, Mo> {
 /// Outcome of a fit.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LsqFit<Mo> {
+    /// The fitted model: the free parameters at the minimum, the others as given.
     pub model: Mo,
     /// One-sigma uncertainties of all parameters (0 for fixed ones, NaN where J^T J is singular).
     pub sigma: Vec<f64>,
     /// RMS of the log residuals.
     pub rms_log: f64,
+    /// Whether Levenberg-Marquardt reported a successful termination.
     pub converged: bool,
+    /// Residual evaluations counted by Levenberg-Marquardt (not those inside the
+    /// finite-difference Jacobian).
     pub evaluations: usize,
 }
 
 /// Fit the parameters of `start` listed in `free` to `data` (needs more points than free
-/// parameters); the others stay as they are.
+/// parameters); the others stay as they are. The residuals are ln(model) - ln(h), so the fit
+/// minimises relative errors.
+///
+/// Errors: [`FitError::TooFewPoints`], [`FitError::BadData`] (M not positive, L negative, or a
+/// film not positive and finite) and [`FitError::NotFinite`] (the fitted model not finite on the
+/// data).
 pub fn fit<Mo: FilmModel>(
     data: &[Sample],
     start: &Mo,

@@ -4,7 +4,7 @@
 //! blended-asymptote formulas, [`lsq`] fits either in log space by Levenberg-Marquardt with
 //! parameter uncertainties, [`stats`] turns formula-vs-data errors into tables (overall and per
 //! region of the (M, L) plane, and the M range that meets a target), [`dataset`] reads the
-//! sweep rows a fit uses, [`fitted`] holds what a fit returns.
+//! sweep rows a fit uses, [`fitted`] holds what a fit returns and [`error`] why a fit failed.
 
 pub mod dataset;
 pub mod error;

@@ -21,6 +21,7 @@ use serde::{Deserialize, Serialize};
 pub trait FilmModel: Clone {
     /// All parameters (fixed and free).
     fn x(&self) -> &[f64];
+    /// All parameters, mutable (the fit sets the free ones through this).
     fn x_mut(&mut self) -> &mut [f64];
     /// The film H at (M, L, D); line models ignore D.
     fn film(&self, m: f64, l: f64, d: f64) -> f64;
@@ -48,7 +49,9 @@ pub const PARAM_NAMES: [&str; 13] = [
 /// `x` of [`PARAM_NAMES`].
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct LineModel {
+    /// The rigid-isoviscous constant c_RI of H_RI = c_RI / M (held, never fitted).
     pub c_ri: f64,
+    /// The parameters of [`PARAM_NAMES`], in that order (constants a, b, d as logarithms).
     pub x: [f64; 13],
 }
 

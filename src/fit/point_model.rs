@@ -39,6 +39,8 @@ pub const POINT_PARAM_NAMES: [&str; 16] = [
 /// A point-contact film model: the 16 parameters of [`POINT_PARAM_NAMES`] (module doc).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PointModel {
+    /// The parameters of [`POINT_PARAM_NAMES`], in that order (constants c_RI, a, b, d, c_00 as
+    /// logarithms).
     pub x: [f64; 16],
 }
 

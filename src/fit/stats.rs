@@ -7,17 +7,22 @@ use serde::{Deserialize, Serialize};
 /// Error statistics of formula/data - 1 over a set of points.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ErrStats {
+    /// Number of points (at least 1).
     pub n: usize,
     /// Largest |relative error|, signed value kept.
     pub max: f64,
+    /// Root mean square of the relative errors.
     pub rms: f64,
+    /// Mean of the signed relative errors (positive: the formula is above the data on average).
     pub mean: f64,
-    /// Where the largest error is.
+    /// Where the largest error is: its M (NaN in a per-D table, [`d_table`]).
     pub worst_m: f64,
+    /// Where the largest error is: its L (its D in a per-D table, [`d_table`]).
     pub worst_l: f64,
 }
 
-/// Statistics of (M, L, formula, data) tuples; `None` when there are none.
+/// Statistics of (M, L, formula, data) tuples, errors formula/data - 1; `None` when there are
+/// none. On a tie in |error| the later tuple is named the worst.
 pub fn err_stats(points: &[(f64, f64, f64, f64)]) -> Option<ErrStats> {
     if points.is_empty() {
         return None;
@@ -48,7 +53,9 @@ pub fn err_stats(points: &[(f64, f64, f64, f64)]) -> Option<ErrStats> {
 /// One row of a region table.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct RegionStats {
+    /// The region's label, e.g. "10 <= M < 100, 0 < L <= 10" or "D = 0.5".
     pub region: String,
+    /// The statistics of the points in it.
     pub stats: ErrStats,
 }
 
@@ -74,7 +81,9 @@ fn band_name(mb: usize, lb: usize) -> String {
     format!("{m}, {l}")
 }
 
-/// Statistics per region; regions without points are left out.
+/// Statistics per region of (M, L, formula, data) tuples: M bands with edges 10, 100, 1000
+/// times L bands L = 0, 0 < L <= 10, L > 10, in increasing M then L; regions without points are
+/// left out.
 pub fn region_table(points: &[(f64, f64, f64, f64)]) -> Vec<RegionStats> {
     let mut out = vec![];
     for mb in 0..4 {
@@ -102,11 +111,15 @@ pub fn region_table(points: &[(f64, f64, f64, f64)]) -> Vec<RegionStats> {
 /// [`m_hi`]: TargetRange::m_hi
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct TargetRange {
+    /// The relative-error target met.
     pub target: f64,
+    /// Smallest M of the range (an M value of the data).
     pub m_lo: f64,
+    /// Largest M of the range (an M value of the data); at least `m_lo`.
     pub m_hi: f64,
-    /// Cases in the range, and in all.
+    /// Cases in the range.
     pub n: usize,
+    /// Cases in all (`n` <= `of`).
     pub of: usize,
 }
 

@@ -9,7 +9,9 @@ use std::path::Path;
 /// One series of a chart: its label and (x, y) points.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Series {
+    /// The legend label (the method's name).
     pub label: String,
+    /// The (x, y) points, in drawing order; both positive on the log-log charts.
     pub points: Vec<(f64, f64)>,
 }
 
@@ -74,7 +76,8 @@ fn legend(ch: &mut LogChart) -> Result<(), String> {
         .map_err(e)
 }
 
-/// Least-squares slope of log y against log x.
+/// Least-squares slope of log y against log x (NaN with fewer than two points; the points must
+/// be positive).
 pub fn slope(pts: &[(f64, f64)]) -> f64 {
     let n = pts.len() as f64;
     if pts.len() < 2 {
@@ -133,7 +136,9 @@ pub enum Outcome {
     Converged,
     /// Converged through the fallback ladder.
     ConvergedFallback,
+    /// The solve diverged.
     Diverged,
+    /// The solve stalled: it stopped making progress before meeting its tolerances.
     Stalled,
     /// Converged, but far slower than the default multigrid.
     TooSlow,
@@ -144,9 +149,13 @@ pub enum Outcome {
 /// One cell of the stability map.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MapCell {
+    /// The method's name: the panel the cell is drawn in.
     pub method: String,
+    /// Moes' load parameter M of the case.
     pub m: f64,
+    /// Moes' lubricant parameter L of the case.
     pub l: f64,
+    /// How the solve ended: the cell's colour.
     pub outcome: Outcome,
 }
 

@@ -1,5 +1,7 @@
-//! Every chart and picture: fit charts ([`charts`], [`charts_map`]) and the pressure and film
-//! pictures of one solve ([`pictures`], [`contour`]).
+//! Every chart and picture: fit charts ([`charts`], [`charts_map`]), the regime map in (M, L)
+//! ([`regime_map`]), the bench charts ([`bench_charts`]) and the pressure and film pictures of
+//! one solve ([`pictures`], [`contour`]); [`style`] holds the font, colours and helpers they
+//! share.
 
 pub mod bench_charts;
 pub mod charts;

@@ -1,7 +1,7 @@
 //! The style and drawing helpers shared by the chart modules: the bundled DejaVu Sans font
 //! (registered once as "sans-serif" by [`ensure_font`], so nothing is needed from the system),
-//! PNG plus SVG output of one drawing ([`both`]), the error type of drawing ([`Res`], [`e`]),
-//! what a fit chart draws ([`Ctx`]) and log-spaced sampling ([`log_grid`]).
+//! PNG plus SVG output of one drawing (`both`), the error type of drawing (`Res`, `e`), what a
+//! fit chart draws (`Ctx`) and log-spaced sampling (`log_grid`); these are crate-private.
 
 use crate::model::formulas::{moes_line_hc, nvm_point_hc};
 use crate::report::{FitPoint, FittedModel};
@@ -21,6 +21,7 @@ pub fn ensure_font() {
     });
 }
 
+/// The result of a drawing step: the error is plotters' error as text.
 pub(crate) type Res = Result<(), String>;
 
 /// Series colours of the charts, in order.
@@ -33,6 +34,7 @@ pub const COLORS: [RGBColor; 6] = [
     RGBColor(140, 86, 75),
 ];
 
+/// A drawing error as text (its `Debug` form).
 pub(crate) fn e<T: std::fmt::Debug>(x: T) -> String {
     format!("{x:?}")
 }
@@ -63,25 +65,31 @@ pub(crate) fn both(
 
 /// What a chart draws: the points, the fitted model and the contact's published formula.
 pub(crate) struct Ctx<'a> {
+    /// The data points of the contact (all D for point contacts).
     pub pts: &'a [FitPoint],
+    /// The fitted law of the film charted.
     pub model: &'a FittedModel,
     /// D at which curves and maps are drawn (1 for line contacts).
     pub d: f64,
 }
 
 impl Ctx<'_> {
+    /// The contact's published central-film formula at (M, L, D): Moes 1992 (line) or NVM 1994
+    /// (point).
     pub fn published(&self, m: f64, l: f64, d: f64) -> f64 {
         match self.model {
             FittedModel::Line(_) => moes_line_hc(m, l),
             FittedModel::Point(_) => nvm_point_hc(m, l, d),
         }
     }
+    /// The name of [`Ctx::published`]'s formula.
     pub fn published_name(&self) -> &'static str {
         match self.model {
             FittedModel::Line(_) => "Moes 1992",
             FittedModel::Point(_) => "NVM 1994",
         }
     }
+    /// The fitted film at (M, L) and the chart's D.
     pub fn eval(&self, m: f64, l: f64) -> f64 {
         self.model.eval(m, l, self.d)
     }
@@ -100,6 +108,8 @@ impl Ctx<'_> {
             .copied()
             .collect()
     }
+    /// The title suffix naming the contact: empty for line contacts, ", point contact, D = .."
+    /// for point contacts.
     pub fn suffix(&self) -> String {
         match self.model {
             FittedModel::Line(_) => String::new(),

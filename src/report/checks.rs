@@ -36,11 +36,19 @@ pub struct AsymptoteCheck {
     /// The film (H_c, H_pm, H_min; reports before H_pm checked H_c only).
     #[serde(default = "h_c_name")]
     pub quantity: String,
+    /// The asymptote: "rigid-isoviscous", "elastic-isoviscous", "rigid-piezoviscous" or
+    /// "elastic-piezoviscous".
     pub asymptote: String,
+    /// The fitted law as text, with its coefficients (e.g. "2.4475 M^-1 (exact, fixed)").
     pub law: String,
+    /// M of the limit solve: 1 (rigid-isoviscous), the largest M of the data's cases at the
+    /// row's L (elastic rows), infinite (rigid-piezoviscous, the limit M -> infinity).
     pub m: f64,
+    /// L of the limit solve: 0 for the isoviscous rows, the largest L of the data otherwise.
     pub l: f64,
+    /// Ellipticity D of the point checks; None for line contacts.
     pub d: Option<f64>,
+    /// "rigid" or "elastic": the elasticity of the limit solve.
     pub elasticity: String,
     /// Points per direction of the limit solve (None for a failed solve).
     #[serde(default)]
@@ -48,9 +56,12 @@ pub struct AsymptoteCheck {
     /// The solver's value of the film.
     #[serde(alias = "solver_h_c")]
     pub solver: Option<f64>,
+    /// The fitted asymptote at (M, L) (at M = 1 for the rigid-piezoviscous law, which does not
+    /// depend on M).
     pub fitted: f64,
     /// solver / fitted asymptote (1 in the limit); None if the limit solve failed.
     pub ratio: Option<f64>,
+    /// How the solver value was obtained (which solves, or why it is biased).
     pub note: String,
     /// (M, solver / fitted asymptote) as M grows to the largest M of the data (elastic rows), or
     /// (domain scale, ratio) as the domain grows (point rigid row): how the ratio approaches its

@@ -68,44 +68,67 @@ fn h_c_name() -> String {
 /// was skipped.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Published {
+    /// The formula, e.g. "Moes 1992", "NVM 1994", "Dowson-Toyoda 1979", "Hamrock-Dowson 1977".
     pub name: String,
+    /// The film it is compared with: "H_c" or "H_pm".
     #[serde(default = "h_c_name")]
     pub against: String,
+    /// Relative errors formula/data - 1 over the cases that carry the film (None when skipped).
     pub overall: Option<ErrStats>,
+    /// The same errors per region of the (M, L) plane (empty when skipped).
     pub regions: Vec<RegionStats>,
+    /// Why the formula was not compared (e.g. it needs G and the dataset has none); None when
+    /// compared.
     pub skipped: Option<String>,
 }
 
 /// The report of one contact.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct ContactReport {
+    /// "line" or "point".
     pub contact: String,
+    /// Converged valid cases of this contact read for the fit.
     pub converged_cases: usize,
+    /// Rows of this contact that failed ([`FitInput::failed_line`], [`FitInput::failed_point`]).
     pub failed_cases: usize,
     /// Why this contact was not fitted (None when fitted).
     pub skipped: Option<String>,
+    /// The fit of the film at X = 0 (None when the contact or the film was skipped).
     pub h_c: Option<QuantityFit>,
     /// The film at the pressure maximum (None when the dataset does not carry it).
     #[serde(default)]
     pub h_pm: Option<QuantityFit>,
+    /// The fit of the minimum film (None when the contact or the film was skipped).
     pub h_min: Option<QuantityFit>,
     /// Films not fitted because too few cases carry them (H_pm of older datasets).
     #[serde(default)]
     pub skipped_films: Vec<String>,
+    /// The contact's published formulas on the same cases (line: Moes 1992, Dowson-Toyoda 1979;
+    /// point: NVM 1994, Hamrock-Dowson 1977).
     pub published: Vec<Published>,
+    /// Each fitted film's asymptotes against the solver's limit solves (empty when the limit
+    /// solves were not run).
     pub asymptotes: Vec<AsymptoteCheck>,
 }
 
 /// Everything the report shows; `fit.json` is this, serialised ({"line": .., "point": ..}).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FitReport {
+    /// The dataset directories read.
     pub datasets: Vec<String>,
+    /// Rows left out as duplicates of a case id already read.
     pub duplicate_rows: usize,
+    /// Rows left out, each with the reason (a Richardson or domain-truncation error estimate
+    /// above [`MAX_ERROR_ESTIMATE`]).
+    ///
+    /// [`MAX_ERROR_ESTIMATE`]: crate::fit::dataset::MAX_ERROR_ESTIMATE
     pub excluded: Vec<String>,
     /// Rows used for one film only, with the reason.
     #[serde(default)]
     pub one_film: Vec<String>,
+    /// The line-contact report (skipped when the data have too few line cases).
     pub line: ContactReport,
+    /// The point-contact report (skipped when the data have too few point cases).
     pub point: ContactReport,
 }
 
