@@ -25,14 +25,19 @@ pub struct CaseReport {
     pub films: Vec<(String, String, f64)>,
     /// The solve's maximum pressure (Pa), when it converged.
     pub p_max: Option<f64>,
-    /// Lambda = h_min/sigma and its reading, when a roughness is given.
+    /// Lambda = h_min/sigma from the first h_min of `films` (the numerical one when the solve
+    /// converged), when a positive roughness is given.
     pub film_parameter: Option<f64>,
+    /// The reading of Lambda as text: boundary lubrication (`< 1`), mixed lubrication
+    /// (`1..=3`) or full film (`> 3`).
     pub film_reading: Option<String>,
 }
 
 /// The solution fields of a case, for pictures.
 pub enum CaseFields {
+    /// A line contact's pressure and film along X on the finest grid.
     Line(Profile),
+    /// A point contact's pressure and film fields on the finest grid.
     Point(PointFields),
 }
 

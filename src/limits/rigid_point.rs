@@ -55,6 +55,7 @@ pub fn extrapolate(h: [f64; 3]) -> f64 {
 
 /// Rigid isoviscous solves at M = 1, L = 0 on the enlarged domains (run on the rayon pool).
 pub struct RigidPointSolves {
+    /// Ellipticity D = Rx/Ry of the solves.
     pub d: f64,
     /// (domain scale, outputs), in [`DOMAIN_SCALES`] order.
     pub solves: Vec<(f64, Outputs)>,

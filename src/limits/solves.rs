@@ -14,6 +14,7 @@ use crate::solve::Status;
 /// ratio approaching its limit.
 pub const TREND_FRACTIONS: [f64; 3] = [0.1, 0.316_227_766_016_837_94, 1.0];
 
+/// The default models (Barus, incompressible) with the given elasticity.
 pub fn models(elasticity: Elasticity) -> Models {
     Models {
         elasticity,
@@ -25,6 +26,9 @@ pub fn models(elasticity: Elasticity) -> Models {
 /// gained V(4, 4) cycles the smoother stalled on 4097 points at L = 20 for M = 103 and 326).
 pub const LINE_CHECK_GRIDS: [usize; 2] = [4097, 2049];
 
+/// A line limit solve at (M, L) on the first of [`LINE_CHECK_GRIDS`] that converges: its
+/// outputs and alpha_bar at L = 1 (for [`rp_from_rigid`]); None for an invalid case or when
+/// neither grid converges.
 pub fn line_solve(m: f64, l: f64, el: Elasticity) -> Option<(Outputs, f64)> {
     let case = LineCase::with_models(m, l, models(el)).ok()?;
     let ab1 = LineCase::with_models(m, 1.0, models(el))
@@ -86,13 +90,23 @@ pub type Solve = (f64, Option<Outputs>);
 /// up to the largest M of the data's L = 0 cases, and at the largest L up to the largest M of
 /// those cases (each at [`TREND_FRACTIONS`] of that M), and at twice that L.
 pub struct LimitSolves {
+    /// Largest M of the data's L = 0 cases (the largest M of all cases when there are none):
+    /// the top of the elastic-isoviscous trend.
     pub m_ei: f64,
+    /// Largest M of the data's cases at `l_max` (the largest M of all cases when there are
+    /// none): the top of the elastic-piezoviscous trend.
     pub m_ep: f64,
+    /// Largest L of the data.
     pub l_max: f64,
+    /// The rigid L = 0 solve at M = 1: outputs and alpha_bar at L = 1; None where it failed.
     pub rigid: Option<(Outputs, f64)>,
+    /// Elastic solves at L = 0, at [`TREND_FRACTIONS`] of `m_ei`, smallest M first.
     pub ei: Vec<Solve>,
+    /// Elastic solves at `l_max`, at [`TREND_FRACTIONS`] of `m_ep`, smallest M first; empty
+    /// when `l_max` is 0.
     pub ep: Vec<Solve>,
-    /// Elastic at the largest M of the EP trend and twice the largest L (L > 0 data only).
+    /// Elastic at `m_ep` and twice the largest L (L > 0 data only); unlike the other [`Solve`]s
+    /// the first element is that L, `2 l_max`, not M.
     pub ep_beyond: Option<Solve>,
 }
 
@@ -146,6 +160,8 @@ impl LimitSolves {
         solves.last().and_then(|(_, o)| o.as_ref())
     }
 
+    /// The rigid-piezoviscous film H_RP at `l_max` from the rigid solve ([`rp_from_rigid`]);
+    /// None when the rigid solve failed.
     pub fn rp(&self, film: Film) -> Option<f64> {
         self.rigid
             .as_ref()

@@ -66,8 +66,11 @@ impl PartialEq<&str> for Elasticity {
 /// Lubricant and solid models of a case.
 #[derive(Clone, Copy, Debug, PartialEq, Default, Serialize, Deserialize)]
 pub struct Models {
+    /// Elastic or rigid surfaces.
     pub elasticity: Elasticity,
+    /// Pressure-viscosity law (Barus or Roelands).
     pub viscosity: Viscosity,
+    /// Pressure-density law (incompressible or Dowson-Higginson).
     pub density: Density,
 }
 
@@ -81,15 +84,18 @@ pub struct LineCase {
     pub m: f64,
     /// Moes lubricant parameter L >= 0.
     pub l: f64,
+    /// Elasticity, viscosity and density models.
     pub models: Models,
 }
 
 /// The line-contact groups of the Hertzian (Venner) scaling.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VennerLine {
+    /// Reynolds coefficient `lambda = 12 eta0 u_m R^2/(b^3 p_h) = 3 pi^2/(8 M^2)`.
     pub lambda: f64,
+    /// Dimensionless pressure-viscosity coefficient `alpha_bar = alpha p_h = L sqrt(M/(2 pi))`.
     pub alpha_bar: f64,
-    /// H_Moes / H_Venner.
+    /// H_Moes / H_Venner `= 8M/pi`.
     pub h_scale: f64,
 }
 
@@ -99,12 +105,15 @@ impl LineCase {
         Self::with_models(m, l, Models::default())
     }
 
+    /// A case with the given models, validated as by [`LineCase::validate`].
     pub fn with_models(m: f64, l: f64, models: Models) -> Result<Self, ParamError> {
         let c = LineCase { m, l, models };
         c.validate()?;
         Ok(c)
     }
 
+    /// Checks M > 0, L >= 0 (both finite) and the models' own parameters; the error names the
+    /// first offending value.
     pub fn validate(&self) -> Result<(), ParamError> {
         check(
             "M",
@@ -122,6 +131,7 @@ impl LineCase {
         self.models.density.validate()
     }
 
+    /// The Hertzian (Venner) groups lambda, alpha_bar and the film scale of this case.
     pub fn venner(&self) -> VennerLine {
         VennerLine {
             lambda: 3.0 * PI * PI / (8.0 * self.m * self.m),
@@ -144,10 +154,13 @@ impl LineCase {
 /// D = Rx/Ry in (0, 1].
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PointCase {
+    /// Moes load parameter M > 0.
     pub m: f64,
+    /// Moes lubricant parameter L >= 0.
     pub l: f64,
-    /// Ellipticity parameter D = Rx/Ry (1: circular).
+    /// Ellipticity parameter D = Rx/Ry in (0, 1] (1: circular).
     pub d: f64,
+    /// Elasticity, viscosity and density models.
     pub models: Models,
 }
 
@@ -169,7 +182,9 @@ pub struct PointCase {
 /// alpha_bar = (3M/2)^(1/3) L/pi, H_Moes = H (3M/2)^(2/3), c = 2/pi^2, load 2 pi/3 (tested).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VennerPoint {
+    /// Reynolds coefficient `lambda = 12 eta0 u_m Rx^2/(b^3 p_h)`.
     pub lambda: f64,
+    /// Dimensionless pressure-viscosity coefficient `alpha_bar = alpha p_h`.
     pub alpha_bar: f64,
     /// H_Moes / H_Venner.
     pub h_scale: f64,
@@ -189,12 +204,15 @@ impl PointCase {
         Self::with_models(m, l, d, Models::default())
     }
 
+    /// A case with the given models, validated as by [`PointCase::validate`].
     pub fn with_models(m: f64, l: f64, d: f64, models: Models) -> Result<Self, ParamError> {
         let c = PointCase { m, l, d, models };
         c.validate()?;
         Ok(c)
     }
 
+    /// Checks M > 0, L >= 0, D in (0, 1] (all finite) and the models' own parameters; the error
+    /// names the first offending value.
     pub fn validate(&self) -> Result<(), ParamError> {
         LineCase {
             m: self.m,
@@ -215,6 +233,7 @@ impl PointCase {
         crate::model::hertz::ellipse_from_d(self.d).expect("D validated in (0, 1]")
     }
 
+    /// The Hertzian (Venner) groups of this case, from the exact Hertz ellipse of D.
     pub fn venner(&self) -> VennerPoint {
         let el = self.ellipse();
         let (k, e, d, m) = (el.k, el.e, self.d, self.m);
@@ -340,7 +359,9 @@ mod tests {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Contact {
+    /// Line contact (`line`): one-dimensional problem in X.
     Line,
+    /// Point contact (`point`), circular or elliptic: two-dimensional problem in (X, Y).
     Point,
 }
 
@@ -396,7 +417,9 @@ impl PartialEq<&str> for Contact {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "contact", rename_all = "lowercase")]
 pub enum Case {
+    /// A line contact.
     Line(LineCase),
+    /// A point contact of ellipticity D.
     Point(PointCase),
 }
 

@@ -3,10 +3,14 @@
 /// Invalid case input; the message names the offending value.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ParamError {
+    /// A numeric input that is not finite or outside its domain.
     #[error("{name} = {value} is invalid: {why}")]
     Invalid {
+        /// The input's name as the user knows it (`M`, `L`, `D`, `z`, `ph` ...).
         name: &'static str,
+        /// The rejected value.
         value: f64,
+        /// Why it was rejected: the domain the value must lie in.
         why: &'static str,
     },
     /// An input rejected, with the reason (the message names the input).
@@ -15,8 +19,11 @@ pub enum ParamError {
     /// A name (of a contact, model, status ...) that is not one of the known ones.
     #[error("unknown {what} {name:?}: expected {expected}")]
     Unknown {
+        /// What kind of name it is (`contact`, `elasticity` ...).
         what: &'static str,
+        /// The name given.
         name: String,
+        /// The accepted names, as a phrase for the message (`line or point`).
         expected: &'static str,
     },
 }

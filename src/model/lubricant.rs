@@ -21,10 +21,16 @@ const EXP_CAP: f64 = 700.0;
 #[derive(Clone, Copy, Debug, PartialEq, Default, Serialize, Deserialize)]
 #[serde(tag = "model", rename_all = "lowercase")]
 pub enum Viscosity {
+    /// Barus: `eta = exp(alpha_bar P)` (default).
     #[default]
     Barus,
     /// Roelands with pressure-viscosity index `z` and the Hertzian pressure `ph_pa` (Pa).
-    Roelands { z: f64, ph_pa: f64 },
+    Roelands {
+        /// Roelands pressure-viscosity index z > 0.
+        z: f64,
+        /// Hertzian pressure p_h (Pa) that scales P = p/p_h.
+        ph_pa: f64,
+    },
 }
 
 impl Viscosity {
@@ -56,6 +62,7 @@ impl Viscosity {
         Ok(v)
     }
 
+    /// Checks Roelands' z > 0 and p_h > 0 (both finite); Barus has no parameter to check.
     pub fn validate(&self) -> Result<(), ParamError> {
         if let Viscosity::Roelands { z, ph_pa } = *self {
             check("z", z, z > 0.0, "the Roelands index must be positive")?;
@@ -107,6 +114,7 @@ impl Viscosity {
         }
     }
 
+    /// The stored name (`barus`, `roelands`).
     pub fn name(&self) -> &'static str {
         match self {
             Viscosity::Barus => "barus",
@@ -119,13 +127,18 @@ impl Viscosity {
 #[derive(Clone, Copy, Debug, PartialEq, Default, Serialize, Deserialize)]
 #[serde(tag = "model", rename_all = "kebab-case")]
 pub enum Density {
+    /// Constant density, rho = 1 (default).
     #[default]
     Incompressible,
     /// Dowson-Higginson with the Hertzian pressure `ph_pa` (Pa).
-    DowsonHigginson { ph_pa: f64 },
+    DowsonHigginson {
+        /// Hertzian pressure p_h (Pa) that scales P = p/p_h.
+        ph_pa: f64,
+    },
 }
 
 impl Density {
+    /// Checks Dowson-Higginson's p_h > 0 (finite); incompressible has no parameter to check.
     pub fn validate(&self) -> Result<(), ParamError> {
         if let Density::DowsonHigginson { ph_pa } = *self {
             check(
@@ -163,6 +176,7 @@ impl Density {
         }
     }
 
+    /// The stored name (`incompressible`, `dowson-higginson`).
     pub fn name(&self) -> &'static str {
         match self {
             Density::Incompressible => "incompressible",

@@ -31,7 +31,9 @@ const K0: f64 = 273.15;
 /// A Walther line `log10 log10(nu + 0.7) = a - b log10 T`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Walther {
+    /// Intercept A (T in K, nu in mm^2/s).
     pub a: f64,
+    /// Slope B against log10 T (T in K); positive for a line from [`Walther::through`].
     pub b: f64,
 }
 
@@ -73,8 +75,9 @@ impl Walther {
 pub struct LubricantSpec {
     /// A name of [`OILS`] (e.g. "ISO VG 68").
     pub oil: Option<String>,
-    /// Kinematic viscosity at 40 C and 100 C (mm^2/s).
+    /// Kinematic viscosity at 40 C (mm^2/s); given with `nu100` instead of `oil`.
     pub nu40: Option<f64>,
+    /// Kinematic viscosity at 100 C (mm^2/s); given with `nu40` instead of `oil`.
     pub nu100: Option<f64>,
     /// Density at 15 C (kg/m^3).
     pub density: Option<f64>,

@@ -53,8 +53,9 @@ use crate::strategy::closed_form::closed_form_line;
 use crate::strategy::slender;
 use serde::{Deserialize, Serialize};
 
-/// Points of the line check grid and nodes per direction of the point check grid.
+/// Points of the line check grid.
 pub const CHECK_GRID_LINE: usize = 257;
+/// Nodes per direction of the point check grid.
 pub const CHECK_GRID_POINT: usize = 33;
 /// A candidate is kept when its measured effect on the check grid is below this times the target.
 pub const CHECK_FRACTION: f64 = 0.5;
@@ -65,9 +66,11 @@ pub const SCREEN_MARGIN: f64 = 10.0;
 /// The choice for one case and the estimates it rests on.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Selection {
+    /// The model chosen to answer the case.
     pub model: ModelUsed,
-    /// Estimated relative effect of elasticity and of piezoviscosity on H_c.
+    /// Estimated relative effect of elasticity on H_c (from Moes 1992 or NVM 1994).
     pub elastic_effect: f64,
+    /// Estimated relative effect of piezoviscosity on H_c (from Moes 1992 or NVM 1994).
     pub piezo_effect: f64,
     /// The effect of what the chosen model neglects: the screening estimate, replaced by the
     /// measured one once verified (0 for the full model).

@@ -44,9 +44,10 @@ pub struct SolveParams {
     pub cycle: CycleType,
     /// Cycles allowed on the finest level; `None`: the contact's default.
     pub max_cycles: Option<usize>,
-    /// Convergence tolerances on the load error and the change of H_c and H_min per cycle;
-    /// `None`: the contact's defaults.
+    /// Convergence tolerance on the load error; `None`: the contact's default.
     pub tol_load: Option<f64>,
+    /// Convergence tolerance on the relative change of H_c and H_min per cycle; `None`: the
+    /// contact's default.
     pub tol_h: Option<f64>,
     /// Retry a failed solve with conservative settings (the fallback ladder).
     pub fallback: bool,

@@ -25,8 +25,12 @@ use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
 pub enum Progress {
     /// A bar when stderr is a terminal, else log lines.
     Auto,
+    /// A progress bar with the failure count and ETA.
     Bar,
+    /// Log lines: when another tenth of the cases is done, when a case finishes 30 s or more
+    /// after the previous line, and at the end.
     Log,
+    /// Nothing.
     None,
 }
 
@@ -35,21 +39,26 @@ pub enum Progress {
 pub struct RunOptions {
     /// The dataset directory `<out>/<name>`.
     pub dataset: PathBuf,
+    /// Worker threads of the solve pool (at least 1 is used).
     pub threads: usize,
+    /// The slice of the sweep this process solves.
     pub shard: Shard,
+    /// How progress is shown.
     pub progress: Progress,
 }
 
 /// What a run did.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct RunReport {
-    /// Cases of the whole sweep, of this shard, and of this shard already stored before the run.
+    /// Cases of the whole sweep.
     pub total: usize,
+    /// Cases of this shard.
     pub in_shard: usize,
+    /// Cases of this shard the dataset held before the run (not solved again).
     pub already_stored: usize,
-    /// Cases solved and written by this run, and how many of them failed (status other than
-    /// converged, or not valid).
+    /// Cases solved and written by this run.
     pub solved: usize,
+    /// Cases of `solved` that failed: status other than converged, or not valid.
     pub failed: usize,
     /// Cases solved by this run per `model_used` (see `crate::strategy::select`).
     pub models: std::collections::BTreeMap<String, usize>,
@@ -57,6 +66,7 @@ pub struct RunReport {
     pub model_seconds: std::collections::BTreeMap<String, f64>,
     /// The part file this run wrote (none when there was nothing to do).
     pub file: Option<PathBuf>,
+    /// Wall time of the run (s).
     pub wall_s: f64,
 }
 

@@ -11,11 +11,12 @@
 //!   string (physics, models, numerics; not the sweep name or output settings). A case id stored
 //!   anywhere in the dataset directory is never solved again: a rerun (with or without
 //!   `--resume`) solves only what is missing.
-//! * **Deterministic results** ([`run`]): each case is one single-threaded solve, independent of
-//!   the others, so every column except `wall_s` is identical whatever `--threads` or `--shard`.
-//!   Work is taken largest estimated cost first. A line case that fails cold is warm-started
-//!   ([`warm`]) from its own chain of lower-M neighbours, solved within the same task, so warm
-//!   starts do not break this either; `warm_start` records the neighbour's case id.
+//! * **Deterministic results** ([`executor`]): each case is one single-threaded solve,
+//!   independent of the others, so every column except `wall_s` is identical whatever
+//!   `--threads` or `--shard`. Work is taken largest estimated cost first. A line case that fails
+//!   cold is warm-started ([`crate::strategy::warm`]) from its own chain of lower-M neighbours,
+//!   solved within the same task, so warm starts do not break this either; `warm_start` records
+//!   the neighbour's case id.
 //! * **Shards**: `--shard i/n` (or `SLURM_ARRAY_TASK_ID`/`SLURM_ARRAY_TASK_COUNT`) keeps the cases
 //!   whose mixed id is `i - 1 (mod n)`; the union of shards 1..n is the whole sweep.
 //! * **Storage** ([`crate::store::results`]): `<out>/<name>/part-<i>of<n>-<run>.parquet`, one file

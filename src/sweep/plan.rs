@@ -19,15 +19,21 @@ const CANON_VERSION: &str = "ehlmap-case-v1";
 /// One case to solve.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Case {
+    /// Case id: FNV-1a of [`Case::canonical`].
     pub id: u64,
+    /// Line or point.
     pub contact: Contact,
+    /// Moes load parameter M.
     pub m: f64,
+    /// Moes lubricant parameter L.
     pub l: f64,
-    /// Ellipticity (point contacts only).
+    /// Ellipticity D = Rx/Ry (point contacts only).
     pub d: Option<f64>,
+    /// The solver's models, with Roelands' z resolved for this case.
     pub models: Models,
-    /// The ambient viscosity the Roelands z was derived from, when the spec gave eta0.
+    /// The ambient viscosity (Pa s) the Roelands z was derived from, when the spec gave eta0.
     pub eta0: Option<f64>,
+    /// Numerical settings of the solve.
     pub numerics: Numerics,
     /// Relative cost estimate used to order the work (largest first).
     pub cost: f64,
@@ -81,6 +87,7 @@ impl Case {
             .map_or(String::new(), |a| format!(";accuracy={a:e}"))
     }
 
+    /// The id as 16 lower-case hex digits (the `case_id` column).
     pub fn id_hex(&self) -> String {
         id_hex(self.id)
     }
@@ -242,11 +249,14 @@ fn plan_case(
 /// A deterministic slice `index/count` (1-based) of a sweep.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Shard {
+    /// Which slice, 1-based, `1 <= index <= count`.
     pub index: usize,
+    /// Number of slices.
     pub count: usize,
 }
 
 impl Shard {
+    /// The whole sweep, `1/1`.
     pub const WHOLE: Shard = Shard { index: 1, count: 1 };
 
     /// Parse `i/n` with 1 <= i <= n.

@@ -6,9 +6,13 @@ use std::fmt;
 /// A spec error: file, line (1-based) and key of the offending entry.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SpecError {
+    /// The spec file as given on the command line.
     pub file: String,
+    /// Line of the offending entry, 1-based; 0 when the file cannot be read.
     pub line: usize,
+    /// Dotted key of the offending entry (e.g. `axes.M`); empty when no key applies.
     pub key: String,
+    /// What is wrong.
     pub message: String,
 }
 

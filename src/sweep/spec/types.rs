@@ -13,20 +13,42 @@ use std::path::PathBuf;
 /// depends on alpha_bar and so on M and L).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ViscositySpec {
+    /// Barus (`viscosity = "barus"`, the default).
     Barus,
-    RoelandsZ { z: f64, ph_pa: f64 },
-    RoelandsEta0 { eta0: f64, ph_pa: f64 },
+    /// Roelands with the index given (`models.z`).
+    RoelandsZ {
+        /// Roelands pressure-viscosity index z > 0.
+        z: f64,
+        /// Hertzian pressure p_h (Pa), `models.ph`.
+        ph_pa: f64,
+    },
+    /// Roelands with z derived per case from the ambient viscosity (`models.eta0`).
+    RoelandsEta0 {
+        /// Ambient viscosity eta0 (Pa s), with ln(eta0) + 9.67 > 0.
+        eta0: f64,
+        /// Hertzian pressure p_h (Pa), `models.ph`.
+        ph_pa: f64,
+    },
 }
 
 /// Numerical settings of every solve of the sweep.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Numerics {
+    /// Finest grid: points (line) or points per direction (point), within
+    /// [`Contact::grid_range`].
     pub grid: usize,
+    /// Multigrid cycle type (`cycle = "v"` or `"w"`).
     pub cycle: CycleType,
+    /// Cycles allowed on the finest level.
     pub max_cycles: usize,
+    /// Retry a failed solve with conservative settings (the fallback ladder).
     pub fallback: bool,
+    /// Convergence tolerance on the load error, in (0, 1).
     pub tol_load: f64,
+    /// Convergence tolerance on the relative change of H_c and H_min over a cycle, in (0, 1).
     pub tol_h: f64,
+    /// Also solve each case on the half grid and store the Richardson error estimates
+    /// (H_c_err, H_min_err).
     pub error_estimate: bool,
     /// Target relative accuracy of H_c and H_min: refine from 257 points up to `grid` until the
     /// error estimate meets it (`ehlmap solve --accuracy`); the estimate goes to H_c_err/H_min_err.
@@ -65,8 +87,12 @@ impl Numerics {
 /// Where and how often results are written.
 #[derive(Clone, Debug, PartialEq)]
 pub struct OutputSpec {
+    /// Base directory of the dataset `<dir>/<name>/` (relative to the working directory);
+    /// `--out` overrides it.
     pub dir: PathBuf,
+    /// Rewrite the part file after this many finished cases ...
     pub batch: usize,
+    /// ... or this many seconds after the previous write.
     pub flush_seconds: f64,
 }
 
@@ -74,9 +100,14 @@ pub struct OutputSpec {
 /// `[axes.point]`) and the numerical settings of its cases.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ContactSpec {
+    /// Line or point.
     pub contact: Contact,
+    /// Values of the M axis for this contact, in the order given.
     pub m: Vec<f64>,
+    /// Values of the L axis for this contact, in the order given.
     pub l: Vec<f64>,
+    /// Numerical settings of this contact's cases (`[numerics]` with `[numerics.<contact>]`
+    /// over it).
     pub numerics: Numerics,
 }
 
@@ -87,19 +118,27 @@ pub struct SweepSpec {
     pub file: String,
     /// The full TOML text (stored in every Parquet footer).
     pub text: String,
+    /// Dataset name: the directory `<out>/<name>/` (default: the file stem).
     pub name: String,
     /// The contact types of the sweep with their numerical settings, in the order given (one,
     /// or line and point for a mixed spec).
     pub contacts: Vec<ContactSpec>,
+    /// Free text of `description`, when given.
     pub description: Option<String>,
-    /// Axis values after expansion, in the order given (each contact's own M and L are in
+    /// M axis values after expansion, in the order given (each contact's own M and L are in
     /// `contacts`).
     pub m: Vec<f64>,
+    /// L axis values after expansion, in the order given.
     pub l: Vec<f64>,
+    /// D = Rx/Ry axis values of the point cases, in (0, 1]; `None` for a line-only spec.
     pub d: Option<Vec<f64>>,
+    /// Elastic or rigid surfaces, for every case.
     pub elasticity: Elasticity,
+    /// Viscosity model, for every case.
     pub viscosity: ViscositySpec,
+    /// Density model, for every case.
     pub density: Density,
+    /// Where and how often results are written (`[output]`).
     pub output: OutputSpec,
     /// Line of each key that was given (dotted path, e.g. "axes.M"), for later messages.
     pub lines: BTreeMap<String, usize>,
@@ -114,6 +153,7 @@ impl SweepSpec {
             .map(|c| &c.numerics)
     }
 
+    /// Whether the spec has cases of `contact`.
     pub fn has(&self, contact: Contact) -> bool {
         self.numerics(contact).is_some()
     }
