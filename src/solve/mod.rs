@@ -7,6 +7,7 @@ pub mod fmg;
 pub mod ladder;
 pub mod line;
 pub mod load_balance;
+pub mod multilevel;
 pub mod newton;
 pub mod params;
 pub mod point;

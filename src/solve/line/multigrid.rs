@@ -18,12 +18,11 @@
 use crate::discrete::line::domain::{DomainParams, LineDomain};
 use crate::discrete::line::operator::{LineLevel, LinePhysics};
 use crate::model::case::LineCase;
-use crate::solve::fmg::{fmg_solve, Fas, FmgControl};
 use crate::solve::line::relax::{relax, LineScratch, RelaxParams};
+use crate::solve::multilevel::{Contact, GridLevel, Multigrid};
 use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
 pub use crate::solve::params::CycleType;
 use crate::solve::params::{FinerCoarsest, MgParams};
-use crate::solve::{CycleRecord, SolveInfo};
 use std::f64::consts::PI;
 
 /// Multigrid settings of a line solve.
@@ -63,25 +62,6 @@ impl FinerCoarsest for DomainParams {
     }
 }
 
-/// The state of a line multigrid solve: all levels, H0, counters.
-pub struct LineMultigrid {
-    pub phys: LinePhysics,
-    pub domain: LineDomain,
-    pub levels: Vec<LineLevel>,
-    pub h0: f64,
-    pub params: LineMgParams,
-    /// Injected coarse pressures P^_H per level.
-    p_hat: Vec<Vec<f64>>,
-    pub work_units: f64,
-    /// Estimate of d(h sum P)/dH0 from the coarsest level.
-    load_slope: f64,
-    /// Work buffers of the smoother, shared by all levels.
-    scratch: LineScratch,
-    fine_intervals: usize,
-    /// A warm-start guess for the finest level ([`LineMultigrid::set_guess`]).
-    guess: Option<WarmGuess>,
-}
-
 /// A solved neighbour's pressure profile (Hertzian X, P) and the central film (Hertzian units)
 /// this case is expected to have, to start the finest-level cycles from.
 #[derive(Clone, Debug, PartialEq)]
@@ -104,7 +84,7 @@ impl WarmGuess {
     }
 }
 
-impl LineMultigrid {
+impl Multigrid<LineContact> {
     /// Build the levels for a case. The finest level has at least `params.grid` points.
     pub fn new(case: &LineCase, params: &LineMgParams) -> Self {
         let phys = LinePhysics {
@@ -134,32 +114,28 @@ impl LineMultigrid {
             levels.push(lv);
             n *= 2;
         }
-        let p_hat = levels.iter().map(|l| vec![0.0; l.len()]).collect();
-        LineMultigrid {
+        Multigrid::from_levels(
             phys,
             domain,
             levels,
-            h0: 0.0,
-            params: *params,
-            p_hat,
-            work_units: 0.0,
-            load_slope: -1.0,
-            scratch: LineScratch::default(),
-            fine_intervals: fine,
-            guess: None,
-        }
+            params,
+            LineExtra {
+                fine_intervals: fine,
+                guess: None,
+            },
+        )
     }
 
     /// Start the next [`LineMultigrid::solve`] from `guess` on the finest level instead of
     /// the FMG ascent.
     pub fn set_guess(&mut self, guess: WarmGuess) {
-        self.guess = Some(guess);
+        self.extra.guess = Some(guess);
     }
 
     /// Put the guess on level `l`: P interpolated onto its grid, H0 so that the central film is
     /// the guess's.
-    fn install_guess(&mut self, l: usize) -> bool {
-        let Some(g) = self.guess.take() else {
+    fn put_guess(&mut self, l: usize) -> bool {
+        let Some(g) = self.extra.guess.take() else {
             return false;
         };
         let lv = &mut self.levels[l];
@@ -184,7 +160,7 @@ impl LineMultigrid {
     /// parabola over [-2.5, 0.5] l_h (the Martin pressure's extent, l_h = sqrt(2 H_e)); in the dry
     /// limit a wider parabola than Hertz, so that the solver has to find Hertz. All carry the load
     /// pi/2. H0 is chosen so that the central film equals the estimate H_e.
-    pub fn initialise(&mut self) {
+    fn start(&mut self) {
         let dry = self.phys.dry;
         let rigid = !self.phys.elastic;
         let h_e = self.domain.h_estimate;
@@ -210,45 +186,9 @@ impl LineMultigrid {
         lv.update_film(&self.phys, self.h0);
     }
 
-    /// One relaxation sweep on level `l`, counted in work units.
-    pub fn relax_level(&mut self, l: usize) {
-        let lv = &mut self.levels[l];
-        relax(
-            lv,
-            &self.phys,
-            self.h0,
-            &self.params.relax,
-            &mut self.scratch,
-        );
-        self.work_units += (lv.len() - 1) as f64 / self.fine_intervals as f64;
-    }
-
-    /// Solve the coarsest level's FAS problem for P at fixed H0 by Newton; if Newton fails, fall
-    /// back to `coarse_sweeps` relaxations.
-    fn coarse_solve(&mut self) {
-        let lv = &mut self.levels[0];
-        let before = lv.p.clone();
-        let np = NewtonParams {
-            fix_h0: true,
-            ..NewtonParams::default()
-        };
-        let mut h0 = self.h0;
-        let out = newton_solve(lv, &self.phys, &mut h0, &np);
-        // Newton's cost in work units: each iteration counts as n0 relaxations of level 0.
-        self.work_units += (out.iterations * lv.len()) as f64 / self.fine_intervals as f64;
-        if out.converged || (!out.singular && out.residual < 1e-6) {
-            return;
-        }
-        lv.p.copy_from_slice(&before);
-        lv.update_film(&self.phys, self.h0);
-        for _ in 0..self.params.coarse_sweeps {
-            self.relax_level(0);
-        }
-    }
-
     /// Full Newton (with the load equation) on the coarsest level from the initial guess, then the
     /// slope dG/dH0 from a second fixed-H0 solve at a perturbed H0.
-    fn start_coarse(&mut self, with_slope: bool) -> NewtonOutcome {
+    fn coarse_start(&mut self, with_slope: bool) -> NewtonOutcome {
         let lv = &mut self.levels[0];
         lv.f.fill(0.0);
         lv.g = PI / 2.0;
@@ -258,7 +198,7 @@ impl LineMultigrid {
         };
         let out = newton_solve(lv, &self.phys, &mut self.h0, &np);
         let first = out;
-        self.work_units += (out.iterations * lv.len()) as f64 / self.fine_intervals as f64;
+        self.work_units += (out.iterations * lv.len()) as f64 / self.extra.fine_intervals as f64;
         if !(out.converged || out.residual < 1e-6) {
             // Relaxation with a gentle H0 update (the classic coarse-grid load balance).
             lv.update_film(&self.phys, self.h0);
@@ -280,71 +220,8 @@ impl LineMultigrid {
         first
     }
 
-    /// One FAS cycle with level `l` as the finest.
-    pub fn cycle(&mut self, l: usize) {
-        if l == 0 {
-            self.coarse_solve();
-            return;
-        }
-        for _ in 0..self.params.pre {
-            self.relax_level(l);
-        }
-        {
-            let (lo, hi) = self.levels.split_at_mut(l);
-            let (coarse, fine) = (&mut lo[l - 1], &mut hi[0]);
-            let mut r = std::mem::take(&mut fine.delta);
-            // The full residual, cavitated nodes included: there it is the complementarity
-            // margin (L - f < 0), which keeps the coarse problem strictly cavitated where the fine
-            // one is; zeroing it would make P = 0 a degenerate coarse solution.
-            fine.residual(&self.phys, false, &mut r);
-            let nc = coarse.len();
-            for i in 0..nc {
-                coarse.p[i] = fine.p[2 * i];
-            }
-            coarse.update_film(&self.phys, self.h0);
-            coarse.f[0] = 0.0;
-            coarse.f[nc - 1] = 0.0;
-            for i in 1..nc - 1 {
-                coarse.frozen[i] =
-                    (2 * i - 1..=2 * i + 1).any(|k| fine.p[k] <= 0.0 || fine.frozen[k]);
-                let rr = 0.25 * r[2 * i - 1] + 0.5 * r[2 * i] + 0.25 * r[2 * i + 1];
-                coarse.f[i] = coarse.reynolds(&self.phys, i) + rr;
-            }
-            coarse.g = coarse.load() + (fine.g - fine.load());
-            self.p_hat[l - 1].copy_from_slice(&coarse.p);
-            fine.delta = r;
-        }
-        for _ in 0..self.params.cycle.gamma() {
-            self.cycle(l - 1);
-        }
-        {
-            let (lo, hi) = self.levels.split_at_mut(l);
-            let (coarse, fine) = (&lo[l - 1], &mut hi[0]);
-            let ph = &self.p_hat[l - 1];
-            let nc = coarse.len();
-            for i in 0..nc {
-                let e = coarse.p[i] - ph[i];
-                fine.p[2 * i] += e;
-                if i + 1 < nc {
-                    let e1 = coarse.p[i + 1] - ph[i + 1];
-                    fine.p[2 * i + 1] += 0.5 * (e + e1);
-                }
-            }
-            let nf = fine.len();
-            fine.p[0] = 0.0;
-            fine.p[nf - 1] = 0.0;
-            for p in fine.p.iter_mut() {
-                *p = p.max(0.0);
-            }
-            fine.update_film(&self.phys, self.h0);
-        }
-        for _ in 0..self.params.post {
-            self.relax_level(l);
-        }
-    }
-
     /// Cubic interpolation of level l-1's pressure as the start on level l (FMG).
-    fn fmg_interpolate(&mut self, l: usize) {
+    fn interpolate(&mut self, l: usize) {
         let (lo, hi) = self.levels.split_at_mut(l);
         let (coarse, fine) = (&lo[l - 1], &mut hi[0]);
         let nc = coarse.len();
@@ -368,90 +245,122 @@ impl LineMultigrid {
         fine.update_film(&self.phys, self.h0);
     }
 
-    /// Convergence measures of level `l` (the current top level) after a cycle.
-    pub fn record(&mut self, l: usize) -> CycleRecord {
-        let fine = &mut self.levels[l];
-        let mut r = std::mem::take(&mut fine.delta);
-        fine.residual(&self.phys, true, &mut r);
-        let active = fine.p.iter().filter(|&&p| p > 0.0).count().max(1);
-        let residual = r.iter().map(|v| v.abs()).sum::<f64>() / active as f64;
-        fine.delta = r;
-        let load_error = (fine.load() - fine.g) / fine.g;
-        let ic = self.domain.centre_index(fine.len() - 1);
-        CycleRecord {
-            residual,
-            load_error,
-            h_c: fine.film[ic] * self.h_scale(),
-            work_units: self.work_units,
-        }
-    }
-
     /// H_Moes / H_Venner.
     pub fn h_scale(&self) -> f64 {
         8.0 * PI.recip() * (3.0 * PI * PI / (8.0 * self.phys.lambda)).sqrt()
     }
+}
 
-    /// Run FMG ([`crate::solve::fmg::fmg_solve`]).
-    pub fn solve(&mut self) -> SolveInfo {
-        fmg_solve(self)
+/// The line contact's part of [`Multigrid`] (see [`crate::solve::multilevel::Contact`]).
+pub struct LineContact;
+
+/// The state of a line multigrid solve.
+pub type LineMultigrid = Multigrid<LineContact>;
+
+/// What a line solve keeps besides the shared state.
+pub struct LineExtra {
+    /// Intervals of the finest level (work units are sweeps of it).
+    fine_intervals: usize,
+    /// A warm-start guess for the finest level ([`LineMultigrid::set_guess`]).
+    guess: Option<WarmGuess>,
+}
+
+impl GridLevel for LineLevel {
+    fn points(&self) -> usize {
+        self.len()
+    }
+    fn p(&self) -> &[f64] {
+        &self.p
+    }
+    fn film(&self) -> &[f64] {
+        &self.film
+    }
+    fn delta_mut(&mut self) -> &mut Vec<f64> {
+        &mut self.delta
+    }
+    fn residual_into(&self, phys: &LinePhysics, active_only: bool, out: &mut [f64]) {
+        self.residual(phys, active_only, out)
+    }
+    fn set_load_rhs(&mut self, g: f64) {
+        self.g = g;
     }
 }
 
-impl Fas for LineMultigrid {
-    fn control(&self) -> FmgControl {
-        self.params.control(1)
+impl Contact for LineContact {
+    type Level = LineLevel;
+    type Phys = LinePhysics;
+    type Domain = LineDomain;
+    type DomainParams = DomainParams;
+    type Scratch = LineScratch;
+    type Extra = LineExtra;
+    const COARSE_BUDGET_GROWTH: usize = 1;
+
+    fn sweep(mg: &mut LineMultigrid, l: usize) -> f64 {
+        let lv = &mut mg.levels[l];
+        relax(lv, &mg.phys, mg.h0, &mg.params.relax, &mut mg.scratch);
+        (lv.len() - 1) as f64 / mg.extra.fine_intervals as f64
     }
-    fn top(&self) -> usize {
-        self.levels.len() - 1
+
+    /// Each Newton iteration counts as n0 relaxations of level 0.
+    fn newton_cost(mg: &LineMultigrid, iterations: usize) -> f64 {
+        (iterations * mg.levels[0].len()) as f64 / mg.extra.fine_intervals as f64
     }
-    fn initialise(&mut self) {
-        LineMultigrid::initialise(self)
+
+    /// Injection of P, full weighting of the residual.
+    fn restrict(coarse: &mut LineLevel, fine: &LineLevel, r: &[f64], phys: &LinePhysics, h0: f64) {
+        let nc = coarse.len();
+        for i in 0..nc {
+            coarse.p[i] = fine.p[2 * i];
+        }
+        coarse.update_film(phys, h0);
+        coarse.f[0] = 0.0;
+        coarse.f[nc - 1] = 0.0;
+        for i in 1..nc - 1 {
+            coarse.frozen[i] = (2 * i - 1..=2 * i + 1).any(|k| fine.p[k] <= 0.0 || fine.frozen[k]);
+            let rr = 0.25 * r[2 * i - 1] + 0.5 * r[2 * i] + 0.25 * r[2 * i + 1];
+            coarse.f[i] = coarse.reynolds(phys, i) + rr;
+        }
     }
-    fn start_coarse(&mut self, with_slope: bool) -> NewtonOutcome {
-        LineMultigrid::start_coarse(self, with_slope)
+
+    /// Linear interpolation of the correction.
+    fn correct(coarse: &LineLevel, ph: &[f64], fine: &mut LineLevel, phys: &LinePhysics, h0: f64) {
+        let nc = coarse.len();
+        for i in 0..nc {
+            let e = coarse.p[i] - ph[i];
+            fine.p[2 * i] += e;
+            if i + 1 < nc {
+                let e1 = coarse.p[i + 1] - ph[i + 1];
+                fine.p[2 * i + 1] += 0.5 * (e + e1);
+            }
+        }
+        let nf = fine.len();
+        fine.p[0] = 0.0;
+        fine.p[nf - 1] = 0.0;
+        for p in fine.p.iter_mut() {
+            *p = p.max(0.0);
+        }
+        fine.update_film(phys, h0);
     }
-    fn load_slope(&self) -> f64 {
-        self.load_slope
+
+    fn centre_index(mg: &LineMultigrid, l: usize) -> usize {
+        mg.domain.centre_index(mg.levels[l].len() - 1)
     }
-    fn fmg_interpolate(&mut self, l: usize) {
-        LineMultigrid::fmg_interpolate(self, l)
+    fn h_scale(mg: &LineMultigrid) -> f64 {
+        mg.h_scale()
     }
-    fn relax(&mut self, l: usize) {
-        self.relax_level(l)
+    fn h_estimate(mg: &LineMultigrid) -> f64 {
+        mg.domain.h_estimate
     }
-    fn cycle(&mut self, l: usize) {
-        LineMultigrid::cycle(self, l)
+    fn initialise(mg: &mut LineMultigrid) {
+        mg.start()
     }
-    fn record(&mut self, l: usize) -> CycleRecord {
-        LineMultigrid::record(self, l)
+    fn start_coarse(mg: &mut LineMultigrid, with_slope: bool) -> NewtonOutcome {
+        mg.coarse_start(with_slope)
     }
-    fn h0(&self) -> f64 {
-        self.h0
+    fn fmg_interpolate(mg: &mut LineMultigrid, l: usize) {
+        mg.interpolate(l)
     }
-    fn set_h0(&mut self, l: usize, h0: f64) {
-        self.h0 = h0;
-        self.levels[l].update_film(&self.phys, h0);
-    }
-    fn centre_film(&self, l: usize) -> f64 {
-        let lv = &self.levels[l];
-        lv.film[self.domain.centre_index(lv.len() - 1)]
-    }
-    fn h_estimate(&self) -> f64 {
-        self.domain.h_estimate
-    }
-    fn load_target(&self, l: usize) -> f64 {
-        self.levels[l].g
-    }
-    fn observer(&self) -> Option<crate::solve::Observer> {
-        self.params.observer
-    }
-    fn install_guess(&mut self, l: usize) -> bool {
-        LineMultigrid::install_guess(self, l)
-    }
-    fn work_units(&self) -> f64 {
-        self.work_units
-    }
-    fn points(&self, l: usize) -> usize {
-        self.levels[l].len()
+    fn install_guess(mg: &mut LineMultigrid, l: usize) -> bool {
+        mg.put_guess(l)
     }
 }

@@ -15,12 +15,11 @@ use crate::discrete::point::domain::PointDomain;
 use crate::discrete::point::domain::PointDomainParams;
 use crate::discrete::point::operator::{PointLevel, PointPhysics};
 use crate::model::case::{Elasticity, PointCase};
-use crate::solve::fmg::{Fas, FmgControl};
 use crate::solve::line::relax::RelaxParams;
+use crate::solve::multilevel::{Contact, GridLevel, Multigrid};
 use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
 use crate::solve::params::{CycleType, FinerCoarsest, MgParams};
 use crate::solve::point::relax::{point_line_sweep, PointScratch};
-use crate::solve::CycleRecord;
 
 /// Multigrid settings of a point solve.
 pub type PointMgParams = MgParams<PointDomainParams>;
@@ -57,21 +56,7 @@ impl FinerCoarsest for PointDomainParams {
     fn finer_coarsest(&mut self) {}
 }
 
-/// The state of a point multigrid solve.
-pub struct PointMultigrid {
-    pub phys: PointPhysics,
-    pub domain: PointDomain,
-    pub levels: Vec<PointLevel>,
-    pub h0: f64,
-    pub params: PointMgParams,
-    p_hat: Vec<Vec<f64>>,
-    pub work_units: f64,
-    load_slope: f64,
-    scratch: PointScratch,
-    fine_cells: f64,
-}
-
-impl PointMultigrid {
+impl Multigrid<PointContact> {
     pub fn new(case: &PointCase, params: &PointMgParams) -> Self {
         let phys = PointPhysics {
             second_order: params.second_order,
@@ -103,19 +88,10 @@ impl PointMultigrid {
             }
             n *= 2;
         }
-        let p_hat = levels.iter().map(|l| vec![0.0; l.len()]).collect();
-        PointMultigrid {
-            phys,
-            domain,
-            levels,
-            h0: 0.0,
-            params: *params,
-            p_hat,
-            work_units: 0.0,
-            load_slope: -1.0,
-            scratch: PointScratch::default(),
+        let extra = PointExtra {
             fine_cells: (n * n) as f64,
-        }
+        };
+        Multigrid::from_levels(phys, domain, levels, params, extra)
     }
 
     /// Index of X = Y = 0 on level l.
@@ -123,129 +99,6 @@ impl PointMultigrid {
         let lv = &self.levels[l];
         let (i, j) = self.domain.centre(lv.nx - 1);
         lv.at(i, j)
-    }
-
-    /// One relaxation sweep on level l, counted in work units.
-    pub fn relax_level(&mut self, l: usize) {
-        let lv = &mut self.levels[l];
-        // Zebra rows on the rayon pool only where a level has enough rows to share.
-        let parallel = self.params.parallel && lv.ny >= 65;
-        point_line_sweep(
-            lv,
-            &self.phys,
-            self.h0,
-            &self.params.relax,
-            &mut self.scratch,
-            parallel,
-        );
-        self.work_units += ((lv.nx - 1) * (lv.ny - 1)) as f64 / self.fine_cells;
-    }
-
-    fn newton_cost(&mut self, iterations: usize) {
-        // A Newton iteration on level 0 counts as one sweep of level 0 per unknown row.
-        let lv = &self.levels[0];
-        self.work_units += (iterations * (lv.nx - 1)) as f64 * ((lv.nx - 1) * (lv.ny - 1)) as f64
-            / self.fine_cells;
-    }
-
-    fn coarse_solve(&mut self) {
-        let lv = &mut self.levels[0];
-        let before = lv.p.clone();
-        let np = NewtonParams {
-            fix_h0: true,
-            ..NewtonParams::default()
-        };
-        let mut h0 = self.h0;
-        let out = newton_solve(lv, &self.phys, &mut h0, &np);
-        self.newton_cost(out.iterations);
-        if out.converged || (!out.singular && out.residual < 1e-6) {
-            return;
-        }
-        let lv = &mut self.levels[0];
-        lv.p.copy_from_slice(&before);
-        lv.update_film(&self.phys, self.h0);
-        for _ in 0..self.params.coarse_sweeps {
-            self.relax_level(0);
-        }
-    }
-
-    /// 9-point full weighting of a fine field at the interior coarse node (i, j).
-    fn full_weight(fine: &PointLevel, r: &[f64], i: usize, j: usize) -> f64 {
-        let c = fine.at(2 * i, 2 * j);
-        let nx = fine.nx;
-        (4.0 * r[c]
-            + 2.0 * (r[c - 1] + r[c + 1] + r[c - nx] + r[c + nx])
-            + r[c - nx - 1]
-            + r[c - nx + 1]
-            + r[c + nx - 1]
-            + r[c + nx + 1])
-            / 16.0
-    }
-
-    fn fas_cycle(&mut self, l: usize) {
-        if l == 0 {
-            self.coarse_solve();
-            return;
-        }
-        for _ in 0..self.params.pre {
-            self.relax_level(l);
-        }
-        {
-            let (lo, hi) = self.levels.split_at_mut(l);
-            let (coarse, fine) = (&mut lo[l - 1], &mut hi[0]);
-            let mut r = std::mem::take(&mut fine.delta);
-            fine.residual(&self.phys, false, &mut r);
-            for j in 0..coarse.ny {
-                for i in 0..coarse.nx {
-                    let cc = coarse.at(i, j);
-                    coarse.p[cc] = fine.p[fine.at(2 * i, 2 * j)];
-                }
-            }
-            coarse.update_film(&self.phys, self.h0);
-            coarse.f.fill(0.0);
-            for j in 1..coarse.ny - 1 {
-                for i in 1..coarse.nx - 1 {
-                    let cc = coarse.at(i, j);
-                    let fc = fine.at(2 * i, 2 * j);
-                    let nx = fine.nx;
-                    coarse.frozen[cc] = [fc - nx, fc, fc + nx]
-                        .iter()
-                        .any(|&b| (b - 1..=b + 1).any(|q| fine.p[q] <= 0.0 || fine.frozen[q]));
-                    coarse.f[cc] =
-                        coarse.reynolds(&self.phys, i, j) + Self::full_weight(fine, &r, i, j);
-                }
-            }
-            coarse.g = coarse.load() + (fine.g - fine.load());
-            self.p_hat[l - 1].copy_from_slice(&coarse.p);
-            fine.delta = r;
-        }
-        for _ in 0..self.params.cycle.gamma() {
-            self.fas_cycle(l - 1);
-        }
-        {
-            let (lo, hi) = self.levels.split_at_mut(l);
-            let (coarse, fine) = (&lo[l - 1], &mut hi[0]);
-            let ph = &self.p_hat[l - 1];
-            let e = |i: usize, j: usize| {
-                let c = coarse.at(i, j);
-                coarse.p[c] - ph[c]
-            };
-            for j in 0..fine.ny {
-                for i in 0..fine.nx {
-                    let (ic, jc) = (i / 2, j / 2);
-                    let (ic1, jc1) = (i.div_ceil(2), j.div_ceil(2));
-                    let v = 0.25 * (e(ic, jc) + e(ic1, jc) + e(ic, jc1) + e(ic1, jc1));
-                    let c = fine.at(i, j);
-                    if !fine.boundary(i, j) {
-                        fine.p[c] = (fine.p[c] + v).max(0.0);
-                    }
-                }
-            }
-            fine.update_film(&self.phys, self.h0);
-        }
-        for _ in 0..self.params.post {
-            self.relax_level(l);
-        }
     }
 }
 
@@ -259,21 +112,13 @@ fn mid(v: &[f64], i: usize) -> f64 {
     }
 }
 
-impl Fas for PointMultigrid {
-    fn control(&self) -> FmgControl {
-        self.params.control(2)
-    }
-
-    fn top(&self) -> usize {
-        self.levels.len() - 1
-    }
-
+impl Multigrid<PointContact> {
     /// The Hertz ellipsoid sqrt(1 - X^2 - (Y/k)^2) (load 2 pi k/3) for elastic surfaces (in the dry
     /// limit one 1.5 times wider with the same load, so the solver has to find Hertz); for rigid
     /// ones, and where the rigid-isoviscous weight exceeds 1/2, a paraboloid of radius 1.5 l_h
     /// centred 0.5 l_h upstream, with the same load; H0 so that the central film equals the
     /// estimate.
-    fn initialise(&mut self) {
+    fn start(&mut self) {
         let h_e = self.domain.h_estimate;
         // Where the rigid-isoviscous regime dominates, the Hertz pressure is far from the answer
         // (and Newton from it can land on a spurious solution with a negative film).
@@ -310,7 +155,7 @@ impl Fas for PointMultigrid {
         lv.update_film(&self.phys, self.h0);
     }
 
-    fn start_coarse(&mut self, with_slope: bool) -> NewtonOutcome {
+    fn coarse_start(&mut self, with_slope: bool) -> NewtonOutcome {
         let lv = &mut self.levels[0];
         lv.f.fill(0.0);
         lv.g = self.phys.load;
@@ -319,7 +164,7 @@ impl Fas for PointMultigrid {
             ..NewtonParams::default()
         };
         let out = newton_solve(lv, &self.phys, &mut self.h0, &np);
-        self.newton_cost(out.iterations);
+        self.work_units += PointContact::newton_cost(self, out.iterations);
         if !(out.converged || out.residual < 1e-6) {
             self.levels[0].update_film(&self.phys, self.h0);
             for _ in 0..20 * self.params.coarse_sweeps {
@@ -338,15 +183,11 @@ impl Fas for PointMultigrid {
         let fallback = -lv.g / self.domain.h_estimate;
         let (slope, iterations) = load_slope(lv, &self.phys, self.h0, dh, fallback);
         self.load_slope = slope;
-        self.newton_cost(iterations);
+        self.work_units += PointContact::newton_cost(self, iterations);
         out
     }
 
-    fn load_slope(&self) -> f64 {
-        self.load_slope
-    }
-
-    fn fmg_interpolate(&mut self, l: usize) {
+    fn interpolate(&mut self, l: usize) {
         let (lo, hi) = self.levels.split_at_mut(l);
         let (coarse, fine) = (&lo[l - 1], &mut hi[0]);
         let (cnx, cny, fnx) = (coarse.nx, coarse.ny, fine.nx);
@@ -385,60 +226,156 @@ impl Fas for PointMultigrid {
         fine.g = self.phys.load;
         fine.update_film(&self.phys, self.h0);
     }
+}
 
-    fn relax(&mut self, l: usize) {
-        self.relax_level(l)
+/// The point contact's part of [`Multigrid`] (see [`crate::solve::multilevel::Contact`]).
+pub struct PointContact;
+
+/// The state of a point multigrid solve.
+pub type PointMultigrid = Multigrid<PointContact>;
+
+/// What a point solve keeps besides the shared state.
+pub struct PointExtra {
+    /// Cells of the finest level (work units are sweeps of it).
+    fine_cells: f64,
+}
+
+/// 9-point full weighting of a fine field at the interior coarse node (i, j).
+fn full_weight(fine: &PointLevel, r: &[f64], i: usize, j: usize) -> f64 {
+    let c = fine.at(2 * i, 2 * j);
+    let nx = fine.nx;
+    (4.0 * r[c]
+        + 2.0 * (r[c - 1] + r[c + 1] + r[c - nx] + r[c + nx])
+        + r[c - nx - 1]
+        + r[c - nx + 1]
+        + r[c + nx - 1]
+        + r[c + nx + 1])
+        / 16.0
+}
+
+impl GridLevel for PointLevel {
+    fn points(&self) -> usize {
+        self.nx
     }
-    fn cycle(&mut self, l: usize) {
-        self.fas_cycle(l)
+    fn p(&self) -> &[f64] {
+        &self.p
+    }
+    fn film(&self) -> &[f64] {
+        &self.film
+    }
+    fn delta_mut(&mut self) -> &mut Vec<f64> {
+        &mut self.delta
+    }
+    fn residual_into(&self, phys: &PointPhysics, active_only: bool, out: &mut [f64]) {
+        self.residual(phys, active_only, out)
+    }
+    fn set_load_rhs(&mut self, g: f64) {
+        self.g = g;
+    }
+}
+
+impl Contact for PointContact {
+    type Level = PointLevel;
+    type Phys = PointPhysics;
+    type Domain = PointDomain;
+    type DomainParams = PointDomainParams;
+    type Scratch = PointScratch;
+    type Extra = PointExtra;
+    const COARSE_BUDGET_GROWTH: usize = 2;
+
+    fn sweep(mg: &mut PointMultigrid, l: usize) -> f64 {
+        let lv = &mut mg.levels[l];
+        // Zebra rows on the rayon pool only where a level has enough rows to share.
+        let parallel = mg.params.parallel && lv.ny >= 65;
+        point_line_sweep(
+            lv,
+            &mg.phys,
+            mg.h0,
+            &mg.params.relax,
+            &mut mg.scratch,
+            parallel,
+        );
+        ((lv.nx - 1) * (lv.ny - 1)) as f64 / mg.extra.fine_cells
     }
 
-    fn record(&mut self, l: usize) -> CycleRecord {
-        let ic = self.centre_index(l);
-        let fine = &mut self.levels[l];
-        let mut r = std::mem::take(&mut fine.delta);
-        fine.residual(&self.phys, true, &mut r);
-        let active = fine.p.iter().filter(|&&p| p > 0.0).count().max(1);
-        let residual = r.iter().map(|v| v.abs()).sum::<f64>() / active as f64;
-        fine.delta = r;
-        CycleRecord {
-            residual,
-            load_error: (fine.load() - fine.g) / fine.g,
-            h_c: fine.film[ic] * self.phys.h_scale,
-            work_units: self.work_units,
+    /// A Newton iteration on level 0 counts as one sweep of level 0 per unknown row.
+    fn newton_cost(mg: &PointMultigrid, iterations: usize) -> f64 {
+        let lv = &mg.levels[0];
+        (iterations * (lv.nx - 1)) as f64 * ((lv.nx - 1) * (lv.ny - 1)) as f64 / mg.extra.fine_cells
+    }
+
+    /// Injection of P, 9-point full weighting of the residual, frozen nodes where the fine
+    /// 3 x 3 neighbourhood touches the cavitated set.
+    fn restrict(
+        coarse: &mut PointLevel,
+        fine: &PointLevel,
+        r: &[f64],
+        phys: &PointPhysics,
+        h0: f64,
+    ) {
+        for j in 0..coarse.ny {
+            for i in 0..coarse.nx {
+                let cc = coarse.at(i, j);
+                coarse.p[cc] = fine.p[fine.at(2 * i, 2 * j)];
+            }
+        }
+        coarse.update_film(phys, h0);
+        coarse.f.fill(0.0);
+        for j in 1..coarse.ny - 1 {
+            for i in 1..coarse.nx - 1 {
+                let cc = coarse.at(i, j);
+                let fc = fine.at(2 * i, 2 * j);
+                let nx = fine.nx;
+                coarse.frozen[cc] = [fc - nx, fc, fc + nx]
+                    .iter()
+                    .any(|&b| (b - 1..=b + 1).any(|q| fine.p[q] <= 0.0 || fine.frozen[q]));
+                coarse.f[cc] = coarse.reynolds(phys, i, j) + full_weight(fine, r, i, j);
+            }
         }
     }
 
-    fn h0(&self) -> f64 {
-        self.h0
+    /// Bilinear interpolation of the correction.
+    fn correct(
+        coarse: &PointLevel,
+        ph: &[f64],
+        fine: &mut PointLevel,
+        phys: &PointPhysics,
+        h0: f64,
+    ) {
+        let e = |i: usize, j: usize| {
+            let c = coarse.at(i, j);
+            coarse.p[c] - ph[c]
+        };
+        for j in 0..fine.ny {
+            for i in 0..fine.nx {
+                let (ic, jc) = (i / 2, j / 2);
+                let (ic1, jc1) = (i.div_ceil(2), j.div_ceil(2));
+                let v = 0.25 * (e(ic, jc) + e(ic1, jc) + e(ic, jc1) + e(ic1, jc1));
+                let c = fine.at(i, j);
+                if !fine.boundary(i, j) {
+                    fine.p[c] = (fine.p[c] + v).max(0.0);
+                }
+            }
+        }
+        fine.update_film(phys, h0);
     }
 
-    fn set_h0(&mut self, l: usize, h0: f64) {
-        self.h0 = h0;
-        self.levels[l].update_film(&self.phys, h0);
+    fn centre_index(mg: &PointMultigrid, l: usize) -> usize {
+        mg.centre_index(l)
     }
-
-    fn centre_film(&self, l: usize) -> f64 {
-        self.levels[l].film[self.centre_index(l)]
+    fn h_scale(mg: &PointMultigrid) -> f64 {
+        mg.phys.h_scale
     }
-
-    fn h_estimate(&self) -> f64 {
-        self.domain.h_estimate
+    fn h_estimate(mg: &PointMultigrid) -> f64 {
+        mg.domain.h_estimate
     }
-
-    fn load_target(&self, l: usize) -> f64 {
-        self.levels[l].g
+    fn initialise(mg: &mut PointMultigrid) {
+        mg.start()
     }
-
-    fn observer(&self) -> Option<crate::solve::Observer> {
-        self.params.observer
+    fn start_coarse(mg: &mut PointMultigrid, with_slope: bool) -> NewtonOutcome {
+        mg.coarse_start(with_slope)
     }
-
-    fn work_units(&self) -> f64 {
-        self.work_units
-    }
-
-    fn points(&self, l: usize) -> usize {
-        self.levels[l].nx
+    fn fmg_interpolate(mg: &mut PointMultigrid, l: usize) {
+        mg.interpolate(l)
     }
 }

@@ -1,0 +1,298 @@
+//! One FAS multigrid for both contacts: [`Multigrid<C>`] holds the levels and the state of a
+//! solve, and runs the cycle, the coarsest-level solve, the cycle records and the FMG driver's
+//! interface ([`Fas`]) once for line and point contacts; a [`Contact`] supplies what differs
+//! between them: its level and physics types, the relaxation sweep, the restriction and the
+//! interpolation of the correction, the start on the coarsest level, the FMG interpolation and
+//! where X = 0 lies.
+//!
+//! A cycle on level l > 0: `pre` relaxations; the full residual r = f - L(P) (the
+//! complementarity margin included on the cavitated set) is restricted and P injected
+//! ([`Contact::restrict`]); the coarse load right-hand side is g_H = load_H(P^_H) + (g_h -
+//! load_h); `gamma` coarse cycles (1: V, 2: W); the correction P_H - P^_H is interpolated, added
+//! and projected on P >= 0 ([`Contact::correct`]); `post` relaxations. The coarsest level is
+//! solved at fixed H0 by semi-smooth Newton, relaxed `coarse_sweeps` times instead when Newton
+//! fails. Invariant: after every step each level's film and coefficients are up to date with its
+//! P and the current H0.
+
+use crate::solve::fmg::{fmg_solve, Fas, FmgControl};
+use crate::solve::newton::{newton_solve, NewtonLevel, NewtonOutcome, NewtonParams};
+use crate::solve::params::{FinerCoarsest, MgParams};
+use crate::solve::{CycleRecord, Observer, SolveInfo};
+
+/// What the shared multigrid steps need from a grid level, beyond Newton's view of it.
+pub trait GridLevel: NewtonLevel {
+    /// Points per direction (the grid size a solve reports).
+    fn points(&self) -> usize;
+    /// The pressure P (Hertzian units) at every node.
+    fn p(&self) -> &[f64];
+    /// The film H (Hertzian units) at every node.
+    fn film(&self) -> &[f64];
+    /// The residual work buffer, one value per node.
+    fn delta_mut(&mut self) -> &mut Vec<f64>;
+    /// r = f - L at every node (0 on the boundary; with `active_only` also where P = 0).
+    fn residual_into(&self, phys: &Self::Phys, active_only: bool, out: &mut [f64]);
+    /// Set the right-hand side of the load equation.
+    fn set_load_rhs(&mut self, g: f64);
+}
+
+/// What a contact supplies to [`Multigrid`]: the types of its levels, physics and domain, and
+/// the steps that differ between line and point contacts.
+pub trait Contact: Sized {
+    /// A grid level.
+    type Level: GridLevel<Phys = Self::Phys>;
+    /// The discrete physics (groups and lubricant models).
+    type Phys;
+    /// The domain of the solve.
+    type Domain;
+    /// The domain rule's parameters.
+    type DomainParams: Copy + FinerCoarsest;
+    /// The smoother's work buffers.
+    type Scratch: Default;
+    /// What the contact keeps besides (the finest grid's size for the work units, the line
+    /// contact's warm-start guess).
+    type Extra;
+    /// The growth of the cycle budget per FMG level below the finest (see [`FmgControl`]).
+    const COARSE_BUDGET_GROWTH: usize;
+
+    /// One relaxation sweep of level `l`; returns its cost in finest-grid work units.
+    fn sweep(mg: &mut Multigrid<Self>, l: usize) -> f64;
+    /// The cost in work units of `iterations` Newton iterations on the coarsest level.
+    fn newton_cost(mg: &Multigrid<Self>, iterations: usize) -> f64;
+    /// Inject P from `fine` into `coarse`, refresh the coarse film at `h0`, and set the coarse
+    /// Reynolds right-hand side from the restricted residual `r` (frozen nodes marked).
+    fn restrict(
+        coarse: &mut Self::Level,
+        fine: &Self::Level,
+        r: &[f64],
+        phys: &Self::Phys,
+        h0: f64,
+    );
+    /// Add the interpolated correction `coarse.p - p_hat` to `fine.p`, project on P >= 0 and
+    /// refresh the fine film at `h0`.
+    fn correct(
+        coarse: &Self::Level,
+        p_hat: &[f64],
+        fine: &mut Self::Level,
+        phys: &Self::Phys,
+        h0: f64,
+    );
+    /// Node index of X = 0 (Y = 0) on level `l`.
+    fn centre_index(mg: &Multigrid<Self>, l: usize) -> usize;
+    /// H_Moes / H_Venner.
+    fn h_scale(mg: &Multigrid<Self>) -> f64;
+    /// The central film estimate of the domain rule (Hertzian units).
+    fn h_estimate(mg: &Multigrid<Self>) -> f64;
+    /// The start on the coarsest level (see [`Fas::initialise`]).
+    fn initialise(mg: &mut Multigrid<Self>);
+    /// The full Newton solve of the coarsest level (see [`Fas::start_coarse`]).
+    fn start_coarse(mg: &mut Multigrid<Self>, with_slope: bool) -> NewtonOutcome;
+    /// Level `l - 1`'s P interpolated as level `l`'s start (see [`Fas::fmg_interpolate`]).
+    fn fmg_interpolate(mg: &mut Multigrid<Self>, l: usize);
+    /// Install a warm-start guess on level `l` (see [`Fas::install_guess`]).
+    fn install_guess(_mg: &mut Multigrid<Self>, _l: usize) -> bool {
+        false
+    }
+}
+
+/// The state of a multigrid solve of contact `C`: all levels (0 the coarsest), H0, counters.
+pub struct Multigrid<C: Contact> {
+    /// The discrete physics.
+    pub phys: C::Phys,
+    /// The domain.
+    pub domain: C::Domain,
+    /// The levels, coarsest first.
+    pub levels: Vec<C::Level>,
+    /// The film constant H0 (Hertzian units).
+    pub h0: f64,
+    /// The multigrid settings.
+    pub params: MgParams<C::DomainParams>,
+    /// Injected coarse pressures P^_H per level.
+    pub(crate) p_hat: Vec<Vec<f64>>,
+    /// Relaxation sweeps in finest-grid equivalents.
+    pub work_units: f64,
+    /// Estimate of d(load)/dH0 from the coarsest level.
+    pub(crate) load_slope: f64,
+    /// The smoother's work buffers, shared by all levels.
+    pub(crate) scratch: C::Scratch,
+    /// The contact's own state.
+    pub(crate) extra: C::Extra,
+}
+
+impl<C: Contact> Multigrid<C> {
+    /// A solve's state over `levels` (coarsest first), H0 = 0.
+    pub(crate) fn from_levels(
+        phys: C::Phys,
+        domain: C::Domain,
+        levels: Vec<C::Level>,
+        params: &MgParams<C::DomainParams>,
+        extra: C::Extra,
+    ) -> Self {
+        let p_hat = levels.iter().map(|l| vec![0.0; l.p().len()]).collect();
+        Multigrid {
+            phys,
+            domain,
+            levels,
+            h0: 0.0,
+            params: *params,
+            p_hat,
+            work_units: 0.0,
+            load_slope: -1.0,
+            scratch: C::Scratch::default(),
+            extra,
+        }
+    }
+
+    /// One relaxation sweep on level `l`, counted in work units.
+    pub fn relax_level(&mut self, l: usize) {
+        let cost = C::sweep(self, l);
+        self.work_units += cost;
+    }
+
+    /// Solve the coarsest level's FAS problem for P at fixed H0 by Newton; if Newton fails, the
+    /// pressure before it is restored and relaxed `coarse_sweeps` times.
+    fn coarse_solve(&mut self) {
+        let lv = &mut self.levels[0];
+        let before = lv.p().to_vec();
+        let np = NewtonParams {
+            fix_h0: true,
+            ..NewtonParams::default()
+        };
+        let mut h0 = self.h0;
+        let out = newton_solve(lv, &self.phys, &mut h0, &np);
+        self.work_units += C::newton_cost(self, out.iterations);
+        if out.converged || (!out.singular && out.residual < 1e-6) {
+            return;
+        }
+        let lv = &mut self.levels[0];
+        lv.pressure().copy_from_slice(&before);
+        lv.refresh(&self.phys, self.h0);
+        for _ in 0..self.params.coarse_sweeps {
+            self.relax_level(0);
+        }
+    }
+
+    /// The coarse problem of level `l`: residual, injection, right-hand sides.
+    fn restrict(&mut self, l: usize) {
+        let (lo, hi) = self.levels.split_at_mut(l);
+        let (coarse, fine) = (&mut lo[l - 1], &mut hi[0]);
+        let mut r = std::mem::take(fine.delta_mut());
+        // The full residual, cavitated nodes included: there it is the complementarity margin
+        // (L - f < 0), which keeps the coarse problem strictly cavitated where the fine one is;
+        // zeroing it would make P = 0 a degenerate coarse solution.
+        fine.residual_into(&self.phys, false, &mut r);
+        C::restrict(coarse, fine, &r, &self.phys, self.h0);
+        coarse.set_load_rhs(coarse.load_sum() + (fine.load_rhs() - fine.load_sum()));
+        self.p_hat[l - 1].copy_from_slice(coarse.p());
+        *fine.delta_mut() = r;
+    }
+
+    /// One FAS cycle with level `l` as the finest (see the module docs).
+    pub fn fas_cycle(&mut self, l: usize) {
+        if l == 0 {
+            self.coarse_solve();
+            return;
+        }
+        for _ in 0..self.params.pre {
+            self.relax_level(l);
+        }
+        self.restrict(l);
+        for _ in 0..self.params.cycle.gamma() {
+            self.fas_cycle(l - 1);
+        }
+        {
+            let (lo, hi) = self.levels.split_at_mut(l);
+            C::correct(
+                &lo[l - 1],
+                &self.p_hat[l - 1],
+                &mut hi[0],
+                &self.phys,
+                self.h0,
+            );
+        }
+        for _ in 0..self.params.post {
+            self.relax_level(l);
+        }
+    }
+
+    /// Convergence measures of level `l` after a cycle: the mean |f - L| over the pressurised
+    /// nodes, the relative load error, the central film (Moes units) and the work so far.
+    pub fn record(&mut self, l: usize) -> CycleRecord {
+        let ic = C::centre_index(self, l);
+        let h_scale = C::h_scale(self);
+        let fine = &mut self.levels[l];
+        let mut r = std::mem::take(fine.delta_mut());
+        fine.residual_into(&self.phys, true, &mut r);
+        let active = fine.p().iter().filter(|&&p| p > 0.0).count().max(1);
+        let residual = r.iter().map(|v| v.abs()).sum::<f64>() / active as f64;
+        *fine.delta_mut() = r;
+        CycleRecord {
+            residual,
+            load_error: (fine.load_sum() - fine.load_rhs()) / fine.load_rhs(),
+            h_c: fine.film()[ic] * h_scale,
+            work_units: self.work_units,
+        }
+    }
+
+    /// Run FMG ([`crate::solve::fmg::fmg_solve`]).
+    pub fn solve(&mut self) -> SolveInfo {
+        fmg_solve(self)
+    }
+}
+
+impl<C: Contact> Fas for Multigrid<C> {
+    fn control(&self) -> FmgControl {
+        self.params.control(C::COARSE_BUDGET_GROWTH)
+    }
+    fn top(&self) -> usize {
+        self.levels.len() - 1
+    }
+    fn initialise(&mut self) {
+        C::initialise(self)
+    }
+    fn start_coarse(&mut self, with_slope: bool) -> NewtonOutcome {
+        C::start_coarse(self, with_slope)
+    }
+    fn load_slope(&self) -> f64 {
+        self.load_slope
+    }
+    fn fmg_interpolate(&mut self, l: usize) {
+        C::fmg_interpolate(self, l)
+    }
+    fn relax(&mut self, l: usize) {
+        self.relax_level(l)
+    }
+    fn cycle(&mut self, l: usize) {
+        self.fas_cycle(l)
+    }
+    fn record(&mut self, l: usize) -> CycleRecord {
+        Multigrid::record(self, l)
+    }
+    fn h0(&self) -> f64 {
+        self.h0
+    }
+    fn set_h0(&mut self, l: usize, h0: f64) {
+        self.h0 = h0;
+        self.levels[l].refresh(&self.phys, h0);
+    }
+    fn centre_film(&self, l: usize) -> f64 {
+        self.levels[l].film()[C::centre_index(self, l)]
+    }
+    fn h_estimate(&self) -> f64 {
+        C::h_estimate(self)
+    }
+    fn load_target(&self, l: usize) -> f64 {
+        self.levels[l].load_rhs()
+    }
+    fn observer(&self) -> Option<Observer> {
+        self.params.observer
+    }
+    fn install_guess(&mut self, l: usize) -> bool {
+        C::install_guess(self, l)
+    }
+    fn work_units(&self) -> f64 {
+        self.work_units
+    }
+    fn points(&self, l: usize) -> usize {
+        self.levels[l].points()
+    }
+}
