@@ -363,20 +363,39 @@ impl CaseSpec {
     }
 }
 
-/// A line case's radius R and contact length (m), validated.
-fn line_geometry(spec: &CaseSpec) -> Result<(f64, f64), CaseError> {
+/// `radius_y`: a line contact's bodies are cylinders (omitted or infinite); a point contact's
+/// must be nonzero (infinite or omitted: a cylinder axis).
+fn check_radius_y(spec: &CaseSpec, contact: Contact) -> Result<(), CaseError> {
     for (n, b) in [("body1", &spec.body1), ("body2", &spec.body2)] {
-        if matches!(b.radius_y, Some(r) if r.is_finite()) {
-            return Err(CaseError::invalid(format!(
-                "{n}.radius_y applies to point contacts (a line contact's bodies are cylinders)"
-            )));
+        match (contact, b.radius_y) {
+            (Contact::Line, Some(r)) if r.is_finite() => {
+                return Err(CaseError::invalid(format!(
+                    "{n}.radius_y applies to point contacts (a line contact's bodies are cylinders)"
+                )))
+            }
+            (Contact::Point, Some(r)) if r == 0.0 || r.is_nan() => {
+                return Err(CaseError::invalid(format!(
+                    "{n}.radius_y = {r} is invalid: nonzero (m), or inf/omitted for a cylinder axis"
+                )))
+            }
+            _ => {}
         }
     }
-    let inv = 1.0 / spec.body1.radius_x + 1.0 / spec.body2.radius_x;
-    check(
+    Ok(())
+}
+
+/// A sum of inverse radii `inv` (1/m), which must be positive for a convex contact.
+fn curvature(name: &str, inv: f64, why: &str) -> Result<f64, CaseError> {
+    check(name, inv, inv > 0.0, why)?;
+    Ok(inv)
+}
+
+/// A line case's radius R and contact length (m), validated.
+fn line_geometry(spec: &CaseSpec) -> Result<(f64, f64), CaseError> {
+    check_radius_y(spec, Contact::Line)?;
+    let inv = curvature(
         "1/R1 + 1/R2",
-        inv,
-        inv > 0.0,
+        1.0 / spec.body1.radius_x + 1.0 / spec.body2.radius_x,
         "the surfaces do not form a convex contact (concave radius too small)",
     )?;
     let length = spec.length.ok_or(CaseError::invalid(
@@ -449,25 +468,9 @@ fn line_groups(spec: &CaseSpec) -> Result<Derived, CaseError> {
     let (gp, regime, films) = line_films(gr, m, l, r, u_s);
     let models = spec.models(eta0, alpha, p_h)?;
     let case = Case::Line(LineCase::with_models(m, l, models)?);
-    let lubricant = Lubricant {
-        eta0,
-        alpha,
-        lub,
-        models,
-    };
-    let loads = Loads {
-        e_reduced: e_red,
-        w_prime,
-        u_mean: u_m,
-        g,
-        b,
-        p_h,
-    };
-    let shape = Shape {
-        r,
-        ry: None,
-        ellipse: None,
-    };
+    let lubricant = Lubricant::new(eta0, alpha, lub, models);
+    let loads = Loads::new(e_red, w_prime, u_m, g, b, p_h);
+    let shape = Shape::new(r, None, None);
     Ok(assemble(
         case, grid, u_s, shape, lubricant, loads, gp, regime, films,
     ))
@@ -484,20 +487,10 @@ fn point_geometry(spec: &CaseSpec) -> Result<(f64, f64, f64), CaseError> {
             "length applies to line contacts only (a point contact's load is in N)",
         ));
     }
-    for (n, b) in [("body1", &spec.body1), ("body2", &spec.body2)] {
-        if let Some(r) = b.radius_y {
-            if r == 0.0 || r.is_nan() {
-                return Err(CaseError::invalid(format!(
-                    "{n}.radius_y = {r} is invalid: nonzero (m), or inf/omitted for a cylinder axis"
-                )));
-            }
-        }
-    }
-    let inv_x = 1.0 / spec.body1.radius_x + 1.0 / spec.body2.radius_x;
-    check(
+    check_radius_y(spec, Contact::Point)?;
+    let inv_x = curvature(
         "1/Rx1 + 1/Rx2",
-        inv_x,
-        inv_x > 0.0,
+        1.0 / spec.body1.radius_x + 1.0 / spec.body2.radius_x,
         "the surfaces do not form a convex contact along x (concave radius too small)",
     )?;
     let inv_y = inv_radius(spec.body1.radius_y) + inv_radius(spec.body2.radius_y);
@@ -580,25 +573,9 @@ fn point_groups(spec: &CaseSpec) -> Result<Derived, CaseError> {
     let (gp, regime, films) = point_films(gr, &el, m, l, d, rx, u_s);
     let models = spec.models(eta0, alpha, p_h)?;
     let case = Case::Point(PointCase::with_models(m, l, d, models)?);
-    let lubricant = Lubricant {
-        eta0,
-        alpha,
-        lub,
-        models,
-    };
-    let loads = Loads {
-        e_reduced: e_red,
-        w_prime: w,
-        u_mean: u_m,
-        g,
-        b,
-        p_h,
-    };
-    let shape = Shape {
-        r: rx,
-        ry: Some(ry),
-        ellipse: Some((d, el.k, a)),
-    };
+    let lubricant = Lubricant::new(eta0, alpha, lub, models);
+    let loads = Loads::new(e_red, w, u_m, g, b, p_h);
+    let shape = Shape::new(rx, Some(ry), Some((d, el.k, a)));
     Ok(assemble(
         case, grid, u_s, shape, lubricant, loads, gp, regime, films,
     ))
@@ -627,6 +604,36 @@ struct Loads {
     g: f64,
     b: f64,
     p_h: f64,
+}
+
+impl Shape {
+    fn new(r: f64, ry: Option<f64>, ellipse: Option<(f64, f64, f64)>) -> Self {
+        Shape { r, ry, ellipse }
+    }
+}
+
+impl Lubricant {
+    fn new(eta0: f64, alpha: f64, lub: Option<Resolved>, models: Models) -> Self {
+        Lubricant {
+            eta0,
+            alpha,
+            lub,
+            models,
+        }
+    }
+}
+
+impl Loads {
+    fn new(e_reduced: f64, w_prime: f64, u_mean: f64, g: f64, b: f64, p_h: f64) -> Self {
+        Loads {
+            e_reduced,
+            w_prime,
+            u_mean,
+            g,
+            b,
+            p_h,
+        }
+    }
 }
 
 /// One case's [`Derived`] from its contact-specific parts.
