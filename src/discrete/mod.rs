@@ -1,9 +1,12 @@
 //! The discretised problem: for each contact its domain and grids ([`line::domain`],
 //! [`point::domain`]), the deformation kernel and its FFT product, and the discrete Reynolds
-//! operator with the film equation. The tests of both contacts share random fields and product
-//! checks (`testing`).
+//! operator with the film equation. What the two contacts share is written once: the lubricant's
+//! coefficients ([`physics`]), the Reynolds stencil along a grid direction and its derivatives
+//! ([`stencil`]), and, for the tests, random fields and product checks (`testing`).
 
 pub mod line;
+pub mod physics;
 pub mod point;
+pub mod stencil;
 #[cfg(test)]
 pub(crate) mod testing;

@@ -6,9 +6,11 @@
 //! * local terms at j = i-2..=i+1: the Poiseuille stencil, the dependence of eps and rho on P_j.
 //!
 //! dL_i/dH0 = sum_m g_h[m], since dH_m/dH0 = 1. Any entry costs O(1), so dense Jacobians (Newton)
-//! and banded parts of it (line relaxation) share this one definition.
+//! and banded parts of it (line relaxation) share this one definition. The x-direction terms are
+//! those of the point contact, computed by the same functions ([`crate::discrete::stencil`]).
 
 use crate::discrete::line::operator::{LineLevel, LinePhysics};
+use crate::discrete::stencil::{face, jacobian_x, upwind, Fields};
 use std::f64::consts::PI;
 
 /// Row i of the Jacobian of L with respect to (P, H0).
@@ -47,18 +49,6 @@ impl JacRow {
         }
         let h = lv.h;
         let h2 = h * h;
-        let deps_dh = |k: usize| {
-            let hh = lv.film[k];
-            if hh > 0.0 {
-                3.0 * lv.eps[k] / hh
-            } else {
-                0.0
-            }
-        };
-        let deps_dp = |k: usize| {
-            let p = lv.p[k];
-            lv.eps[k] * (phys.density.dln_rho(p) - phys.viscosity.dln_eta(p, phys.alpha_bar))
-        };
         let a = (lv.p[i - 1] - lv.p[i]) / h2;
         let b = (lv.p[i + 1] - lv.p[i]) / h2;
         // dL_i/d eps_m for m = i-1, i, i+1.
@@ -67,23 +57,11 @@ impl JacRow {
         } else {
             [0.5 * a, 0.5 * (a + b), 0.5 * b]
         };
-        let c = lv.upwind(phys, i);
-        let mut g_h = [0.0; 4];
-        let mut local = [0.0; 5];
-        for (t, &d) in dle.iter().enumerate() {
-            g_h[t + 1] += d * deps_dh(i - 1 + t);
-            local[t + 1] += d * deps_dp(i - 1 + t);
-        }
-        for (k, &ck) in c.iter().enumerate() {
-            if ck != 0.0 {
-                let q = i - k;
-                g_h[2 - k] -= ck * lv.rho[q] / h;
-                let drho = lv.rho[q] * phys.density.dln_rho(lv.p[q]);
-                local[2 - k] -= ck * drho * lv.film[q] / h;
-            }
-        }
-        let em = 0.5 * (lv.eps[i - 1] + lv.eps[i]);
-        let ep = 0.5 * (lv.eps[i] + lv.eps[i + 1]);
+        let f = Fields::new(&lv.p, &lv.film, &lv.eps, &lv.rho);
+        let w = upwind(phys.second_order, i);
+        let (g_h, mut local) = jacobian_x(&phys.fluid, f, i, w, h, dle);
+        let em = face(&lv.eps, i - 1, i);
+        let ep = face(&lv.eps, i, i + 1);
         local[1] += em / h2;
         local[2] -= (em + ep) / h2;
         local[3] += ep / h2;

@@ -18,6 +18,7 @@
 //! recomputed by the fast deformation product.
 
 use crate::discrete::line::operator::{LineLevel, LinePhysics};
+use crate::discrete::stencil::upwind;
 use crate::solve::banded::solve_banded;
 use crate::solve::line::jacobian::JacRow;
 use std::f64::consts::PI;
@@ -202,8 +203,8 @@ pub fn line_sweep(
     }
     // Limit each change so that the viscosity changes by at most a factor e^2 per sweep: with
     // eta = exp(alpha_bar P) a full Newton change far from the solution is not to be trusted.
-    let max_dp = if phys.alpha_bar > 0.0 {
-        2.0 / phys.alpha_bar
+    let max_dp = if phys.fluid.alpha_bar > 0.0 {
+        2.0 / phys.fluid.alpha_bar
     } else {
         f64::INFINITY
     };
@@ -236,7 +237,7 @@ fn wedge_derivative(
     if !phys.elastic {
         return 0.0;
     }
-    let c = lv.upwind(phys, i);
+    let c = upwind(phys.second_order, i);
     let mut s = 0.0;
     for (k, &ck) in c.iter().enumerate() {
         if ck != 0.0 {

@@ -104,8 +104,8 @@ fn row_changes(
     let hx2 = lv.hx * lv.hx;
     // Each change is limited to one Hertz pressure, and to a viscosity change by e^2 (Barus):
     // far from the solution a full Newton change is not to be trusted.
-    let max_dp = if phys.alpha_bar > 0.0 {
-        (2.0 / phys.alpha_bar).min(1.0)
+    let max_dp = if phys.fluid.alpha_bar > 0.0 {
+        (2.0 / phys.fluid.alpha_bar).min(1.0)
     } else {
         1.0
     };
@@ -226,6 +226,7 @@ fn local_film_update(
     change: &[f64],
 ) {
     let (nx, ny) = (lv.nx, lv.ny);
+    let law = phys.coefficients();
     for jj in j..(j + 3).min(ny - 1) {
         let dy = jj - j;
         for i in 1..nx - 1 {
@@ -242,10 +243,7 @@ fn local_film_update(
                 }
                 lv.film[c] += phys.coef * s;
             }
-            let p = lv.p[c];
-            let rho = phys.density.rho(p);
-            lv.rho[c] = rho;
-            lv.eps[c] = phys.eps(p, lv.film[c], rho);
+            (lv.rho[c], lv.eps[c]) = law.at(lv.p[c], lv.film[c]);
         }
     }
 }
