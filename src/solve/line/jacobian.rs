@@ -5,12 +5,15 @@
 //!   dH_m/dP_j = -(1/pi) K_{|m-j|}: a sum of four kernel rows, `g_h[m] * dH_m/dP_j`;
 //! * local terms at j = i-2..=i+1: the Poiseuille stencil, the dependence of eps and rho on P_j.
 //!
-//! dL_i/dH0 = sum_m g_h[m], since dH_m/dH0 = 1. Any entry costs O(1), so dense Jacobians (Newton)
-//! and banded parts of it (line relaxation) share this one definition. The x-direction terms are
-//! those of the point contact, computed by the same functions ([`crate::discrete::stencil`]).
+//! dL_i/dH0 = sum_m g_h[m], since dH_m/dH0 = 1. Any entry costs O(1), so dense Jacobians (Newton,
+//! through [`NewtonLevel`] for [`LineLevel`]) and banded parts of it (line relaxation) share this
+//! one definition. The x-direction terms are those of the point contact, computed by the same
+//! functions ([`crate::discrete::stencil`]).
 
 use crate::discrete::line::operator::{LineLevel, LinePhysics};
 use crate::discrete::stencil::{face, jacobian_x, upwind, Fields};
+use crate::solve::newton::{dense_jacobian, newton_level_common, NewtonLevel};
+use nalgebra::DMatrix;
 use std::f64::consts::PI;
 
 /// Row i of the Jacobian of L with respect to (P, H0).
@@ -125,10 +128,79 @@ impl JacRow {
     }
 }
 
+impl NewtonLevel for LineLevel {
+    type Phys = LinePhysics;
+    fn unknowns(&self) -> Vec<usize> {
+        (1..self.len() - 1).collect()
+    }
+    fn dense_jacobian(&self, phys: &LinePhysics, unknowns: &[usize]) -> DMatrix<f64> {
+        let row = |i| JacRow::new(self, phys, i);
+        dense_jacobian(
+            unknowns,
+            self.h,
+            row,
+            |r, j| r.entry(&self.kernel, j),
+            JacRow::d_h0,
+        )
+    }
+    fn residual_at(&self, phys: &LinePhysics, c: usize) -> f64 {
+        self.f[c] - self.reynolds(phys, c)
+    }
+    newton_level_common!(LinePhysics);
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::model::case::LineCase;
+
+    #[test]
+    fn jacobian_matches_finite_differences() {
+        let case = LineCase::with_models(
+            20.0,
+            10.0,
+            crate::model::case::Models {
+                density: crate::model::lubricant::Density::DowsonHigginson { ph_pa: 0.5e9 },
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        let phys = LinePhysics::from_case(&case);
+        let mut lv = LineLevel::new(-3.0, 1.5, 32);
+        for i in 1..lv.len() - 1 {
+            lv.p[i] = (1.0 - lv.x[i] * lv.x[i]).max(0.0).sqrt() + 0.05;
+        }
+        let h0 = 0.3;
+        lv.update_film(&phys, h0);
+        let jac = lv.dense_jacobian(&phys, &lv.unknowns());
+        let n = lv.len();
+        let e = 1e-7;
+        for j in [3usize, 10, 20, 30] {
+            let mut plus = LineLevel::new(-3.0, 1.5, 32);
+            plus.p.copy_from_slice(&lv.p);
+            plus.p[j] += e;
+            plus.update_film(&phys, h0);
+            for i in [2usize, 9, 10, 11, 25] {
+                let fd = (plus.reynolds(&phys, i) - lv.reynolds(&phys, i)) / e;
+                let an = jac[(i - 1, j - 1)];
+                assert!(
+                    (fd - an).abs() <= 1e-4 * (1.0 + an.abs()),
+                    "i={i} j={j}: fd {fd} an {an}"
+                );
+            }
+        }
+        let mut plus = LineLevel::new(-3.0, 1.5, 32);
+        plus.p.copy_from_slice(&lv.p);
+        plus.update_film(&phys, h0 + e);
+        for i in [2usize, 10, 25] {
+            let fd = (plus.reynolds(&phys, i) - lv.reynolds(&phys, i)) / e;
+            let an = jac[(i - 1, n - 2)];
+            assert!(
+                (fd - an).abs() <= 1e-4 * (1.0 + an.abs()),
+                "i={i}: fd {fd} an {an}"
+            );
+        }
+    }
 
     #[test]
     fn window_equals_entries() {

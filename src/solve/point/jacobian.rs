@@ -13,7 +13,7 @@
 
 use crate::discrete::point::operator::{PointLevel, PointPhysics};
 use crate::discrete::stencil::{deps_dh, deps_dp, face, jacobian_x, upwind, Fields};
-use crate::solve::newton::NewtonLevel;
+use crate::solve::newton::{dense_jacobian, newton_level_common, NewtonLevel};
 use nalgebra::DMatrix;
 
 /// Row (i, j) of the Jacobian of L with respect to (P, H0).
@@ -138,40 +138,15 @@ impl NewtonLevel for PointLevel {
         u
     }
     fn dense_jacobian(&self, phys: &PointPhysics, unknowns: &[usize]) -> DMatrix<f64> {
-        let m = unknowns.len();
         let nx = self.nx;
-        let mut jac = DMatrix::<f64>::zeros(m + 1, m + 1);
-        for (r, &c) in unknowns.iter().enumerate() {
-            let row = PointJacRow::new(self, phys, c % nx, c / nx);
-            for (q, &cc) in unknowns.iter().enumerate() {
-                jac[(r, q)] = row.entry(&self.kernel, nx, cc % nx, cc / nx);
-            }
-            jac[(r, m)] = row.d_h0();
-        }
-        let w = self.hx * self.hy;
-        for q in 0..m {
-            jac[(m, q)] = w;
-        }
-        jac
+        let row = |c| PointJacRow::new(self, phys, c % nx, c / nx);
+        let entry = |r: &PointJacRow, c| r.entry(&self.kernel, nx, c % nx, c / nx);
+        dense_jacobian(unknowns, self.hx * self.hy, row, entry, PointJacRow::d_h0)
     }
     fn residual_at(&self, phys: &PointPhysics, c: usize) -> f64 {
         self.f[c] - self.reynolds(phys, c % self.nx, c / self.nx)
     }
-    fn frozen_at(&self, c: usize) -> bool {
-        self.frozen[c]
-    }
-    fn pressure(&mut self) -> &mut [f64] {
-        &mut self.p
-    }
-    fn load_sum(&self) -> f64 {
-        self.load()
-    }
-    fn load_rhs(&self) -> f64 {
-        self.g
-    }
-    fn refresh(&mut self, phys: &PointPhysics, h0: f64) {
-        self.update_film(phys, h0)
-    }
+    newton_level_common!(PointPhysics);
 }
 
 #[cfg(test)]
