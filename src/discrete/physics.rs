@@ -17,7 +17,9 @@ use crate::model::lubricant::{Density, Viscosity};
 /// The lubricant in Hertzian scaling: its pressure-viscosity and pressure-density models.
 #[derive(Clone, Copy, Debug)]
 pub struct Fluid {
+    /// eta(P)/eta0.
     pub viscosity: Viscosity,
+    /// rho(P)/rho0.
     pub density: Density,
     /// alpha_bar = alpha p_h, the dimensionless pressure-viscosity coefficient.
     pub alpha_bar: f64,
@@ -49,7 +51,9 @@ impl Fluid {
 /// The coefficient law of a contact: rho and eps as functions of the nodal P and H.
 #[derive(Clone, Copy, Debug)]
 pub struct Coefficients {
+    /// The lubricant.
     pub fluid: Fluid,
+    /// The speed group lambda of the Hertzian scaling.
     pub lambda: f64,
     /// Dry contact: eps = 0.
     pub dry: bool,

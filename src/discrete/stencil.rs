@@ -79,9 +79,13 @@ pub fn deps_dp(fluid: &Fluid, eps: &[f64], p: &[f64], k: usize) -> f64 {
 /// The nodal fields a Jacobian row reads, in storage order.
 #[derive(Clone, Copy)]
 pub struct Fields<'a> {
+    /// Pressure P.
     pub p: &'a [f64],
+    /// Film H.
     pub film: &'a [f64],
+    /// eps = rho H^3/(eta lambda).
     pub eps: &'a [f64],
+    /// Density rho.
     pub rho: &'a [f64],
 }
 

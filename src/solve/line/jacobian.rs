@@ -5,7 +5,7 @@
 //!   dH_m/dP_j = -(1/pi) K_{|m-j|}: a sum of four kernel rows, `g_h[m] * dH_m/dP_j`;
 //! * local terms at j = i-2..=i+1: the Poiseuille stencil, the dependence of eps and rho on P_j.
 //!
-//! dL_i/dH0 = sum_m g_h[m], since dH_m/dH0 = 1. Any entry costs O(1), so dense Jacobians (Newton,
+//! dL_i/dH0 = sum_m `g_h[m]`, since dH_m/dH0 = 1. Any entry costs O(1), so dense Jacobians (Newton,
 //! through [`NewtonLevel`] for [`LineLevel`]) and banded parts of it (line relaxation) share this
 //! one definition. The x-direction terms are those of the point contact, computed by the same
 //! functions ([`crate::discrete::stencil`]).
