@@ -1,5 +1,6 @@
-//! Damped Newton-Raphson for a discrete contact problem on one level (line or point,
-//! through [`NewtonLevel`]; the line contact's Jacobian is built here) (dense Jacobian, LU from
+//! Damped Newton-Raphson for a discrete contact problem on one level (line or point, through
+//! [`NewtonLevel`], implemented next to each contact's Jacobian rows in
+//! [`crate::solve::line::jacobian`] and [`crate::solve::point::jacobian`]) (dense Jacobian, LU from
 //! nalgebra), with the cavitation condition as a semi-smooth active set.
 //!
 //! Unknowns: P_1..P_{n-2} and H0. Equations: L_i(P, H0) = f_i on the pressurised set, P_i = 0 on the
@@ -12,8 +13,6 @@
 //!
 //! Used as the exact coarsest-grid solver of the multigrid and as the Newton baseline.
 
-use crate::discrete::line::operator::{LineLevel, LinePhysics};
-use crate::solve::line::jacobian::JacRow;
 use nalgebra::{DMatrix, DVector};
 
 /// Newton settings.
@@ -53,22 +52,28 @@ struct Linearisation {
     merit: f64,
 }
 
-/// The exact Jacobian of (L_1..L_{n-2}, h sum P) with respect to (P_1..P_{n-2}, H0) at the
-/// current state (film must be up to date).
-pub fn jacobian(lv: &LineLevel, phys: &LinePhysics) -> DMatrix<f64> {
-    let n = lv.len();
-    let m = n - 1; // n-2 pressures + H0
-    let hcol = n - 2;
-    let mut jac = DMatrix::<f64>::zeros(m, m);
-    for i in 1..n - 1 {
-        let row = JacRow::new(lv, phys, i);
-        for j in 1..n - 1 {
-            jac[(i - 1, j - 1)] = row.entry(&lv.kernel, j);
+/// The dense Jacobian of (L at the unknowns, the load sum) with respect to (the unknowns, H0), H0
+/// last, for either contact: `row(c)` is the Jacobian row of L at storage index c, `entry(row, c)`
+/// its derivative with respect to P at c, `d_h0(row)` with respect to H0, and `cell` the load
+/// sum's weight of each pressure (h, or hx hy).
+pub fn dense_jacobian<R>(
+    unknowns: &[usize],
+    cell: f64,
+    row: impl Fn(usize) -> R,
+    entry: impl Fn(&R, usize) -> f64,
+    d_h0: impl Fn(&R) -> f64,
+) -> DMatrix<f64> {
+    let m = unknowns.len();
+    let mut jac = DMatrix::<f64>::zeros(m + 1, m + 1);
+    for (r, &c) in unknowns.iter().enumerate() {
+        let row = row(c);
+        for (q, &cc) in unknowns.iter().enumerate() {
+            jac[(r, q)] = entry(&row, cc);
         }
-        jac[(i - 1, hcol)] = row.d_h0();
+        jac[(r, m)] = d_h0(&row);
     }
-    for j in 1..n - 1 {
-        jac[(hcol, j - 1)] = lv.h;
+    for q in 0..m {
+        jac[(m, q)] = cell;
     }
     jac
 }
@@ -92,33 +97,29 @@ pub trait NewtonLevel {
     fn refresh(&mut self, phys: &Self::Phys, h0: f64);
 }
 
-impl NewtonLevel for LineLevel {
-    type Phys = LinePhysics;
-    fn unknowns(&self) -> Vec<usize> {
-        (1..self.len() - 1).collect()
-    }
-    fn dense_jacobian(&self, phys: &LinePhysics, _unknowns: &[usize]) -> DMatrix<f64> {
-        jacobian(self, phys)
-    }
-    fn residual_at(&self, phys: &LinePhysics, c: usize) -> f64 {
-        self.f[c] - self.reynolds(phys, c)
-    }
-    fn frozen_at(&self, c: usize) -> bool {
-        self.frozen[c]
-    }
-    fn pressure(&mut self) -> &mut [f64] {
-        &mut self.p
-    }
-    fn load_sum(&self) -> f64 {
-        self.load()
-    }
-    fn load_rhs(&self) -> f64 {
-        self.g
-    }
-    fn refresh(&mut self, phys: &LinePhysics, h0: f64) {
-        self.update_film(phys, h0)
-    }
+/// The [`NewtonLevel`] methods that both contacts' levels implement alike, from their fields `p`,
+/// `frozen`, `g` and their methods `load` and `update_film`: `frozen_at`, `pressure`, `load_sum`,
+/// `load_rhs` and `refresh`. Invoked inside `impl NewtonLevel for ...` with the physics type.
+macro_rules! newton_level_common {
+    ($phys:ty) => {
+        fn frozen_at(&self, c: usize) -> bool {
+            self.frozen[c]
+        }
+        fn pressure(&mut self) -> &mut [f64] {
+            &mut self.p
+        }
+        fn load_sum(&self) -> f64 {
+            self.load()
+        }
+        fn load_rhs(&self) -> f64 {
+            self.g
+        }
+        fn refresh(&mut self, phys: &$phys, h0: f64) {
+            self.update_film(phys, h0)
+        }
+    };
 }
+pub(crate) use newton_level_common;
 
 /// Estimate dG/dH0 (G = load sum - g) on a level solved at `h0`: solve again at fixed H0 + dh
 /// and difference the load; P and the film are restored afterwards. Falls back to `fallback`
@@ -263,58 +264,4 @@ pub fn newton_solve<T: NewtonLevel>(
     }
     out.residual = lin.merit;
     out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::model::case::LineCase;
-
-    #[test]
-    fn jacobian_matches_finite_differences() {
-        let case = LineCase::with_models(
-            20.0,
-            10.0,
-            crate::model::case::Models {
-                density: crate::model::lubricant::Density::DowsonHigginson { ph_pa: 0.5e9 },
-                ..Default::default()
-            },
-        )
-        .unwrap();
-        let phys = LinePhysics::from_case(&case);
-        let mut lv = LineLevel::new(-3.0, 1.5, 32);
-        for i in 1..lv.len() - 1 {
-            lv.p[i] = (1.0 - lv.x[i] * lv.x[i]).max(0.0).sqrt() + 0.05;
-        }
-        let h0 = 0.3;
-        lv.update_film(&phys, h0);
-        let jac = jacobian(&lv, &phys);
-        let n = lv.len();
-        let e = 1e-7;
-        for j in [3usize, 10, 20, 30] {
-            let mut plus = LineLevel::new(-3.0, 1.5, 32);
-            plus.p.copy_from_slice(&lv.p);
-            plus.p[j] += e;
-            plus.update_film(&phys, h0);
-            for i in [2usize, 9, 10, 11, 25] {
-                let fd = (plus.reynolds(&phys, i) - lv.reynolds(&phys, i)) / e;
-                let an = jac[(i - 1, j - 1)];
-                assert!(
-                    (fd - an).abs() <= 1e-4 * (1.0 + an.abs()),
-                    "i={i} j={j}: fd {fd} an {an}"
-                );
-            }
-        }
-        let mut plus = LineLevel::new(-3.0, 1.5, 32);
-        plus.p.copy_from_slice(&lv.p);
-        plus.update_film(&phys, h0 + e);
-        for i in [2usize, 10, 25] {
-            let fd = (plus.reynolds(&phys, i) - lv.reynolds(&phys, i)) / e;
-            let an = jac[(i - 1, n - 2)];
-            assert!(
-                (fd - an).abs() <= 1e-4 * (1.0 + an.abs()),
-                "i={i}: fd {fd} an {an}"
-            );
-        }
-    }
 }

@@ -118,13 +118,7 @@ impl DeformPlan1d {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn lcg(seed: &mut u64) -> f64 {
-        *seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((*seed >> 11) as f64) / ((1u64 << 53) as f64)
-    }
+    use crate::discrete::testing::{assert_agree, lcg, nodes};
 
     #[test]
     fn fft_product_equals_direct_product() {
@@ -137,15 +131,7 @@ mod tests {
             let mut b = vec![0.0; n];
             direct_product(&k, &p, &mut a);
             DeformPlan1d::new(&k).apply(&p, &mut b);
-            let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            for i in 0..n {
-                assert!(
-                    (a[i] - b[i]).abs() <= 1e-10 * scale,
-                    "n={n} i={i}: {} vs {}",
-                    a[i],
-                    b[i]
-                );
-            }
+            assert_agree(&a, &b, 1e-10, &format!("n={n}"));
         }
     }
 
@@ -172,9 +158,7 @@ mod tests {
     fn hertz_pressure_gives_flat_film_in_contact() {
         // Exact: for P = sqrt(1 - X^2), X^2/2 - (1/pi) int P ln|X - X'| is constant on |X| < 1.
         let n = 2049;
-        let (a, b) = (-2.0, 2.0);
-        let h = (b - a) / (n - 1) as f64;
-        let x: Vec<f64> = (0..n).map(|i| a + i as f64 * h).collect();
+        let (h, x) = nodes(-2.0, 2.0, n);
         let p: Vec<f64> = x.iter().map(|&x| (1.0 - x * x).max(0.0).sqrt()).collect();
         let mut w = vec![0.0; n];
         DeformPlan1d::new(&log_kernel(n, h)).apply(&p, &mut w);

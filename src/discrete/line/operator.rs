@@ -12,17 +12,17 @@
 //! and g = pi/2; coarser levels carry the FAS right-hand sides. In the dry limit eps = 0.
 
 use crate::discrete::line::kernel::{direct_product, log_kernel, DeformPlan1d};
+use crate::discrete::physics::{Coefficients, Fluid};
+use crate::discrete::stencil::{flux_difference, upwind, wedge};
 use crate::model::case::{Elasticity, LineCase};
-use crate::model::lubricant::{Density, Viscosity};
 use std::f64::consts::PI;
 
 /// The physics of a line case in Hertzian scaling, shared by all levels.
 #[derive(Clone, Copy, Debug)]
 pub struct LinePhysics {
     pub lambda: f64,
-    pub alpha_bar: f64,
-    pub viscosity: Viscosity,
-    pub density: Density,
+    /// Viscosity and density models, alpha_bar.
+    pub fluid: Fluid,
     pub elastic: bool,
     /// Dry contact: the Reynolds equation is switched off and replaced by the contact condition
     /// L_i = -H_i (so P >= 0, H >= 0, P H = 0: Hertz for a parabolic gap).
@@ -36,19 +36,19 @@ impl LinePhysics {
         let v = case.venner();
         LinePhysics {
             lambda: v.lambda,
-            alpha_bar: v.alpha_bar,
-            viscosity: case.models.viscosity,
-            density: case.models.density,
+            fluid: Fluid::new(&case.models, v.alpha_bar),
             elastic: case.models.elasticity == Elasticity::Elastic,
             dry: false,
             second_order: true,
         }
     }
-}
 
-/// Upwind weights of the wedge term at offsets 0, -1, -2.
-pub const UPWIND2: [f64; 3] = [1.5, -2.0, 0.5];
-pub const UPWIND1: [f64; 3] = [1.0, -1.0, 0.0];
+    /// The coefficient law rho(P), eps(P, H) of this contact.
+    #[inline]
+    pub fn coefficients(&self) -> Coefficients {
+        Coefficients::new(self.fluid, self.lambda, self.dry)
+    }
+}
 
 /// One grid level: geometry, unknowns, derived fields and FAS right-hand sides.
 pub struct LineLevel {
@@ -127,27 +127,8 @@ impl LineLevel {
 
     /// Recompute rho and eps from P and the current H.
     pub fn update_coefficients(&mut self, phys: &LinePhysics) {
-        for i in 0..self.len() {
-            let p = self.p[i];
-            let rho = phys.density.rho(p);
-            self.rho[i] = rho;
-            self.eps[i] = if phys.dry {
-                0.0
-            } else {
-                let hh = self.film[i].max(0.0);
-                rho * hh * hh * hh / (phys.viscosity.eta(p, phys.alpha_bar) * phys.lambda)
-            };
-        }
-    }
-
-    /// Upwind weights at node i.
-    #[inline]
-    pub fn upwind(&self, phys: &LinePhysics, i: usize) -> [f64; 3] {
-        if phys.second_order && i >= 2 {
-            UPWIND2
-        } else {
-            UPWIND1
-        }
+        phys.coefficients()
+            .update(&self.p, &self.film, &mut self.rho, &mut self.eps);
     }
 
     /// L_i, the discrete Reynolds operator at interior node i.
@@ -157,17 +138,9 @@ impl LineLevel {
             return -self.film[i];
         }
         let h = self.h;
-        let em = 0.5 * (self.eps[i - 1] + self.eps[i]);
-        let ep = 0.5 * (self.eps[i] + self.eps[i + 1]);
-        let pois = (em * (self.p[i - 1] - self.p[i]) + ep * (self.p[i + 1] - self.p[i])) / (h * h);
-        let c = self.upwind(phys, i);
-        let mut wedge = 0.0;
-        for (k, &ck) in c.iter().enumerate() {
-            if ck != 0.0 {
-                wedge += ck * self.rho[i - k] * self.film[i - k];
-            }
-        }
-        pois - wedge / h
+        let pois = flux_difference(&self.eps, &self.p, i, 1) / (h * h);
+        let w = upwind(phys.second_order, i);
+        pois - wedge(w, &self.rho, &self.film, i) / h
     }
 
     /// r_i = f_i - L_i at interior nodes, 0 at the boundaries; with `active_only`, 0 also where
@@ -194,6 +167,7 @@ impl LineLevel {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::discrete::testing::isoviscous_incompressible;
 
     #[test]
     fn rigid_reynolds_operator_is_second_order() {
@@ -201,9 +175,7 @@ mod tests {
         // L = (H^3 P')' - H' exactly; the discrete operator converges at second order.
         let phys = LinePhysics {
             lambda: 1.0,
-            alpha_bar: 0.0,
-            viscosity: Viscosity::Barus,
-            density: Density::Incompressible,
+            fluid: isoviscous_incompressible(),
             elastic: false,
             dry: false,
             second_order: true,

@@ -265,14 +265,8 @@ impl DeformPlan2d {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::discrete::testing::{assert_agree, lcg, nodes};
     use std::f64::consts::PI;
-
-    fn lcg(seed: &mut u64) -> f64 {
-        *seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((*seed >> 11) as f64) / ((1u64 << 53) as f64)
-    }
 
     #[test]
     fn fft_product_equals_direct_product() {
@@ -295,15 +289,7 @@ mod tests {
                 let mut b = vec![0.0; nx * ny];
                 direct_product2d(&k, nx, ny, &p, &mut a);
                 plan.apply(&p, &mut b);
-                let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-                for q in 0..nx * ny {
-                    assert!(
-                        (a[q] - b[q]).abs() <= 1e-10 * scale,
-                        "{nx}x{ny} node {q}: {} vs {}",
-                        a[q],
-                        b[q]
-                    );
-                }
+                assert_agree(&a, &b, 1e-10, &format!("{nx}x{ny}"));
             }
         }
     }
@@ -396,9 +382,7 @@ mod tests {
         // Circular contact in Hertzian units: a Boussinesq displacement (2/pi^2) int P/r under
         // P = sqrt(1 - R^2) equals 1 - R^2/2 for R <= 1, so X^2/2 + Y^2/2 + (2/pi^2) int P/r = 1.
         let n = 129;
-        let (a, b) = (-2.0, 2.0);
-        let h = (b - a) / (n - 1) as f64;
-        let x: Vec<f64> = (0..n).map(|i| a + i as f64 * h).collect();
+        let (h, x) = nodes(-2.0, 2.0, n);
         let mut p = vec![0.0; n * n];
         for k in 0..n {
             for i in 0..n {
@@ -422,7 +406,7 @@ mod tests {
         // (1.4e-4 at n = 129, falling as h^2: 4.2e-4 at 65, 3.9e-5 at 257.)
         assert!(worst < 5e-4, "film not flat in contact: {worst}");
         // Outside the contact the gap opens: positive separation at R = 1.5.
-        let i = (1.5 - a) / h;
+        let i = (1.5 - x[0]) / h;
         assert!(g(i as usize, n / 2) - centre > 0.1);
     }
 }

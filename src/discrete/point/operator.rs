@@ -14,18 +14,17 @@
 //! dropped for rigid surfaces. The load equation is hx hy sum P = g (2 pi k/3 on the finest level).
 //! A dry contact replaces L by -H.
 
-use crate::discrete::line::operator::{UPWIND1, UPWIND2};
+use crate::discrete::physics::{Coefficients, Fluid};
 use crate::discrete::point::kernel::{direct_product2d, kernel2d, DeformPlan2d};
+use crate::discrete::stencil::{flux_difference, upwind, wedge};
 use crate::model::case::{Elasticity, PointCase};
-use crate::model::lubricant::{Density, Viscosity};
 
 /// The physics of a point case in Hertzian scaling, shared by all levels.
 #[derive(Clone, Copy, Debug)]
 pub struct PointPhysics {
     pub lambda: f64,
-    pub alpha_bar: f64,
-    pub viscosity: Viscosity,
-    pub density: Density,
+    /// Viscosity and density models, alpha_bar.
+    pub fluid: Fluid,
     pub elastic: bool,
     pub dry: bool,
     pub second_order: bool,
@@ -46,9 +45,7 @@ impl PointPhysics {
         let v = case.venner();
         PointPhysics {
             lambda: v.lambda,
-            alpha_bar: v.alpha_bar,
-            viscosity: case.models.viscosity,
-            density: case.models.density,
+            fluid: Fluid::new(&case.models, v.alpha_bar),
             elastic: case.models.elasticity == Elasticity::Elastic,
             dry: false,
             second_order: true,
@@ -60,15 +57,10 @@ impl PointPhysics {
         }
     }
 
-    /// eps for a nodal pressure and film.
+    /// The coefficient law rho(P), eps(P, H) of this contact.
     #[inline]
-    pub fn eps(&self, p: f64, film: f64, rho: f64) -> f64 {
-        if self.dry {
-            0.0
-        } else {
-            let hh = film.max(0.0);
-            rho * hh * hh * hh / (self.viscosity.eta(p, self.alpha_bar) * self.lambda)
-        }
+    pub fn coefficients(&self) -> Coefficients {
+        Coefficients::new(self.fluid, self.lambda, self.dry)
     }
 }
 
@@ -196,22 +188,8 @@ impl PointLevel {
 
     /// Recompute rho and eps from P and the current H.
     pub fn update_coefficients(&mut self, phys: &PointPhysics) {
-        for c in 0..self.len() {
-            let p = self.p[c];
-            let rho = phys.density.rho(p);
-            self.rho[c] = rho;
-            self.eps[c] = phys.eps(p, self.film[c], rho);
-        }
-    }
-
-    /// Upwind weights at column i.
-    #[inline]
-    pub fn upwind(&self, phys: &PointPhysics, i: usize) -> [f64; 3] {
-        if phys.second_order && i >= 2 {
-            UPWIND2
-        } else {
-            UPWIND1
-        }
+        phys.coefficients()
+            .update(&self.p, &self.film, &mut self.rho, &mut self.eps);
     }
 
     /// L at interior node (i, j).
@@ -221,22 +199,11 @@ impl PointLevel {
         if phys.dry {
             return -self.film[c];
         }
-        let nx = self.nx;
         let (e, p) = (&self.eps, &self.p);
-        let exm = 0.5 * (e[c - 1] + e[c]);
-        let exp = 0.5 * (e[c] + e[c + 1]);
-        let eym = 0.5 * (e[c - nx] + e[c]);
-        let eyp = 0.5 * (e[c] + e[c + nx]);
-        let pois = (exm * (p[c - 1] - p[c]) + exp * (p[c + 1] - p[c])) / (self.hx * self.hx)
-            + (eym * (p[c - nx] - p[c]) + eyp * (p[c + nx] - p[c])) / (self.hy * self.hy);
-        let w = self.upwind(phys, i);
-        let mut wedge = 0.0;
-        for (k, &wk) in w.iter().enumerate() {
-            if wk != 0.0 {
-                wedge += wk * self.rho[c - k] * self.film[c - k];
-            }
-        }
-        pois - wedge / self.hx
+        let pois = flux_difference(e, p, c, 1) / (self.hx * self.hx)
+            + flux_difference(e, p, c, self.nx) / (self.hy * self.hy);
+        let w = upwind(phys.second_order, i);
+        pois - wedge(w, &self.rho, &self.film, c) / self.hx
     }
 
     /// r = f - L at interior nodes, 0 on the boundary; with `active_only`, 0 also where P = 0.
@@ -262,6 +229,7 @@ impl PointLevel {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::discrete::testing::isoviscous_incompressible;
 
     #[test]
     fn rigid_reynolds_operator_is_second_order() {
@@ -269,9 +237,7 @@ mod tests {
         // L = div(H^3 grad P) - dH/dX exactly; the discrete operator converges at second order.
         let phys = PointPhysics {
             lambda: 1.0,
-            alpha_bar: 0.0,
-            viscosity: Viscosity::Barus,
-            density: Density::Incompressible,
+            fluid: isoviscous_incompressible(),
             elastic: false,
             dry: false,
             second_order: true,

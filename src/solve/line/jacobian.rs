@@ -5,10 +5,15 @@
 //!   dH_m/dP_j = -(1/pi) K_{|m-j|}: a sum of four kernel rows, `g_h[m] * dH_m/dP_j`;
 //! * local terms at j = i-2..=i+1: the Poiseuille stencil, the dependence of eps and rho on P_j.
 //!
-//! dL_i/dH0 = sum_m g_h[m], since dH_m/dH0 = 1. Any entry costs O(1), so dense Jacobians (Newton)
-//! and banded parts of it (line relaxation) share this one definition.
+//! dL_i/dH0 = sum_m `g_h[m]`, since dH_m/dH0 = 1. Any entry costs O(1), so dense Jacobians (Newton,
+//! through [`NewtonLevel`] for [`LineLevel`]) and banded parts of it (line relaxation) share this
+//! one definition. The x-direction terms are those of the point contact, computed by the same
+//! functions ([`crate::discrete::stencil`]).
 
 use crate::discrete::line::operator::{LineLevel, LinePhysics};
+use crate::discrete::stencil::{face, jacobian_x, upwind, Fields};
+use crate::solve::newton::{dense_jacobian, newton_level_common, NewtonLevel};
+use nalgebra::DMatrix;
 use std::f64::consts::PI;
 
 /// Row i of the Jacobian of L with respect to (P, H0).
@@ -47,18 +52,6 @@ impl JacRow {
         }
         let h = lv.h;
         let h2 = h * h;
-        let deps_dh = |k: usize| {
-            let hh = lv.film[k];
-            if hh > 0.0 {
-                3.0 * lv.eps[k] / hh
-            } else {
-                0.0
-            }
-        };
-        let deps_dp = |k: usize| {
-            let p = lv.p[k];
-            lv.eps[k] * (phys.density.dln_rho(p) - phys.viscosity.dln_eta(p, phys.alpha_bar))
-        };
         let a = (lv.p[i - 1] - lv.p[i]) / h2;
         let b = (lv.p[i + 1] - lv.p[i]) / h2;
         // dL_i/d eps_m for m = i-1, i, i+1.
@@ -67,23 +60,11 @@ impl JacRow {
         } else {
             [0.5 * a, 0.5 * (a + b), 0.5 * b]
         };
-        let c = lv.upwind(phys, i);
-        let mut g_h = [0.0; 4];
-        let mut local = [0.0; 5];
-        for (t, &d) in dle.iter().enumerate() {
-            g_h[t + 1] += d * deps_dh(i - 1 + t);
-            local[t + 1] += d * deps_dp(i - 1 + t);
-        }
-        for (k, &ck) in c.iter().enumerate() {
-            if ck != 0.0 {
-                let q = i - k;
-                g_h[2 - k] -= ck * lv.rho[q] / h;
-                let drho = lv.rho[q] * phys.density.dln_rho(lv.p[q]);
-                local[2 - k] -= ck * drho * lv.film[q] / h;
-            }
-        }
-        let em = 0.5 * (lv.eps[i - 1] + lv.eps[i]);
-        let ep = 0.5 * (lv.eps[i] + lv.eps[i + 1]);
+        let f = Fields::new(&lv.p, &lv.film, &lv.eps, &lv.rho);
+        let w = upwind(phys.second_order, i);
+        let (g_h, mut local) = jacobian_x(&phys.fluid, f, i, w, h, dle);
+        let em = face(&lv.eps, i - 1, i);
+        let ep = face(&lv.eps, i, i + 1);
         local[1] += em / h2;
         local[2] -= (em + ep) / h2;
         local[3] += ep / h2;
@@ -147,10 +128,79 @@ impl JacRow {
     }
 }
 
+impl NewtonLevel for LineLevel {
+    type Phys = LinePhysics;
+    fn unknowns(&self) -> Vec<usize> {
+        (1..self.len() - 1).collect()
+    }
+    fn dense_jacobian(&self, phys: &LinePhysics, unknowns: &[usize]) -> DMatrix<f64> {
+        let row = |i| JacRow::new(self, phys, i);
+        dense_jacobian(
+            unknowns,
+            self.h,
+            row,
+            |r, j| r.entry(&self.kernel, j),
+            JacRow::d_h0,
+        )
+    }
+    fn residual_at(&self, phys: &LinePhysics, c: usize) -> f64 {
+        self.f[c] - self.reynolds(phys, c)
+    }
+    newton_level_common!(LinePhysics);
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::model::case::LineCase;
+
+    #[test]
+    fn jacobian_matches_finite_differences() {
+        let case = LineCase::with_models(
+            20.0,
+            10.0,
+            crate::model::case::Models {
+                density: crate::model::lubricant::Density::DowsonHigginson { ph_pa: 0.5e9 },
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        let phys = LinePhysics::from_case(&case);
+        let mut lv = LineLevel::new(-3.0, 1.5, 32);
+        for i in 1..lv.len() - 1 {
+            lv.p[i] = (1.0 - lv.x[i] * lv.x[i]).max(0.0).sqrt() + 0.05;
+        }
+        let h0 = 0.3;
+        lv.update_film(&phys, h0);
+        let jac = lv.dense_jacobian(&phys, &lv.unknowns());
+        let n = lv.len();
+        let e = 1e-7;
+        for j in [3usize, 10, 20, 30] {
+            let mut plus = LineLevel::new(-3.0, 1.5, 32);
+            plus.p.copy_from_slice(&lv.p);
+            plus.p[j] += e;
+            plus.update_film(&phys, h0);
+            for i in [2usize, 9, 10, 11, 25] {
+                let fd = (plus.reynolds(&phys, i) - lv.reynolds(&phys, i)) / e;
+                let an = jac[(i - 1, j - 1)];
+                assert!(
+                    (fd - an).abs() <= 1e-4 * (1.0 + an.abs()),
+                    "i={i} j={j}: fd {fd} an {an}"
+                );
+            }
+        }
+        let mut plus = LineLevel::new(-3.0, 1.5, 32);
+        plus.p.copy_from_slice(&lv.p);
+        plus.update_film(&phys, h0 + e);
+        for i in [2usize, 10, 25] {
+            let fd = (plus.reynolds(&phys, i) - lv.reynolds(&phys, i)) / e;
+            let an = jac[(i - 1, n - 2)];
+            assert!(
+                (fd - an).abs() <= 1e-4 * (1.0 + an.abs()),
+                "i={i}: fd {fd} an {an}"
+            );
+        }
+    }
 
     #[test]
     fn window_equals_entries() {

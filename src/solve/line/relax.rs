@@ -16,8 +16,17 @@
 //!
 //! After a sweep P is projected on P >= 0 (the cavitation condition) and H, rho, eps are
 //! recomputed by the fast deformation product.
+//!
+//! The steps of a banded line solve that do not depend on the contact are written here once and
+//! used by this file and by the point contact's x-line smoother ([`crate::solve::point::relax`]),
+//! with [`RelaxParams`]: how a node enters the system ([`node_kind`], [`distributed`], [`xi`]),
+//! its row ([`pinned_row`], [`distributed_row`]), and the change it gets ([`undistributed`],
+//! [`relaxed`], [`viscosity_step_limit`]). Contract: a line of n nodes, nodes 0 and n-1 fixed,
+//! unknowns 1..=n-2 in rows 0..n-2 of a banded matrix of half bandwidth bw (row i-1 holds column
+//! j at j + bw - i).
 
 use crate::discrete::line::operator::{LineLevel, LinePhysics};
+use crate::discrete::stencil::upwind;
 use crate::solve::banded::solve_banded;
 use crate::solve::line::jacobian::JacRow;
 use std::f64::consts::PI;
@@ -61,13 +70,119 @@ impl Default for RelaxParams {
     }
 }
 
+/// How a node of a line enters the banded system.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// Pressurised: its equation L = f is relaxed.
+    Active,
+    /// Cavitated: its row is dP = -P (the complementarity condition sets P = 0).
+    Cavitated,
+    /// Held fixed (boundary, or a frozen coarse node): its row is dP = 0.
+    Frozen,
+}
+
+/// The kind of a node from its residual r = f - L and diagonal d = dL/dP: frozen when `frozen`,
+/// cavitated when its Newton point value P + r/d is <= 0 (d < 0) or P <= 0 (d >= 0), else active.
+#[inline]
+pub fn node_kind(frozen: bool, p: f64, r: f64, d: f64) -> Kind {
+    if frozen {
+        Kind::Frozen
+    } else if (d < 0.0 && p + r / d <= 0.0) || (d >= 0.0 && p <= 0.0) {
+        Kind::Cavitated
+    } else {
+        Kind::Active
+    }
+}
+
+/// xi = min(eps_{c-1/2}, eps_{c+1/2})/h^2 along x at storage index c (h2 = h^2).
+#[inline]
+pub fn xi(eps: &[f64], c: usize, h2: f64) -> f64 {
+    0.5 * (eps[c - 1] + eps[c]).min(eps[c] + eps[c + 1]) / h2
+}
+
+/// Whether node i of a line (`kind` over all its nodes) is distributed: it and both neighbours
+/// are active and `low_xi()` holds (evaluated only then).
+#[inline]
+pub fn distributed(kind: &[Kind], i: usize, low_xi: impl FnOnce() -> bool) -> bool {
+    i >= 1
+        && i + 1 < kind.len()
+        && kind[i - 1] == Kind::Active
+        && kind[i] == Kind::Active
+        && kind[i + 1] == Kind::Active
+        && low_xi()
+}
+
+/// The row of a cavitated or frozen node (`a_row` the 2 bw + 1 band entries of its row):
+/// dP = -P resp. dP = 0.
+#[inline]
+pub fn pinned_row(a_row: &mut [f64], rhs: &mut f64, bw: usize, kind: Kind, p: f64) {
+    a_row[bw] = 1.0;
+    *rhs = if kind == Kind::Cavitated { -p } else { 0.0 };
+}
+
+/// The band of the row of active node i of a line whose last unknown is `last` (= n - 2), in the
+/// distributed variables: column j gets J(i, j) - (J(i, j-1) + J(i, j+1))/2 where `jset[j]`, else
+/// J(i, j), for |j - i| <= bw; `ent(j)` = J(i, j), 0 outside the unknowns.
+#[inline]
+pub fn distributed_row(
+    a_row: &mut [f64],
+    i: usize,
+    bw: usize,
+    last: usize,
+    jset: &[bool],
+    ent: impl Fn(usize) -> f64,
+) {
+    for j in i.saturating_sub(bw).max(1)..=(i + bw).min(last) {
+        let mut v = ent(j);
+        if jset[j] {
+            v -= 0.5 * (ent(j - 1) + ent(j + 1));
+        }
+        a_row[j + bw - i] = v;
+    }
+}
+
+/// The change of P at node i from the solution dQ (`dq[i - 1]`) in the distributed variables:
+/// dQ_i - (dQ_{i-1} [if jset[i-1]] + dQ_{i+1} [if jset[i+1]])/2.
+#[inline]
+pub fn undistributed(dq: &[f64], jset: &[bool], i: usize) -> f64 {
+    let mut dp = dq[i - 1];
+    if jset[i - 1] {
+        dp -= 0.5 * dq[i - 2];
+    }
+    if jset[i + 1] {
+        dp -= 0.5 * dq[i];
+    }
+    dp
+}
+
+/// The new P of a node: 0 when cavitated, `old` when frozen, else old + omega dp with the change
+/// clamped to +-max_dp, projected on P >= 0.
+#[inline]
+pub fn relaxed(kind: Kind, old: f64, omega: f64, dp: f64, max_dp: f64) -> f64 {
+    match kind {
+        Kind::Cavitated => 0.0,
+        Kind::Frozen => old,
+        Kind::Active => (old + (omega * dp).clamp(-max_dp, max_dp)).max(0.0),
+    }
+}
+
+/// The largest change of P per sweep that changes a Barus viscosity by at most e^2: 2/alpha_bar
+/// (infinite when alpha_bar = 0). Far from the solution a full Newton change is not to be trusted.
+#[inline]
+pub fn viscosity_step_limit(alpha_bar: f64) -> f64 {
+    if alpha_bar > 0.0 {
+        2.0 / alpha_bar
+    } else {
+        f64::INFINITY
+    }
+}
+
 /// Work buffers of the line smoother. Owned by the caller and reused across sweeps and levels,
 /// so once they have grown to the finest level's size a sweep allocates nothing.
 #[derive(Default)]
 pub struct LineScratch {
     rows: Vec<JacRow>,
-    /// 0: active, 1: cavitated, 2: frozen.
-    kind: Vec<u8>,
+    kind: Vec<Kind>,
     jset: Vec<bool>,
     a: Vec<f64>,
     rhs: Vec<f64>,
@@ -126,34 +241,21 @@ pub fn line_sweep(
         }
     }));
     kind.clear();
-    kind.resize(n, 0);
+    kind.resize(n, Kind::Active);
     rhs.clear();
     rhs.resize(m, 0.0);
     for i in 1..n - 1 {
         let r = lv.f[i] - lv.reynolds(phys, i);
         rhs[i - 1] = r;
         let d = rows[i - 1].entry(&lv.kernel, i);
-        kind[i] = if lv.frozen[i] {
-            2
-        } else if (d < 0.0 && lv.p[i] + r / d <= 0.0) || (d >= 0.0 && lv.p[i] <= 0.0) {
-            1
-        } else {
-            0
-        };
+        kind[i] = node_kind(lv.frozen[i], lv.p[i], r, d);
     }
-    kind[0] = 2;
-    kind[n - 1] = 2;
+    kind[0] = Kind::Frozen;
+    kind[n - 1] = Kind::Frozen;
     jset.clear();
-    jset.extend((0..n).map(|i| {
-        i >= 1
-            && i + 1 < n
-            && kind[i - 1] == 0
-            && kind[i] == 0
-            && kind[i + 1] == 0
-            && (phys.dry
-                || 0.5 * (lv.eps[i - 1] + lv.eps[i]).min(lv.eps[i] + lv.eps[i + 1]) / h2
-                    < rp.xi_threshold)
-    }));
+    jset.extend(
+        (0..n).map(|i| distributed(kind, i, || phys.dry || xi(&lv.eps, i, h2) < rp.xi_threshold)),
+    );
     a.clear();
     a.resize(m * w, 0.0);
     ent.clear();
@@ -165,62 +267,34 @@ pub fn line_sweep(
     }));
     for i in 1..n - 1 {
         let row = i - 1;
-        match kind[i] {
-            1 => {
-                a[row * w + bw] = 1.0;
-                rhs[row] = -lv.p[i];
-            }
-            2 => {
-                a[row * w + bw] = 1.0;
-                rhs[row] = 0.0;
-            }
-            _ => {
-                // Row entries J(i, j) for j = i-bw-1 ..= i+bw+1 (zero outside the interior).
-                let j0 = i as isize - bw as isize - 1;
-                rows[row].window(ksym, bw, ent);
-                for (t, v) in ent.iter_mut().enumerate() {
-                    let j = j0 + t as isize;
-                    if j < 1 || j >= n as isize - 1 {
-                        *v = 0.0;
-                    }
-                }
-                for j in i.saturating_sub(bw).max(1)..(i + bw + 1).min(n - 1) {
-                    let t = (j as isize - j0) as usize;
-                    let mut v = ent[t];
-                    if jset[j] {
-                        v -= 0.5 * (ent[t - 1] + ent[t + 1]);
-                    }
-                    a[row * w + (j + bw - i)] = v;
-                }
+        let a_row = &mut a[row * w..][..w];
+        if kind[i] != Kind::Active {
+            pinned_row(a_row, &mut rhs[row], bw, kind[i], lv.p[i]);
+            continue;
+        }
+        // Row entries J(i, j) for j = i-bw-1 ..= i+bw+1 (zero outside the interior).
+        let j0 = i as isize - bw as isize - 1;
+        rows[row].window(ksym, bw, ent);
+        for (t, v) in ent.iter_mut().enumerate() {
+            let j = j0 + t as isize;
+            if j < 1 || j >= n as isize - 1 {
+                *v = 0.0;
             }
         }
+        let ent = &*ent;
+        distributed_row(a_row, i, bw, n - 2, jset, |j| {
+            ent[(j as isize - j0) as usize]
+        });
     }
     if !solve_banded(a, m, bw, rhs) || rhs.iter().any(|v| !v.is_finite()) {
         // A zero pivot (the band is not dominant enough): fall back to the point sweep.
         relax_sweep(lv, phys, h0, rp);
         return;
     }
-    // Limit each change so that the viscosity changes by at most a factor e^2 per sweep: with
-    // eta = exp(alpha_bar P) a full Newton change far from the solution is not to be trusted.
-    let max_dp = if phys.alpha_bar > 0.0 {
-        2.0 / phys.alpha_bar
-    } else {
-        f64::INFINITY
-    };
+    let max_dp = viscosity_step_limit(phys.fluid.alpha_bar);
     for i in 1..n - 1 {
-        let mut dp = rhs[i - 1];
-        if jset[i - 1] {
-            dp -= 0.5 * rhs[i - 2];
-        }
-        if jset[i + 1] {
-            dp -= 0.5 * rhs[i];
-        }
-        match kind[i] {
-            // Cavitated: the complementarity condition sets P = 0 outright.
-            1 => lv.p[i] = 0.0,
-            2 => {}
-            _ => lv.p[i] = (lv.p[i] + (rp.omega_line * dp).clamp(-max_dp, max_dp)).max(0.0),
-        }
+        let dp = undistributed(rhs, jset, i);
+        lv.p[i] = relaxed(kind[i], lv.p[i], rp.omega_line, dp, max_dp);
     }
     lv.update_film(phys, h0);
 }
@@ -236,7 +310,7 @@ fn wedge_derivative(
     if !phys.elastic {
         return 0.0;
     }
-    let c = lv.upwind(phys, i);
+    let c = upwind(phys.second_order, i);
     let mut s = 0.0;
     for (k, &ck) in c.iter().enumerate() {
         if ck != 0.0 {

@@ -8,10 +8,12 @@
 //! * local terms: the Poiseuille stencil and the dependence of eps and rho on P at the node itself,
 //!   `local` for (i-2..=i+2, j) and `local_y` for (i, j-1), (i, j+1).
 //!
-//! dL/dH0 = sum of all film weights, since dH/dH0 = 1. Any entry costs O(1).
+//! dL/dH0 = sum of all film weights, since dH/dH0 = 1. Any entry costs O(1). The x-direction terms
+//! are those of the line contact, computed by the same functions ([`crate::discrete::stencil`]).
 
 use crate::discrete::point::operator::{PointLevel, PointPhysics};
-use crate::solve::newton::NewtonLevel;
+use crate::discrete::stencil::{deps_dh, deps_dp, face, jacobian_x, upwind, Fields};
+use crate::solve::newton::{dense_jacobian, newton_level_common, NewtonLevel};
 use nalgebra::DMatrix;
 
 /// Row (i, j) of the Jacobian of L with respect to (P, H0).
@@ -43,46 +45,29 @@ impl PointJacRow {
         let nx = lv.nx;
         let c = lv.at(i, j);
         let (hx2, hy2) = (lv.hx * lv.hx, lv.hy * lv.hy);
-        let deps_dh = |k: usize| {
-            let hh = lv.film[k];
-            if hh > 0.0 {
-                3.0 * lv.eps[k] / hh
-            } else {
-                0.0
-            }
-        };
-        let deps_dp = |k: usize| {
-            let p = lv.p[k];
-            lv.eps[k] * (phys.density.dln_rho(p) - phys.viscosity.dln_eta(p, phys.alpha_bar))
-        };
-        let p = &lv.p;
+        let (p, e, film) = (&lv.p, &lv.eps, &lv.film);
         let a = (p[c - 1] - p[c]) / hx2;
         let b = (p[c + 1] - p[c]) / hx2;
         let ay = (p[c - nx] - p[c]) / hy2;
         let by = (p[c + nx] - p[c]) / hy2;
-        let mut g_h = [0.0; 4];
-        let mut local = [0.0; 5];
         // dL/d eps at (i-1, j), (i, j), (i+1, j).
         let dle = [0.5 * a, 0.5 * (a + b + ay + by), 0.5 * b];
-        for (t, &d) in dle.iter().enumerate() {
-            g_h[t + 1] += d * deps_dh(c - 1 + t);
-            local[t + 1] += d * deps_dp(c - 1 + t);
-        }
-        let g_y = [0.5 * ay * deps_dh(c - nx), 0.5 * by * deps_dh(c + nx)];
-        let mut local_y = [0.5 * ay * deps_dp(c - nx), 0.5 * by * deps_dp(c + nx)];
-        for (k, &w) in lv.upwind(phys, i).iter().enumerate() {
-            if w != 0.0 {
-                let q = c - k;
-                g_h[2 - k] -= w * lv.rho[q] / lv.hx;
-                let drho = lv.rho[q] * phys.density.dln_rho(p[q]);
-                local[2 - k] -= w * drho * lv.film[q] / lv.hx;
-            }
-        }
-        let e = &lv.eps;
-        let exm = 0.5 * (e[c - 1] + e[c]);
-        let exp = 0.5 * (e[c] + e[c + 1]);
-        let eym = 0.5 * (e[c - nx] + e[c]);
-        let eyp = 0.5 * (e[c] + e[c + nx]);
+        let f = Fields::new(p, film, e, &lv.rho);
+        let w = upwind(phys.second_order, i);
+        let (g_h, mut local) = jacobian_x(&phys.fluid, f, c, w, lv.hx, dle);
+        let g_y = [
+            0.5 * ay * deps_dh(e, film, c - nx),
+            0.5 * by * deps_dh(e, film, c + nx),
+        ];
+        let fl = &phys.fluid;
+        let mut local_y = [
+            0.5 * ay * deps_dp(fl, e, p, c - nx),
+            0.5 * by * deps_dp(fl, e, p, c + nx),
+        ];
+        let exm = face(e, c - 1, c);
+        let exp = face(e, c, c + 1);
+        let eym = face(e, c - nx, c);
+        let eyp = face(e, c, c + nx);
         local[1] += exm / hx2;
         local[3] += exp / hx2;
         local[2] -= (exm + exp) / hx2 + (eym + eyp) / hy2;
@@ -153,40 +138,15 @@ impl NewtonLevel for PointLevel {
         u
     }
     fn dense_jacobian(&self, phys: &PointPhysics, unknowns: &[usize]) -> DMatrix<f64> {
-        let m = unknowns.len();
         let nx = self.nx;
-        let mut jac = DMatrix::<f64>::zeros(m + 1, m + 1);
-        for (r, &c) in unknowns.iter().enumerate() {
-            let row = PointJacRow::new(self, phys, c % nx, c / nx);
-            for (q, &cc) in unknowns.iter().enumerate() {
-                jac[(r, q)] = row.entry(&self.kernel, nx, cc % nx, cc / nx);
-            }
-            jac[(r, m)] = row.d_h0();
-        }
-        let w = self.hx * self.hy;
-        for q in 0..m {
-            jac[(m, q)] = w;
-        }
-        jac
+        let row = |c| PointJacRow::new(self, phys, c % nx, c / nx);
+        let entry = |r: &PointJacRow, c| r.entry(&self.kernel, nx, c % nx, c / nx);
+        dense_jacobian(unknowns, self.hx * self.hy, row, entry, PointJacRow::d_h0)
     }
     fn residual_at(&self, phys: &PointPhysics, c: usize) -> f64 {
         self.f[c] - self.reynolds(phys, c % self.nx, c / self.nx)
     }
-    fn frozen_at(&self, c: usize) -> bool {
-        self.frozen[c]
-    }
-    fn pressure(&mut self) -> &mut [f64] {
-        &mut self.p
-    }
-    fn load_sum(&self) -> f64 {
-        self.load()
-    }
-    fn load_rhs(&self) -> f64 {
-        self.g
-    }
-    fn refresh(&mut self, phys: &PointPhysics, h0: f64) {
-        self.update_film(phys, h0)
-    }
+    newton_level_common!(PointPhysics);
 }
 
 #[cfg(test)]

@@ -11,18 +11,24 @@
 //! P += omega dP (each change limited to min(1, 2/alpha_bar)), projected on P >= 0. The film of rows j to
 //! j+2 (all that the next row's equations see) is corrected at once for the kernel within 2 band
 //! cells along x; after the sweep H is recomputed exactly by the FFT product.
+//!
+//! The contact-independent steps of the banded row solve are the line smoother's
+//! ([`crate::solve::line::relax`]: node kinds, distributed rows, the change of a node).
 
 use crate::discrete::point::operator::{PointLevel, PointPhysics};
 use crate::solve::banded::solve_banded;
-use crate::solve::line::relax::RelaxParams;
+use crate::solve::line::relax::{
+    distributed, distributed_row, node_kind, pinned_row, relaxed, undistributed,
+    viscosity_step_limit, xi, Kind, RelaxParams,
+};
 use crate::solve::point::jacobian::PointJacRow;
 
 /// Work buffers of the point smoother, reused across rows, sweeps and levels.
 #[derive(Default)]
 pub struct PointScratch {
     rows: Vec<PointJacRow>,
-    /// 0: active, 1: cavitated, 2: frozen (boundary columns included).
-    kind: Vec<u8>,
+    /// Boundary columns included (frozen).
+    kind: Vec<Kind>,
     jset: Vec<bool>,
     a: Vec<f64>,
     rhs: Vec<f64>,
@@ -104,11 +110,7 @@ fn row_changes(
     let hx2 = lv.hx * lv.hx;
     // Each change is limited to one Hertz pressure, and to a viscosity change by e^2 (Barus):
     // far from the solution a full Newton change is not to be trusted.
-    let max_dp = if phys.alpha_bar > 0.0 {
-        (2.0 / phys.alpha_bar).min(1.0)
-    } else {
-        1.0
-    };
+    let max_dp = viscosity_step_limit(phys.fluid.alpha_bar).min(1.0);
     let PointScratch {
         rows,
         kind,
@@ -122,7 +124,7 @@ fn row_changes(
     rows.clear();
     rows.extend((1..nx - 1).map(|i| PointJacRow::new(lv, phys, i, j)));
     kind.clear();
-    kind.resize(nx, 2);
+    kind.resize(nx, Kind::Frozen);
     rhs.clear();
     rhs.resize(m, 0.0);
     for i in 1..nx - 1 {
@@ -130,26 +132,13 @@ fn row_changes(
         let r = lv.f[c] - lv.reynolds(phys, i, j);
         rhs[i - 1] = r;
         let d = rows[i - 1].entry(&lv.kernel, nx, i, j);
-        kind[i] = if lv.frozen[c] {
-            2
-        } else if (d < 0.0 && lv.p[c] + r / d <= 0.0) || (d >= 0.0 && lv.p[c] <= 0.0) {
-            1
-        } else {
-            0
-        };
+        kind[i] = node_kind(lv.frozen[c], lv.p[c], r, d);
     }
     jset.clear();
     jset.extend((0..nx).map(|i| {
-        i >= 1
-            && i + 1 < nx
-            && kind[i - 1] == 0
-            && kind[i] == 0
-            && kind[i + 1] == 0
-            && (phys.dry || {
-                let c = lv.at(i, j);
-                let e = &lv.eps;
-                0.5 * (e[c - 1] + e[c]).min(e[c] + e[c + 1]) / hx2 < rp.xi_threshold
-            })
+        distributed(kind, i, || {
+            phys.dry || xi(&lv.eps, lv.at(i, j), hx2) < rp.xi_threshold
+        })
     }));
     a.clear();
     a.resize(m * w, 0.0);
@@ -157,31 +146,24 @@ fn row_changes(
     ent.resize(nx, 0.0);
     for i in 1..nx - 1 {
         let row = i - 1;
-        match kind[i] {
-            1 => {
-                a[row * w + bw] = 1.0;
-                rhs[row] = -lv.p[lv.at(i, j)];
-            }
-            2 => {
-                a[row * w + bw] = 1.0;
-                rhs[row] = 0.0;
-            }
-            _ => {
-                let lo = i.saturating_sub(bw + 1).max(1);
-                let hi = (i + bw + 1).min(nx - 2);
-                for k in lo..=hi {
-                    ent[k] = rows[row].entry(&lv.kernel, nx, k, j);
-                }
-                let get = |k: usize| if k >= lo && k <= hi { ent[k] } else { 0.0 };
-                for k in i.saturating_sub(bw).max(1)..=(i + bw).min(nx - 2) {
-                    let mut v = ent[k];
-                    if jset[k] {
-                        v -= 0.5 * (get(k - 1) + get(k + 1));
-                    }
-                    a[row * w + (k + bw - i)] = v;
-                }
-            }
+        let a_row = &mut a[row * w..][..w];
+        if kind[i] != Kind::Active {
+            pinned_row(a_row, &mut rhs[row], bw, kind[i], lv.p[lv.at(i, j)]);
+            continue;
         }
+        let lo = i.saturating_sub(bw + 1).max(1);
+        let hi = (i + bw + 1).min(nx - 2);
+        for k in lo..=hi {
+            ent[k] = rows[row].entry(&lv.kernel, nx, k, j);
+        }
+        let ent = &*ent;
+        distributed_row(a_row, i, bw, nx - 2, jset, |k| {
+            if k >= lo && k <= hi {
+                ent[k]
+            } else {
+                0.0
+            }
+        });
     }
     let solved = solve_banded(a, m, bw, rhs) && rhs.iter().all(|v| v.is_finite());
     change.clear();
@@ -190,14 +172,7 @@ fn row_changes(
         let c = lv.at(i, j);
         let old = lv.p[c];
         let dp = if solved {
-            let mut dp = rhs[i - 1];
-            if jset[i - 1] {
-                dp -= 0.5 * rhs[i - 2];
-            }
-            if jset[i + 1] {
-                dp -= 0.5 * rhs[i];
-            }
-            dp
+            undistributed(rhs, jset, i)
         } else {
             // A zero pivot: a damped point update from the diagonal alone.
             let d = rows[i - 1].entry(&lv.kernel, nx, i, j);
@@ -207,12 +182,7 @@ fn row_changes(
                 0.0
             }
         };
-        let new = match kind[i] {
-            1 => 0.0,
-            2 => old,
-            _ => (old + (rp.omega_line * dp).clamp(-max_dp, max_dp)).max(0.0),
-        };
-        change[i] = new - old;
+        change[i] = relaxed(kind[i], old, rp.omega_line, dp, max_dp) - old;
     }
 }
 
@@ -226,6 +196,7 @@ fn local_film_update(
     change: &[f64],
 ) {
     let (nx, ny) = (lv.nx, lv.ny);
+    let law = phys.coefficients();
     for jj in j..(j + 3).min(ny - 1) {
         let dy = jj - j;
         for i in 1..nx - 1 {
@@ -242,10 +213,7 @@ fn local_film_update(
                 }
                 lv.film[c] += phys.coef * s;
             }
-            let p = lv.p[c];
-            let rho = phys.density.rho(p);
-            lv.rho[c] = rho;
-            lv.eps[c] = phys.eps(p, lv.film[c], rho);
+            (lv.rho[c], lv.eps[c]) = law.at(lv.p[c], lv.film[c]);
         }
     }
 }

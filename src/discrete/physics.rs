@@ -1,0 +1,93 @@
+//! The lubricant's side of the discrete Reynolds operator, written once for line and point
+//! contacts (PHYSICS.md sections 2, 6b).
+//!
+//! Contract. Inputs: the viscosity and density models and alpha_bar = alpha p_h ([`Fluid`]), the
+//! contact's lambda and whether it is dry (with the fluid, the [`Coefficients`] law), and nodal
+//! values of the pressure P and the film H in Hertzian scaling. Outputs: the nodal density rho(P)
+//! and the coefficient eps = rho H^3/(eta(P) lambda) of the Poiseuille terms, with H clipped at 0
+//! (no flow through a closed gap) and eps = 0 for a dry contact; and the local derivatives of rho
+//! and eps at fixed H ([`Fluid::dln_rho`], [`Fluid::dln_eps`]). Invariant: both contacts compute
+//! rho and eps only through [`Coefficients::at`] (one node) or [`Coefficients::update`] (a whole
+//! level, node by node in storage order), so equal P and H give bit-identical coefficients in
+//! either contact.
+
+use crate::model::case::Models;
+use crate::model::lubricant::{Density, Viscosity};
+
+/// The lubricant in Hertzian scaling: its pressure-viscosity and pressure-density models.
+#[derive(Clone, Copy, Debug)]
+pub struct Fluid {
+    /// eta(P)/eta0.
+    pub viscosity: Viscosity,
+    /// rho(P)/rho0.
+    pub density: Density,
+    /// alpha_bar = alpha p_h, the dimensionless pressure-viscosity coefficient.
+    pub alpha_bar: f64,
+}
+
+impl Fluid {
+    /// The lubricant of a case's models at the case's alpha_bar.
+    pub fn new(models: &Models, alpha_bar: f64) -> Self {
+        Fluid {
+            viscosity: models.viscosity,
+            density: models.density,
+            alpha_bar,
+        }
+    }
+
+    /// d ln(rho)/dP at pressure `p`.
+    #[inline]
+    pub fn dln_rho(&self, p: f64) -> f64 {
+        self.density.dln_rho(p)
+    }
+
+    /// d ln(eps)/dP at fixed H: d ln(rho)/dP - d ln(eta)/dP.
+    #[inline]
+    pub fn dln_eps(&self, p: f64) -> f64 {
+        self.density.dln_rho(p) - self.viscosity.dln_eta(p, self.alpha_bar)
+    }
+}
+
+/// The coefficient law of a contact: rho and eps as functions of the nodal P and H.
+#[derive(Clone, Copy, Debug)]
+pub struct Coefficients {
+    /// The lubricant.
+    pub fluid: Fluid,
+    /// The speed group lambda of the Hertzian scaling.
+    pub lambda: f64,
+    /// Dry contact: eps = 0.
+    pub dry: bool,
+}
+
+impl Coefficients {
+    /// The law of a fluid at a contact's lambda, dry or not.
+    #[inline]
+    pub fn new(fluid: Fluid, lambda: f64, dry: bool) -> Self {
+        Coefficients { fluid, lambda, dry }
+    }
+
+    /// eps = rho H^3/(eta(P) lambda) at one node, H clipped at 0; 0 when dry.
+    #[inline]
+    pub fn eps(&self, p: f64, film: f64, rho: f64) -> f64 {
+        if self.dry {
+            0.0
+        } else {
+            let hh = film.max(0.0);
+            rho * hh * hh * hh / (self.fluid.viscosity.eta(p, self.fluid.alpha_bar) * self.lambda)
+        }
+    }
+
+    /// (rho, eps) at one node from its pressure and film.
+    #[inline]
+    pub fn at(&self, p: f64, film: f64) -> (f64, f64) {
+        let rho = self.fluid.density.rho(p);
+        (rho, self.eps(p, film, rho))
+    }
+
+    /// rho and eps at every node from P and H (all four slices of one length).
+    pub fn update(&self, p: &[f64], film: &[f64], rho: &mut [f64], eps: &mut [f64]) {
+        for (((&pc, &hc), r), e) in p.iter().zip(film).zip(rho).zip(eps) {
+            (*r, *e) = self.at(pc, hc);
+        }
+    }
+}

@@ -1,0 +1,131 @@
+//! The stencil of the discrete Reynolds operator along one grid direction, and its exact
+//! derivatives, written once for line and point contacts (the operators in
+//! [`crate::discrete::line::operator`] and [`crate::discrete::point::operator`]).
+//!
+//! Contract. Fields are nodal slices in a level's storage order; a node is a storage index c, its
+//! neighbours along the direction at c - s and c + s (stride s: 1 along x, nx along y in a point
+//! contact). The functions read c - 2s..=c + s only; the caller keeps these in range (interior
+//! nodes, and c - 2 only where [`upwind`] gives a non-zero weight there). Outputs:
+//! * [`flux_difference`]: eps_{c-1/2}(P_{c-s} - P_c) + eps_{c+1/2}(P_{c+s} - P_c), the face values
+//!   the means of the nodal ones ([`face`]); divided by h^2 it is the Poiseuille term.
+//! * [`wedge`]: sum_k w_k (rho H)_{c-k} with the upwind weights w of [`upwind`] (x only, stride 1);
+//!   divided by h it is the wedge term D_x(rho H).
+//! * [`deps_dh`], [`deps_dp`], [`jacobian_x`]: the derivatives a Jacobian row needs (see
+//!   [`jacobian_x`]).
+//!
+//! Invariant: both contacts evaluate these terms only here, with the same operations in the same
+//! order, so their operators and Jacobians agree to the bit on equal data.
+
+use crate::discrete::physics::Fluid;
+
+/// Second-order upwind weights of the wedge term at offsets 0, -1, -2.
+pub const UPWIND2: [f64; 3] = [1.5, -2.0, 0.5];
+/// First-order upwind weights of the wedge term at offsets 0, -1, -2.
+pub const UPWIND1: [f64; 3] = [1.0, -1.0, 0.0];
+
+/// The upwind weights at column i (along x): second order when asked and i >= 2, else first.
+#[inline]
+pub fn upwind(second_order: bool, i: usize) -> [f64; 3] {
+    if second_order && i >= 2 {
+        UPWIND2
+    } else {
+        UPWIND1
+    }
+}
+
+/// The face value between nodes a and b: the mean of the nodal eps.
+#[inline]
+pub fn face(eps: &[f64], a: usize, b: usize) -> f64 {
+    0.5 * (eps[a] + eps[b])
+}
+
+/// eps_{c-1/2}(P_{c-s} - P_c) + eps_{c+1/2}(P_{c+s} - P_c) along the direction of stride s.
+#[inline]
+pub fn flux_difference(eps: &[f64], p: &[f64], c: usize, s: usize) -> f64 {
+    let em = face(eps, c - s, c);
+    let ep = face(eps, c, c + s);
+    em * (p[c - s] - p[c]) + ep * (p[c + s] - p[c])
+}
+
+/// sum_k w_k rho_{c-k} H_{c-k} over the non-zero weights.
+#[inline]
+pub fn wedge(w: [f64; 3], rho: &[f64], film: &[f64], c: usize) -> f64 {
+    let mut s = 0.0;
+    for (k, &wk) in w.iter().enumerate() {
+        if wk != 0.0 {
+            s += wk * rho[c - k] * film[c - k];
+        }
+    }
+    s
+}
+
+/// d eps_k/dH_k at fixed P: 3 eps/H where H > 0, else 0.
+#[inline]
+pub fn deps_dh(eps: &[f64], film: &[f64], k: usize) -> f64 {
+    let hh = film[k];
+    if hh > 0.0 {
+        3.0 * eps[k] / hh
+    } else {
+        0.0
+    }
+}
+
+/// d eps_k/dP_k at fixed H: eps d ln(eps)/dP ([`Fluid::dln_eps`]).
+#[inline]
+pub fn deps_dp(fluid: &Fluid, eps: &[f64], p: &[f64], k: usize) -> f64 {
+    eps[k] * fluid.dln_eps(p[k])
+}
+
+/// The nodal fields a Jacobian row reads, in storage order.
+#[derive(Clone, Copy)]
+pub struct Fields<'a> {
+    /// Pressure P.
+    pub p: &'a [f64],
+    /// Film H.
+    pub film: &'a [f64],
+    /// eps = rho H^3/(eta lambda).
+    pub eps: &'a [f64],
+    /// Density rho.
+    pub rho: &'a [f64],
+}
+
+impl<'a> Fields<'a> {
+    /// The view of a level's P, H, eps and rho.
+    pub fn new(p: &'a [f64], film: &'a [f64], eps: &'a [f64], rho: &'a [f64]) -> Self {
+        Fields { p, film, eps, rho }
+    }
+}
+
+/// The x-direction part of row c of the Jacobian of L: `g_h[m]` = dL/dH at nodes c-2..=c+1 and
+/// `local[m]` = the local dL/dP at nodes c-2..=c+2 (both indexed from c - 2), from
+/// * `dle` = dL/d eps at nodes c-1, c, c+1, through d eps/dH ([`deps_dh`]) and d eps/dP
+///   ([`deps_dp`]);
+/// * the wedge term -sum_k w_k (rho H)_{c-k}/h with its dependence on H and, through rho, on P.
+///
+/// The Poiseuille stencil's own entries (eps held fixed) are left to the caller.
+#[inline]
+pub fn jacobian_x(
+    fluid: &Fluid,
+    f: Fields,
+    c: usize,
+    w: [f64; 3],
+    h: f64,
+    dle: [f64; 3],
+) -> ([f64; 4], [f64; 5]) {
+    let mut g_h = [0.0; 4];
+    let mut local = [0.0; 5];
+    for (t, &d) in dle.iter().enumerate() {
+        let k = c - 1 + t;
+        g_h[t + 1] += d * deps_dh(f.eps, f.film, k);
+        local[t + 1] += d * deps_dp(fluid, f.eps, f.p, k);
+    }
+    for (k, &wk) in w.iter().enumerate() {
+        if wk != 0.0 {
+            let q = c - k;
+            g_h[2 - k] -= wk * f.rho[q] / h;
+            let drho = f.rho[q] * fluid.dln_rho(f.p[q]);
+            local[2 - k] -= wk * drho * f.film[q] / h;
+        }
+    }
+    (g_h, local)
+}
