@@ -35,21 +35,41 @@ pub trait GridLevel: NewtonLevel {
     fn set_load_rhs(&mut self, g: f64);
 }
 
+/// The [`GridLevel`] methods of a level type with the fields `p`, `film`, `delta`, `g` and the
+/// methods `residual` and `points` (both contacts' levels have them).
+macro_rules! grid_level_common {
+    ($phys:ty) => {
+        fn points(&self) -> usize {
+            self.points()
+        }
+        fn p(&self) -> &[f64] {
+            &self.p
+        }
+        fn film(&self) -> &[f64] {
+            &self.film
+        }
+        fn delta_mut(&mut self) -> &mut Vec<f64> {
+            &mut self.delta
+        }
+        fn residual_into(&self, phys: &$phys, active_only: bool, out: &mut [f64]) {
+            self.residual(phys, active_only, out)
+        }
+        fn set_load_rhs(&mut self, g: f64) {
+            self.g = g;
+        }
+    };
+}
+pub(crate) use grid_level_common;
+
 /// What a contact supplies to [`Multigrid`]: the types of its levels, physics and domain, and
 /// the steps that differ between line and point contacts.
 pub trait Contact: Sized {
-    /// A grid level.
-    type Level: GridLevel<Phys = Self::Phys>;
-    /// The discrete physics (groups and lubricant models).
-    type Phys;
+    /// A grid level (its `Phys` is the contact's discrete physics).
+    type Level: GridLevel;
     /// The domain of the solve.
-    type Domain;
-    /// The domain rule's parameters.
-    type DomainParams: Copy + FinerCoarsest;
-    /// The smoother's work buffers.
-    type Scratch: Default;
-    /// What the contact keeps besides (the finest grid's size for the work units, the line
-    /// contact's warm-start guess).
+    type Domain: DomainRule;
+    /// What the contact keeps besides: the smoother's work buffers, the finest grid's size for
+    /// the work units, the line contact's warm-start guess.
     type Extra;
     /// The growth of the cycle budget per FMG level below the finest (see [`FmgControl`]).
     const COARSE_BUDGET_GROWTH: usize;
@@ -64,7 +84,7 @@ pub trait Contact: Sized {
         coarse: &mut Self::Level,
         fine: &Self::Level,
         r: &[f64],
-        phys: &Self::Phys,
+        phys: &Phys<Self>,
         h0: f64,
     );
     /// Add the interpolated correction `coarse.p - p_hat` to `fine.p`, project on P >= 0 and
@@ -73,7 +93,7 @@ pub trait Contact: Sized {
         coarse: &Self::Level,
         p_hat: &[f64],
         fine: &mut Self::Level,
-        phys: &Self::Phys,
+        phys: &Phys<Self>,
         h0: f64,
     );
     /// Node index of X = 0 (Y = 0) on level `l`.
@@ -94,10 +114,22 @@ pub trait Contact: Sized {
     }
 }
 
+/// A domain built by a rule with parameters [`DomainRule::Params`].
+pub trait DomainRule {
+    /// The rule's parameters.
+    type Params: Copy + FinerCoarsest;
+}
+
+/// The domain rule's parameters of contact `C`.
+pub type DomainParams<C> = <<C as Contact>::Domain as DomainRule>::Params;
+
+/// The discrete physics of contact `C`.
+pub type Phys<C> = <<C as Contact>::Level as NewtonLevel>::Phys;
+
 /// The state of a multigrid solve of contact `C`: all levels (0 the coarsest), H0, counters.
 pub struct Multigrid<C: Contact> {
     /// The discrete physics.
-    pub phys: C::Phys,
+    pub phys: Phys<C>,
     /// The domain.
     pub domain: C::Domain,
     /// The levels, coarsest first.
@@ -105,15 +137,13 @@ pub struct Multigrid<C: Contact> {
     /// The film constant H0 (Hertzian units).
     pub h0: f64,
     /// The multigrid settings.
-    pub params: MgParams<C::DomainParams>,
+    pub params: MgParams<DomainParams<C>>,
     /// Injected coarse pressures P^_H per level.
     pub(crate) p_hat: Vec<Vec<f64>>,
     /// Relaxation sweeps in finest-grid equivalents.
     pub work_units: f64,
     /// Estimate of d(load)/dH0 from the coarsest level.
     pub(crate) load_slope: f64,
-    /// The smoother's work buffers, shared by all levels.
-    pub(crate) scratch: C::Scratch,
     /// The contact's own state.
     pub(crate) extra: C::Extra,
 }
@@ -121,10 +151,10 @@ pub struct Multigrid<C: Contact> {
 impl<C: Contact> Multigrid<C> {
     /// A solve's state over `levels` (coarsest first), H0 = 0.
     pub(crate) fn from_levels(
-        phys: C::Phys,
+        phys: Phys<C>,
         domain: C::Domain,
         levels: Vec<C::Level>,
-        params: &MgParams<C::DomainParams>,
+        params: &MgParams<DomainParams<C>>,
         extra: C::Extra,
     ) -> Self {
         let p_hat = levels.iter().map(|l| vec![0.0; l.p().len()]).collect();
@@ -137,7 +167,6 @@ impl<C: Contact> Multigrid<C> {
             p_hat,
             work_units: 0.0,
             load_slope: -1.0,
-            scratch: C::Scratch::default(),
             extra,
         }
     }

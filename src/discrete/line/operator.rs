@@ -101,6 +101,11 @@ impl LineLevel {
         }
     }
 
+    /// Points of the level.
+    pub fn points(&self) -> usize {
+        self.x.len()
+    }
+
     pub fn len(&self) -> usize {
         self.x.len()
     }

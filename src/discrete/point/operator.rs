@@ -141,6 +141,11 @@ impl PointLevel {
         }
     }
 
+    /// Points per direction (along x).
+    pub fn points(&self) -> usize {
+        self.nx
+    }
+
     pub fn len(&self) -> usize {
         self.p.len()
     }

@@ -19,7 +19,7 @@ use crate::discrete::line::domain::{DomainParams, LineDomain};
 use crate::discrete::line::operator::{LineLevel, LinePhysics};
 use crate::model::case::LineCase;
 use crate::solve::line::relax::{relax, LineScratch, RelaxParams};
-use crate::solve::multilevel::{Contact, GridLevel, Multigrid};
+use crate::solve::multilevel::{grid_level_common, Contact, DomainRule, GridLevel, Multigrid};
 use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
 pub use crate::solve::params::CycleType;
 use crate::solve::params::{FinerCoarsest, MgParams};
@@ -52,6 +52,10 @@ impl Default for MgParams<DomainParams> {
             observer: None,
         }
     }
+}
+
+impl DomainRule for LineDomain {
+    type Params = DomainParams;
 }
 
 impl FinerCoarsest for DomainParams {
@@ -122,6 +126,7 @@ impl Multigrid<LineContact> {
             LineExtra {
                 fine_intervals: fine,
                 guess: None,
+                scratch: LineScratch::default(),
             },
         )
     }
@@ -263,42 +268,31 @@ pub struct LineExtra {
     fine_intervals: usize,
     /// A warm-start guess for the finest level ([`LineMultigrid::set_guess`]).
     guess: Option<WarmGuess>,
+    /// The smoother's work buffers, shared by all levels.
+    scratch: LineScratch,
 }
 
 impl GridLevel for LineLevel {
-    fn points(&self) -> usize {
-        self.len()
-    }
-    fn p(&self) -> &[f64] {
-        &self.p
-    }
-    fn film(&self) -> &[f64] {
-        &self.film
-    }
-    fn delta_mut(&mut self) -> &mut Vec<f64> {
-        &mut self.delta
-    }
-    fn residual_into(&self, phys: &LinePhysics, active_only: bool, out: &mut [f64]) {
-        self.residual(phys, active_only, out)
-    }
-    fn set_load_rhs(&mut self, g: f64) {
-        self.g = g;
-    }
+    grid_level_common!(LinePhysics);
 }
 
 impl Contact for LineContact {
     type Level = LineLevel;
-    type Phys = LinePhysics;
     type Domain = LineDomain;
-    type DomainParams = DomainParams;
-    type Scratch = LineScratch;
     type Extra = LineExtra;
     const COARSE_BUDGET_GROWTH: usize = 1;
 
     fn sweep(mg: &mut LineMultigrid, l: usize) -> f64 {
-        let lv = &mut mg.levels[l];
-        relax(lv, &mg.phys, mg.h0, &mg.params.relax, &mut mg.scratch);
-        (lv.len() - 1) as f64 / mg.extra.fine_intervals as f64
+        let cost = (mg.levels[l].len() - 1) as f64 / mg.extra.fine_intervals as f64;
+        let scratch = &mut mg.extra.scratch;
+        relax(
+            &mut mg.levels[l],
+            &mg.phys,
+            mg.h0,
+            &mg.params.relax,
+            scratch,
+        );
+        cost
     }
 
     /// Each Newton iteration counts as n0 relaxations of level 0.

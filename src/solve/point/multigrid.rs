@@ -16,7 +16,7 @@ use crate::discrete::point::domain::PointDomainParams;
 use crate::discrete::point::operator::{PointLevel, PointPhysics};
 use crate::model::case::{Elasticity, PointCase};
 use crate::solve::line::relax::RelaxParams;
-use crate::solve::multilevel::{Contact, GridLevel, Multigrid};
+use crate::solve::multilevel::{grid_level_common, Contact, DomainRule, GridLevel, Multigrid};
 use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
 use crate::solve::params::{CycleType, FinerCoarsest, MgParams};
 use crate::solve::point::relax::{point_line_sweep, PointScratch};
@@ -48,6 +48,10 @@ impl Default for MgParams<PointDomainParams> {
             observer: None,
         }
     }
+}
+
+impl DomainRule for PointDomain {
+    type Params = PointDomainParams;
 }
 
 impl FinerCoarsest for PointDomainParams {
@@ -90,6 +94,7 @@ impl Multigrid<PointContact> {
         }
         let extra = PointExtra {
             fine_cells: (n * n) as f64,
+            scratch: PointScratch::default(),
         };
         Multigrid::from_levels(phys, domain, levels, params, extra)
     }
@@ -238,6 +243,8 @@ pub type PointMultigrid = Multigrid<PointContact>;
 pub struct PointExtra {
     /// Cells of the finest level (work units are sweeps of it).
     fine_cells: f64,
+    /// The smoother's work buffers, shared by all levels.
+    scratch: PointScratch,
 }
 
 /// 9-point full weighting of a fine field at the interior coarse node (i, j).
@@ -254,32 +261,12 @@ fn full_weight(fine: &PointLevel, r: &[f64], i: usize, j: usize) -> f64 {
 }
 
 impl GridLevel for PointLevel {
-    fn points(&self) -> usize {
-        self.nx
-    }
-    fn p(&self) -> &[f64] {
-        &self.p
-    }
-    fn film(&self) -> &[f64] {
-        &self.film
-    }
-    fn delta_mut(&mut self) -> &mut Vec<f64> {
-        &mut self.delta
-    }
-    fn residual_into(&self, phys: &PointPhysics, active_only: bool, out: &mut [f64]) {
-        self.residual(phys, active_only, out)
-    }
-    fn set_load_rhs(&mut self, g: f64) {
-        self.g = g;
-    }
+    grid_level_common!(PointPhysics);
 }
 
 impl Contact for PointContact {
     type Level = PointLevel;
-    type Phys = PointPhysics;
     type Domain = PointDomain;
-    type DomainParams = PointDomainParams;
-    type Scratch = PointScratch;
     type Extra = PointExtra;
     const COARSE_BUDGET_GROWTH: usize = 2;
 
@@ -292,7 +279,7 @@ impl Contact for PointContact {
             &mg.phys,
             mg.h0,
             &mg.params.relax,
-            &mut mg.scratch,
+            &mut mg.extra.scratch,
             parallel,
         );
         ((lv.nx - 1) * (lv.ny - 1)) as f64 / mg.extra.fine_cells
