@@ -5,6 +5,7 @@
 //! ([`stencil`]), and, for the tests, random fields and product checks (`testing`).
 
 pub mod grid;
+pub mod level;
 pub mod line;
 pub mod physics;
 pub mod point;

@@ -11,6 +11,7 @@
 //! -H_i (the contact condition). On the finest level f = 0
 //! and g = pi/2; coarser levels carry the FAS right-hand sides. In the dry limit eps = 0.
 
+use crate::discrete::level::{deref_nodes, NodeFields};
 use crate::discrete::line::kernel::{direct_product, log_kernel, DeformPlan1d};
 use crate::discrete::physics::{Coefficients, Fluid};
 use crate::discrete::stencil::{flux_difference, upwind, wedge};
@@ -50,32 +51,23 @@ impl LinePhysics {
     }
 }
 
-/// One grid level: geometry, unknowns, derived fields and FAS right-hand sides.
+/// One grid level of a line contact: its grid, the deformation kernel and the node fields
+/// ([`NodeFields`], which the level dereferences to).
 pub struct LineLevel {
+    /// Grid spacing (Hertzian units).
     pub h: f64,
+    /// Node coordinates X.
     pub x: Vec<f64>,
-    pub p: Vec<f64>,
-    pub film: Vec<f64>,
-    pub eps: Vec<f64>,
-    pub rho: Vec<f64>,
-    /// FAS right-hand side of the Reynolds equation (zero on the finest level).
-    pub f: Vec<f64>,
-    /// Right-hand side of the load equation.
-    pub g: f64,
-    /// Nodes held fixed on a coarse level: those whose fine neighbourhood touches the cavitated
-    /// set. Coarse corrections then never move the free boundary (the smoother does), which keeps
-    /// the projected FAS cycle from fighting the fine smoother there (truncated multigrid).
-    pub frozen: Vec<bool>,
+    /// The node fields.
+    pub nodes: NodeFields,
     /// K_d, d = 0..n-1.
     pub kernel: Vec<f64>,
     deform: DeformPlan1d,
-    /// Work buffer (deformation).
-    pub work: Vec<f64>,
-    /// Work buffer (Jacobi changes, residuals).
-    pub delta: Vec<f64>,
     /// Compute the deformation by the O(N^2) direct sum instead of the FFT (baseline).
     pub direct_deformation: bool,
 }
+
+deref_nodes!(LineLevel);
 
 impl LineLevel {
     /// A level with `intervals` intervals on [x_in, x_out], P = 0.
@@ -86,17 +78,9 @@ impl LineLevel {
         LineLevel {
             h,
             x: (0..n).map(|i| x_in + i as f64 * h).collect(),
-            p: vec![0.0; n],
-            film: vec![0.0; n],
-            eps: vec![0.0; n],
-            rho: vec![1.0; n],
-            f: vec![0.0; n],
-            g: PI / 2.0,
-            frozen: vec![false; n],
+            nodes: NodeFields::new(n, PI / 2.0),
             deform: DeformPlan1d::new(&kernel),
             kernel,
-            work: vec![0.0; n],
-            delta: vec![0.0; n],
             direct_deformation: false,
         }
     }
@@ -118,9 +102,9 @@ impl LineLevel {
     pub fn update_film(&mut self, phys: &LinePhysics, h0: f64) {
         let n = self.len();
         if phys.elastic && self.direct_deformation {
-            direct_product(&self.kernel, &self.p, &mut self.work);
+            direct_product(&self.kernel, &self.nodes.p, &mut self.nodes.work);
         } else if phys.elastic {
-            self.deform.apply(&self.p, &mut self.work);
+            self.deform.apply(&self.nodes.p, &mut self.nodes.work);
         } else {
             self.work.fill(0.0);
         }
@@ -132,8 +116,12 @@ impl LineLevel {
 
     /// Recompute rho and eps from P and the current H.
     pub fn update_coefficients(&mut self, phys: &LinePhysics) {
-        phys.coefficients()
-            .update(&self.p, &self.film, &mut self.rho, &mut self.eps);
+        phys.coefficients().update(
+            &self.nodes.p,
+            &self.nodes.film,
+            &mut self.nodes.rho,
+            &mut self.nodes.eps,
+        );
     }
 
     /// L_i, the discrete Reynolds operator at interior node i.

@@ -14,6 +14,7 @@
 //! dropped for rigid surfaces. The load equation is hx hy sum P = g (2 pi k/3 on the finest level).
 //! A dry contact replaces L by -H.
 
+use crate::discrete::level::{deref_nodes, NodeFields};
 use crate::discrete::physics::{Coefficients, Fluid};
 use crate::discrete::point::kernel::{direct_product2d, kernel2d, DeformPlan2d};
 use crate::discrete::stencil::{flux_difference, upwind, wedge};
@@ -64,36 +65,30 @@ impl PointPhysics {
     }
 }
 
-/// One grid level of a point contact.
+/// One grid level of a point contact: its grid, the rigid gap, the deformation kernel and the
+/// node fields ([`NodeFields`], which the level dereferences to), row-major with X fastest.
 pub struct PointLevel {
+    /// Nodes along x and along y.
     pub nx: usize,
     pub ny: usize,
+    /// Grid spacings along x and y (Hertzian units).
     pub hx: f64,
     pub hy: f64,
+    /// Node coordinates X and Y.
     pub x: Vec<f64>,
     pub y: Vec<f64>,
-    pub p: Vec<f64>,
-    pub film: Vec<f64>,
-    pub eps: Vec<f64>,
-    pub rho: Vec<f64>,
-    /// FAS right-hand side of the Reynolds equation (zero on the finest level).
-    pub f: Vec<f64>,
-    /// Right-hand side of the load equation.
-    pub g: f64,
-    /// Coarse nodes held fixed (their fine neighbourhood touches the cavitated set).
-    pub frozen: Vec<bool>,
+    /// The node fields.
+    pub nodes: NodeFields,
     /// K(dx, dy) at dy nx + dx.
     pub kernel: Vec<f64>,
     deform: DeformPlan2d,
     /// The rigid gap X^2/2 + D Y^2/2.
     pub gap: Vec<f64>,
-    /// Work buffer (deformation).
-    pub work: Vec<f64>,
-    /// Work buffer (residuals).
-    pub delta: Vec<f64>,
     /// Compute the deformation by the O(N^2) direct sum instead of the FFT (baseline).
     pub direct_deformation: bool,
 }
+
+deref_nodes!(PointLevel);
 
 impl PointLevel {
     /// A level with `ix` x `iy` intervals on [x_in, x_out] x [-y_half, y_half], P = 0.
@@ -125,18 +120,10 @@ impl PointLevel {
             hy,
             x,
             y,
-            p: vec![0.0; n],
-            film: vec![0.0; n],
-            eps: vec![0.0; n],
-            rho: vec![1.0; n],
-            f: vec![0.0; n],
-            g: phys.load,
-            frozen: vec![false; n],
+            nodes: NodeFields::new(n, phys.load),
             deform: DeformPlan2d::new(&kernel, nx, ny),
             kernel,
             gap,
-            work: vec![0.0; n],
-            delta: vec![0.0; n],
             direct_deformation: false,
         }
     }
@@ -170,9 +157,15 @@ impl PointLevel {
     pub fn deformation(&mut self, phys: &PointPhysics) {
         if phys.elastic {
             if self.direct_deformation {
-                direct_product2d(&self.kernel, self.nx, self.ny, &self.p, &mut self.work);
+                direct_product2d(
+                    &self.kernel,
+                    self.nx,
+                    self.ny,
+                    &self.nodes.p,
+                    &mut self.nodes.work,
+                );
             } else {
-                self.deform.apply(&self.p, &mut self.work);
+                self.deform.apply(&self.nodes.p, &mut self.nodes.work);
             }
             for w in self.work.iter_mut() {
                 *w *= phys.coef;
@@ -193,8 +186,12 @@ impl PointLevel {
 
     /// Recompute rho and eps from P and the current H.
     pub fn update_coefficients(&mut self, phys: &PointPhysics) {
-        phys.coefficients()
-            .update(&self.p, &self.film, &mut self.rho, &mut self.eps);
+        phys.coefficients().update(
+            &self.nodes.p,
+            &self.nodes.film,
+            &mut self.nodes.rho,
+            &mut self.nodes.eps,
+        );
     }
 
     /// L at interior node (i, j).

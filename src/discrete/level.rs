@@ -1,0 +1,63 @@
+//! The fields every grid level holds, line or point contact: one value per node (row-major with
+//! X fastest for point levels).
+
+/// The unknowns, derived fields, right-hand sides and work buffers of a grid level. A level
+/// dereferences to these, so `level.p` is its pressure.
+#[derive(Clone, Debug)]
+pub struct NodeFields {
+    /// The pressure P (Hertzian units).
+    pub p: Vec<f64>,
+    /// The film H (Hertzian units).
+    pub film: Vec<f64>,
+    /// The Reynolds coefficient eps = rho H^3/(eta lambda).
+    pub eps: Vec<f64>,
+    /// The density rho (1 at ambient pressure).
+    pub rho: Vec<f64>,
+    /// FAS right-hand side of the Reynolds equation (zero on the finest level).
+    pub f: Vec<f64>,
+    /// Right-hand side of the load equation.
+    pub g: f64,
+    /// Nodes held fixed on a coarse level: those whose fine neighbourhood touches the cavitated
+    /// set. Coarse corrections then never move the free boundary (the smoother does), which keeps
+    /// the projected FAS cycle from fighting the fine smoother there (truncated multigrid).
+    pub frozen: Vec<bool>,
+    /// Work buffer (deformation).
+    pub work: Vec<f64>,
+    /// Work buffer (relaxation changes, residuals).
+    pub delta: Vec<f64>,
+}
+
+impl NodeFields {
+    /// `n` nodes with P = 0, rho = 1 and the load right-hand side `g`.
+    pub fn new(n: usize, g: f64) -> Self {
+        NodeFields {
+            p: vec![0.0; n],
+            film: vec![0.0; n],
+            eps: vec![0.0; n],
+            rho: vec![1.0; n],
+            f: vec![0.0; n],
+            g,
+            frozen: vec![false; n],
+            work: vec![0.0; n],
+            delta: vec![0.0; n],
+        }
+    }
+}
+
+/// `Deref` and `DerefMut` of a level type (with a field `nodes`) to its [`NodeFields`].
+macro_rules! deref_nodes {
+    ($level:ty) => {
+        impl std::ops::Deref for $level {
+            type Target = $crate::discrete::level::NodeFields;
+            fn deref(&self) -> &Self::Target {
+                &self.nodes
+            }
+        }
+        impl std::ops::DerefMut for $level {
+            fn deref_mut(&mut self) -> &mut Self::Target {
+                &mut self.nodes
+            }
+        }
+    };
+}
+pub(crate) use deref_nodes;
