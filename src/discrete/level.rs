@@ -1,6 +1,8 @@
 //! The fields every grid level holds, line or point contact: one value per node (row-major with
 //! X fastest for point levels).
 
+use crate::discrete::physics::Coefficients;
+
 /// The unknowns, derived fields, right-hand sides and work buffers of a grid level. A level
 /// dereferences to these, so `level.p` is its pressure.
 #[derive(Clone, Debug)]
@@ -41,6 +43,11 @@ impl NodeFields {
             work: vec![0.0; n],
             delta: vec![0.0; n],
         }
+    }
+
+    /// Recompute rho and eps from P and the current H by the coefficient law `law`.
+    pub fn update_coefficients(&mut self, law: Coefficients) {
+        law.update(&self.p, &self.film, &mut self.rho, &mut self.eps);
     }
 }
 

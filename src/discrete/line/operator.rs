@@ -116,12 +116,7 @@ impl LineLevel {
 
     /// Recompute rho and eps from P and the current H.
     pub fn update_coefficients(&mut self, phys: &LinePhysics) {
-        phys.coefficients().update(
-            &self.nodes.p,
-            &self.nodes.film,
-            &mut self.nodes.rho,
-            &mut self.nodes.eps,
-        );
+        self.nodes.update_coefficients(phys.coefficients());
     }
 
     /// L_i, the discrete Reynolds operator at interior node i.

@@ -186,12 +186,7 @@ impl PointLevel {
 
     /// Recompute rho and eps from P and the current H.
     pub fn update_coefficients(&mut self, phys: &PointPhysics) {
-        phys.coefficients().update(
-            &self.nodes.p,
-            &self.nodes.film,
-            &mut self.nodes.rho,
-            &mut self.nodes.eps,
-        );
+        self.nodes.update_coefficients(phys.coefficients());
     }
 
     /// L at interior node (i, j).
