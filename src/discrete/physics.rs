@@ -11,7 +11,7 @@
 //! level, node by node in storage order), so equal P and H give bit-identical coefficients in
 //! either contact.
 
-use crate::model::case::Models;
+use crate::model::case::{Elasticity, Models};
 use crate::model::lubricant::{Density, Viscosity};
 
 /// The lubricant in Hertzian scaling: its pressure-viscosity and pressure-density models.
@@ -89,5 +89,41 @@ impl Coefficients {
         for (((&pc, &hc), r), e) in p.iter().zip(film).zip(rho).zip(eps) {
             (*r, *e) = self.at(pc, hc);
         }
+    }
+}
+
+/// The physics every contact shares in Hertzian scaling, the same on all levels.
+#[derive(Clone, Copy, Debug)]
+pub struct Physics {
+    /// The speed group lambda of the Reynolds coefficient eps = rho H^3/(eta lambda).
+    pub lambda: f64,
+    /// Viscosity and density models, alpha_bar.
+    pub fluid: Fluid,
+    /// Elastic surfaces (the film carries the deformation integral); false: rigid.
+    pub elastic: bool,
+    /// Dry contact: the Reynolds equation is switched off and replaced by the contact condition
+    /// L = -H (so P >= 0, H >= 0, P H = 0: Hertz for a parabolic gap).
+    pub dry: bool,
+    /// Second-order upwind wedge term (default) or first order.
+    pub second_order: bool,
+}
+
+impl Physics {
+    /// The physics of a lubricated case with `models`, lambda and alpha_bar: second-order
+    /// upwinding, not dry.
+    pub fn of(models: &Models, lambda: f64, alpha_bar: f64) -> Self {
+        Physics {
+            lambda,
+            fluid: Fluid::new(models, alpha_bar),
+            elastic: models.elasticity == Elasticity::Elastic,
+            dry: false,
+            second_order: true,
+        }
+    }
+
+    /// The coefficient law rho(P), eps(P, H).
+    #[inline]
+    pub fn coefficients(&self) -> Coefficients {
+        Coefficients::new(self.fluid, self.lambda, self.dry)
     }
 }

@@ -35,31 +35,33 @@ pub trait GridLevel: NewtonLevel {
     fn set_load_rhs(&mut self, g: f64);
 }
 
-/// The [`GridLevel`] methods of a level type with the fields `p`, `film`, `delta`, `g` and the
-/// methods `residual` and `points` (both contacts' levels have them).
-macro_rules! grid_level_common {
-    ($phys:ty) => {
-        fn points(&self) -> usize {
-            self.points()
-        }
-        fn p(&self) -> &[f64] {
-            &self.p
-        }
-        fn film(&self) -> &[f64] {
-            &self.film
-        }
-        fn delta_mut(&mut self) -> &mut Vec<f64> {
-            &mut self.delta
-        }
-        fn residual_into(&self, phys: &$phys, active_only: bool, out: &mut [f64]) {
-            self.residual(phys, active_only, out)
-        }
-        fn set_load_rhs(&mut self, g: f64) {
-            self.g = g;
+/// `impl GridLevel` for a level type with the fields `p`, `film`, `delta`, `g` and the methods
+/// `residual` and `points` (both contacts' levels have them), with its physics type.
+macro_rules! grid_level {
+    ($level:ty, $phys:ty) => {
+        impl $crate::solve::multilevel::GridLevel for $level {
+            fn points(&self) -> usize {
+                self.points()
+            }
+            fn p(&self) -> &[f64] {
+                &self.p
+            }
+            fn film(&self) -> &[f64] {
+                &self.film
+            }
+            fn delta_mut(&mut self) -> &mut Vec<f64> {
+                &mut self.delta
+            }
+            fn residual_into(&self, phys: &$phys, active_only: bool, out: &mut [f64]) {
+                self.residual(phys, active_only, out)
+            }
+            fn set_load_rhs(&mut self, g: f64) {
+                self.g = g;
+            }
         }
     };
 }
-pub(crate) use grid_level_common;
+pub(crate) use grid_level;
 
 /// What a contact supplies to [`Multigrid`]: the types of its levels, physics and domain, and
 /// the steps that differ between line and point contacts.

@@ -121,6 +121,33 @@ pub struct MgParams<D> {
 }
 
 impl<D> MgParams<D> {
+    /// The settings every contact defaults to, with the contact's domain rule, finest grid,
+    /// cycle limit and tolerances: V(2, 1) cycles, two cycles per FMG level, 20 coarse sweeps
+    /// and 40 Newton iterations as fallbacks, second-order upwinding, the FFT deformation.
+    pub fn defaults(domain: D, grid: usize, max_cycles: usize, tol_load: f64, tol_h: f64) -> Self {
+        MgParams {
+            grid,
+            cycle: CycleType::V,
+            pre: 2,
+            post: 1,
+            fmg_cycles: 2,
+            max_cycles,
+            relax: RelaxParams::default(),
+            load_factor: None,
+            coarse_sweeps: 20,
+            tol_load,
+            tol_h,
+            tol_load_fmg: 1e-4,
+            domain,
+            coarse_intervals: None,
+            second_order: true,
+            newton_max_iter: 40,
+            direct_deformation: false,
+            parallel: false,
+            observer: None,
+        }
+    }
+
     /// The FMG driver's controls; a coarser level's cycle budget grows by
     /// `coarse_budget_growth` per level below the finest.
     pub fn control(&self, coarse_budget_growth: usize) -> FmgControl {

@@ -13,41 +13,19 @@
 
 use crate::discrete::level::{deref_nodes, NodeFields};
 use crate::discrete::line::kernel::{direct_product, log_kernel, DeformPlan1d};
-use crate::discrete::physics::{Coefficients, Fluid};
+use crate::discrete::physics::Physics;
 use crate::discrete::stencil::{flux_difference, upwind, wedge};
-use crate::model::case::{Elasticity, LineCase};
+use crate::model::case::LineCase;
 use std::f64::consts::PI;
 
 /// The physics of a line case in Hertzian scaling, shared by all levels.
-#[derive(Clone, Copy, Debug)]
-pub struct LinePhysics {
-    pub lambda: f64,
-    /// Viscosity and density models, alpha_bar.
-    pub fluid: Fluid,
-    pub elastic: bool,
-    /// Dry contact: the Reynolds equation is switched off and replaced by the contact condition
-    /// L_i = -H_i (so P >= 0, H >= 0, P H = 0: Hertz for a parabolic gap).
-    pub dry: bool,
-    /// Second-order upwind wedge term (default) or first order.
-    pub second_order: bool,
-}
+pub type LinePhysics = Physics;
 
-impl LinePhysics {
+impl Physics {
+    /// The physics of a line case.
     pub fn from_case(case: &LineCase) -> Self {
         let v = case.venner();
-        LinePhysics {
-            lambda: v.lambda,
-            fluid: Fluid::new(&case.models, v.alpha_bar),
-            elastic: case.models.elasticity == Elasticity::Elastic,
-            dry: false,
-            second_order: true,
-        }
-    }
-
-    /// The coefficient law rho(P), eps(P, H) of this contact.
-    #[inline]
-    pub fn coefficients(&self) -> Coefficients {
-        Coefficients::new(self.fluid, self.lambda, self.dry)
+        Physics::of(&case.models, v.lambda, v.alpha_bar)
     }
 }
 

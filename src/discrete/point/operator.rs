@@ -15,20 +15,17 @@
 //! A dry contact replaces L by -H.
 
 use crate::discrete::level::{deref_nodes, NodeFields};
-use crate::discrete::physics::{Coefficients, Fluid};
+use crate::discrete::physics::Physics;
 use crate::discrete::point::kernel::{direct_product2d, kernel2d, DeformPlan2d};
 use crate::discrete::stencil::{flux_difference, upwind, wedge};
-use crate::model::case::{Elasticity, PointCase};
+use crate::model::case::PointCase;
 
-/// The physics of a point case in Hertzian scaling, shared by all levels.
+/// The physics of a point case in Hertzian scaling, shared by all levels: the physics every
+/// contact has ([`Physics`], which it dereferences to) and the ellipse's.
 #[derive(Clone, Copy, Debug)]
 pub struct PointPhysics {
-    pub lambda: f64,
-    /// Viscosity and density models, alpha_bar.
-    pub fluid: Fluid,
-    pub elastic: bool,
-    pub dry: bool,
-    pub second_order: bool,
+    /// What every contact has.
+    pub common: Physics,
     /// D = Rx/Ry: the curvature of the gap across the rolling direction.
     pub d: f64,
     /// k = a/b.
@@ -42,14 +39,11 @@ pub struct PointPhysics {
 }
 
 impl PointPhysics {
+    /// The physics of a point case.
     pub fn from_case(case: &PointCase) -> Self {
         let v = case.venner();
         PointPhysics {
-            lambda: v.lambda,
-            fluid: Fluid::new(&case.models, v.alpha_bar),
-            elastic: case.models.elasticity == Elasticity::Elastic,
-            dry: false,
-            second_order: true,
+            common: Physics::of(&case.models, v.lambda, v.alpha_bar),
             d: case.d,
             k: v.k,
             coef: v.film_coef,
@@ -57,11 +51,18 @@ impl PointPhysics {
             h_scale: v.h_scale,
         }
     }
+}
 
-    /// The coefficient law rho(P), eps(P, H) of this contact.
-    #[inline]
-    pub fn coefficients(&self) -> Coefficients {
-        Coefficients::new(self.fluid, self.lambda, self.dry)
+impl std::ops::Deref for PointPhysics {
+    type Target = Physics;
+    fn deref(&self) -> &Physics {
+        &self.common
+    }
+}
+
+impl std::ops::DerefMut for PointPhysics {
+    fn deref_mut(&mut self) -> &mut Physics {
+        &mut self.common
     }
 }
 
@@ -233,11 +234,13 @@ mod tests {
         // P = exp(-X^2 - Y^2), H = 1 + X^2/2 + Y^2/2 (rigid, incompressible, lambda = 1, D = 1):
         // L = div(H^3 grad P) - dH/dX exactly; the discrete operator converges at second order.
         let phys = PointPhysics {
-            lambda: 1.0,
-            fluid: isoviscous_incompressible(),
-            elastic: false,
-            dry: false,
-            second_order: true,
+            common: Physics {
+                lambda: 1.0,
+                fluid: isoviscous_incompressible(),
+                elastic: false,
+                dry: false,
+                second_order: true,
+            },
             d: 1.0,
             k: 1.0,
             coef: 0.0,

@@ -18,8 +18,8 @@
 use crate::discrete::line::domain::{DomainParams, LineDomain};
 use crate::discrete::line::operator::{LineLevel, LinePhysics};
 use crate::model::case::LineCase;
-use crate::solve::line::relax::{relax, LineScratch, RelaxParams};
-use crate::solve::multilevel::{grid_level_common, Contact, DomainRule, GridLevel, Multigrid};
+use crate::solve::line::relax::{relax, LineScratch};
+use crate::solve::multilevel::{grid_level, Contact, DomainRule, Multigrid};
 use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
 pub use crate::solve::params::CycleType;
 use crate::solve::params::{FinerCoarsest, MgParams};
@@ -30,27 +30,7 @@ pub type LineMgParams = MgParams<DomainParams>;
 
 impl Default for MgParams<DomainParams> {
     fn default() -> Self {
-        MgParams {
-            grid: 2049,
-            cycle: CycleType::V,
-            pre: 2,
-            post: 1,
-            fmg_cycles: 2,
-            max_cycles: 60,
-            relax: RelaxParams::default(),
-            load_factor: None,
-            coarse_sweeps: 20,
-            tol_load: 5e-7,
-            tol_h: 1e-6,
-            tol_load_fmg: 1e-4,
-            domain: DomainParams::default(),
-            coarse_intervals: None,
-            second_order: true,
-            newton_max_iter: 40,
-            direct_deformation: false,
-            parallel: false,
-            observer: None,
-        }
+        MgParams::defaults(DomainParams::default(), 2049, 60, 5e-7, 1e-6)
     }
 }
 
@@ -65,6 +45,8 @@ impl FinerCoarsest for DomainParams {
         self.coarse_lh *= 0.5;
     }
 }
+
+grid_level!(LineLevel, LinePhysics);
 
 /// A solved neighbour's pressure profile (Hertzian X, P) and the central film (Hertzian units)
 /// this case is expected to have, to start the finest-level cycles from.
@@ -137,119 +119,6 @@ impl Multigrid<LineContact> {
         self.extra.guess = Some(guess);
     }
 
-    /// Put the guess on level `l`: P interpolated onto its grid, H0 so that the central film is
-    /// the guess's.
-    fn put_guess(&mut self, l: usize) -> bool {
-        let Some(g) = self.extra.guess.take() else {
-            return false;
-        };
-        let lv = &mut self.levels[l];
-        let n = lv.len();
-        for i in 0..n {
-            lv.p[i] = if i == 0 || i + 1 == n {
-                0.0
-            } else {
-                g.p_at(lv.x[i])
-            };
-        }
-        lv.f.fill(0.0);
-        lv.frozen.fill(false);
-        lv.g = PI / 2.0;
-        lv.update_film(&self.phys, 0.0);
-        self.h0 = g.centre_film - lv.film[self.domain.centre_index(n - 1)];
-        lv.update_film(&self.phys, self.h0);
-        true
-    }
-
-    /// Start on the coarsest level: the Hertz pressure for elastic surfaces; for rigid ones a
-    /// parabola over [-2.5, 0.5] l_h (the Martin pressure's extent, l_h = sqrt(2 H_e)); in the dry
-    /// limit a wider parabola than Hertz, so that the solver has to find Hertz. All carry the load
-    /// pi/2. H0 is chosen so that the central film equals the estimate H_e.
-    fn start(&mut self) {
-        let dry = self.phys.dry;
-        let rigid = !self.phys.elastic;
-        let h_e = self.domain.h_estimate;
-        let half = 1.5 * (2.0 * h_e).sqrt();
-        let lv = &mut self.levels[0];
-        for i in 0..lv.len() {
-            let x = lv.x[i];
-            lv.p[i] = if dry {
-                PI / 4.0 * (1.0 - x * x / 2.25).max(0.0)
-            } else if rigid {
-                let s = (x + half / 1.5) / half;
-                3.0 * PI / (8.0 * half) * (1.0 - s * s).max(0.0)
-            } else {
-                (1.0 - x * x).max(0.0).sqrt()
-            };
-        }
-        let n = lv.len();
-        lv.p[0] = 0.0;
-        lv.p[n - 1] = 0.0;
-        lv.update_film(&self.phys, 0.0);
-        let ic = self.domain.centre_index(n - 1);
-        self.h0 = h_e - lv.film[ic];
-        lv.update_film(&self.phys, self.h0);
-    }
-
-    /// Full Newton (with the load equation) on the coarsest level from the initial guess, then the
-    /// slope dG/dH0 from a second fixed-H0 solve at a perturbed H0.
-    fn coarse_start(&mut self, with_slope: bool) -> NewtonOutcome {
-        let lv = &mut self.levels[0];
-        lv.f.fill(0.0);
-        lv.g = PI / 2.0;
-        let np = NewtonParams {
-            max_iter: self.params.newton_max_iter,
-            ..NewtonParams::default()
-        };
-        let out = newton_solve(lv, &self.phys, &mut self.h0, &np);
-        let first = out;
-        self.work_units += (out.iterations * lv.len()) as f64 / self.extra.fine_intervals as f64;
-        if !(out.converged || out.residual < 1e-6) {
-            // Relaxation with a gentle H0 update (the classic coarse-grid load balance).
-            lv.update_film(&self.phys, self.h0);
-            for _ in 0..20 * self.params.coarse_sweeps {
-                self.relax_level(0);
-                let lv = &mut self.levels[0];
-                self.h0 += 0.02 * (lv.load() - lv.g);
-                lv.update_film(&self.phys, self.h0);
-            }
-        }
-        let lv = &mut self.levels[0];
-        if !with_slope {
-            return out;
-        }
-        let ic = self.domain.centre_index(lv.len() - 1);
-        let dh = 1e-3 * lv.film[ic].abs().max(1e-3 * self.domain.h_estimate);
-        let fallback = -lv.g / self.domain.h_estimate;
-        self.load_slope = load_slope(lv, &self.phys, self.h0, dh, fallback).0;
-        first
-    }
-
-    /// Cubic interpolation of level l-1's pressure as the start on level l (FMG).
-    fn interpolate(&mut self, l: usize) {
-        let (lo, hi) = self.levels.split_at_mut(l);
-        let (coarse, fine) = (&lo[l - 1], &mut hi[0]);
-        let nc = coarse.len();
-        let pc = &coarse.p;
-        for i in 0..nc {
-            fine.p[2 * i] = pc[i];
-            if i + 1 < nc {
-                fine.p[2 * i + 1] = if i >= 1 && i + 2 < nc {
-                    (-pc[i - 1] + 9.0 * pc[i] + 9.0 * pc[i + 1] - pc[i + 2]) / 16.0
-                } else {
-                    0.5 * (pc[i] + pc[i + 1])
-                };
-            }
-        }
-        for p in fine.p.iter_mut() {
-            *p = p.max(0.0);
-        }
-        fine.f.fill(0.0);
-        fine.frozen.fill(false);
-        fine.g = PI / 2.0;
-        fine.update_film(&self.phys, self.h0);
-    }
-
     /// H_Moes / H_Venner.
     pub fn h_scale(&self) -> f64 {
         8.0 * PI.recip() * (3.0 * PI * PI / (8.0 * self.phys.lambda)).sqrt()
@@ -272,16 +141,10 @@ pub struct LineExtra {
     scratch: LineScratch,
 }
 
-impl GridLevel for LineLevel {
-    grid_level_common!(LinePhysics);
-}
-
 impl Contact for LineContact {
     type Level = LineLevel;
     type Domain = LineDomain;
     type Extra = LineExtra;
-    const COARSE_BUDGET_GROWTH: usize = 1;
-
     fn sweep(mg: &mut LineMultigrid, l: usize) -> f64 {
         let cost = (mg.levels[l].len() - 1) as f64 / mg.extra.fine_intervals as f64;
         let scratch = &mut mg.extra.scratch;
@@ -345,16 +208,115 @@ impl Contact for LineContact {
     fn h_estimate(mg: &LineMultigrid) -> f64 {
         mg.domain.h_estimate
     }
+    /// Start on the coarsest level: the Hertz pressure for elastic surfaces; for rigid ones a
+    /// parabola over [-2.5, 0.5] l_h (the Martin pressure's extent, l_h = sqrt(2 H_e)); in the dry
+    /// limit a wider parabola than Hertz, so that the solver has to find Hertz. All carry the load
+    /// pi/2. H0 is chosen so that the central film equals the estimate H_e.
     fn initialise(mg: &mut LineMultigrid) {
-        mg.start()
+        let dry = mg.phys.dry;
+        let rigid = !mg.phys.elastic;
+        let h_e = mg.domain.h_estimate;
+        let half = 1.5 * (2.0 * h_e).sqrt();
+        let lv = &mut mg.levels[0];
+        for i in 0..lv.len() {
+            let x = lv.x[i];
+            lv.p[i] = if dry {
+                PI / 4.0 * (1.0 - x * x / 2.25).max(0.0)
+            } else if rigid {
+                let s = (x + half / 1.5) / half;
+                3.0 * PI / (8.0 * half) * (1.0 - s * s).max(0.0)
+            } else {
+                (1.0 - x * x).max(0.0).sqrt()
+            };
+        }
+        let n = lv.len();
+        lv.p[0] = 0.0;
+        lv.p[n - 1] = 0.0;
+        lv.update_film(&mg.phys, 0.0);
+        let ic = mg.domain.centre_index(n - 1);
+        mg.h0 = h_e - lv.film[ic];
+        lv.update_film(&mg.phys, mg.h0);
     }
+    /// Full Newton (with the load equation) on the coarsest level from the initial guess, then the
+    /// slope dG/dH0 from a second fixed-H0 solve at a perturbed H0.
     fn start_coarse(mg: &mut LineMultigrid, with_slope: bool) -> NewtonOutcome {
-        mg.coarse_start(with_slope)
+        let lv = &mut mg.levels[0];
+        lv.f.fill(0.0);
+        lv.g = PI / 2.0;
+        let np = NewtonParams {
+            max_iter: mg.params.newton_max_iter,
+            ..NewtonParams::default()
+        };
+        let out = newton_solve(lv, &mg.phys, &mut mg.h0, &np);
+        let first = out;
+        mg.work_units += (out.iterations * lv.len()) as f64 / mg.extra.fine_intervals as f64;
+        if !(out.converged || out.residual < 1e-6) {
+            // Relaxation with a gentle H0 update (the classic coarse-grid load balance).
+            lv.update_film(&mg.phys, mg.h0);
+            for _ in 0..20 * mg.params.coarse_sweeps {
+                mg.relax_level(0);
+                let lv = &mut mg.levels[0];
+                mg.h0 += 0.02 * (lv.load() - lv.g);
+                lv.update_film(&mg.phys, mg.h0);
+            }
+        }
+        let lv = &mut mg.levels[0];
+        if !with_slope {
+            return out;
+        }
+        let ic = mg.domain.centre_index(lv.len() - 1);
+        let dh = 1e-3 * lv.film[ic].abs().max(1e-3 * mg.domain.h_estimate);
+        let fallback = -lv.g / mg.domain.h_estimate;
+        mg.load_slope = load_slope(lv, &mg.phys, mg.h0, dh, fallback).0;
+        first
     }
+    /// Cubic interpolation of level l-1's pressure as the start on level l (FMG).
     fn fmg_interpolate(mg: &mut LineMultigrid, l: usize) {
-        mg.interpolate(l)
+        let (lo, hi) = mg.levels.split_at_mut(l);
+        let (coarse, fine) = (&lo[l - 1], &mut hi[0]);
+        let nc = coarse.len();
+        let pc = &coarse.p;
+        for i in 0..nc {
+            fine.p[2 * i] = pc[i];
+            if i + 1 < nc {
+                fine.p[2 * i + 1] = if i >= 1 && i + 2 < nc {
+                    (-pc[i - 1] + 9.0 * pc[i] + 9.0 * pc[i + 1] - pc[i + 2]) / 16.0
+                } else {
+                    0.5 * (pc[i] + pc[i + 1])
+                };
+            }
+        }
+        for p in fine.p.iter_mut() {
+            *p = p.max(0.0);
+        }
+        fine.f.fill(0.0);
+        fine.frozen.fill(false);
+        fine.g = PI / 2.0;
+        fine.update_film(&mg.phys, mg.h0);
     }
+    /// Put the guess on level `l`: P interpolated onto its grid, H0 so that the central film is
+    /// the guess's.
     fn install_guess(mg: &mut LineMultigrid, l: usize) -> bool {
-        mg.put_guess(l)
+        let Some(g) = mg.extra.guess.take() else {
+            return false;
+        };
+        let lv = &mut mg.levels[l];
+        let n = lv.len();
+        for i in 0..n {
+            lv.p[i] = if i == 0 || i + 1 == n {
+                0.0
+            } else {
+                g.p_at(lv.x[i])
+            };
+        }
+        lv.f.fill(0.0);
+        lv.frozen.fill(false);
+        lv.g = PI / 2.0;
+        lv.update_film(&mg.phys, 0.0);
+        mg.h0 = g.centre_film - lv.film[mg.domain.centre_index(n - 1)];
+        lv.update_film(&mg.phys, mg.h0);
+        true
     }
+
+    const COARSE_BUDGET_GROWTH: usize = 1;
 }

@@ -15,10 +15,9 @@ use crate::discrete::point::domain::PointDomain;
 use crate::discrete::point::domain::PointDomainParams;
 use crate::discrete::point::operator::{PointLevel, PointPhysics};
 use crate::model::case::{Elasticity, PointCase};
-use crate::solve::line::relax::RelaxParams;
-use crate::solve::multilevel::{grid_level_common, Contact, DomainRule, GridLevel, Multigrid};
+use crate::solve::multilevel::{grid_level, Contact, DomainRule, Multigrid};
 use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
-use crate::solve::params::{CycleType, FinerCoarsest, MgParams};
+use crate::solve::params::{FinerCoarsest, MgParams};
 use crate::solve::point::relax::{point_line_sweep, PointScratch};
 
 /// Multigrid settings of a point solve.
@@ -26,32 +25,8 @@ pub type PointMgParams = MgParams<PointDomainParams>;
 
 impl Default for MgParams<PointDomainParams> {
     fn default() -> Self {
-        MgParams {
-            grid: 129,
-            cycle: CycleType::V,
-            pre: 2,
-            post: 1,
-            fmg_cycles: 2,
-            max_cycles: 40,
-            tol_load: 1e-6,
-            tol_h: 1e-5,
-            tol_load_fmg: 1e-4,
-            load_factor: None,
-            relax: RelaxParams::default(),
-            coarse_sweeps: 20,
-            newton_max_iter: 40,
-            second_order: true,
-            domain: PointDomainParams::default(),
-            parallel: false,
-            direct_deformation: false,
-            coarse_intervals: None,
-            observer: None,
-        }
+        MgParams::defaults(PointDomainParams::default(), 129, 40, 1e-6, 1e-5)
     }
-}
-
-impl DomainRule for PointDomain {
-    type Params = PointDomainParams;
 }
 
 impl FinerCoarsest for PointDomainParams {
@@ -60,12 +35,12 @@ impl FinerCoarsest for PointDomainParams {
     fn finer_coarsest(&mut self) {}
 }
 
+grid_level!(PointLevel, PointPhysics);
+
 impl Multigrid<PointContact> {
     pub fn new(case: &PointCase, params: &PointMgParams) -> Self {
-        let phys = PointPhysics {
-            second_order: params.second_order,
-            ..PointPhysics::from_case(case)
-        };
+        let mut phys = PointPhysics::from_case(case);
+        phys.second_order = params.second_order;
         Self::with_physics(case, phys, params)
     }
 
@@ -117,121 +92,7 @@ fn mid(v: &[f64], i: usize) -> f64 {
     }
 }
 
-impl Multigrid<PointContact> {
-    /// The Hertz ellipsoid sqrt(1 - X^2 - (Y/k)^2) (load 2 pi k/3) for elastic surfaces (in the dry
-    /// limit one 1.5 times wider with the same load, so the solver has to find Hertz); for rigid
-    /// ones, and where the rigid-isoviscous weight exceeds 1/2, a paraboloid of radius 1.5 l_h
-    /// centred 0.5 l_h upstream, with the same load; H0 so that the central film equals the
-    /// estimate.
-    fn start(&mut self) {
-        let h_e = self.domain.h_estimate;
-        // Where the rigid-isoviscous regime dominates, the Hertz pressure is far from the answer
-        // (and Newton from it can land on a spurious solution with a negative film).
-        let rigid = !self.phys.elastic || self.domain.rigid_weight > 0.5;
-        let dry = self.phys.dry;
-        let (k, load) = (self.phys.k, self.phys.load);
-        let lh = (2.0 * h_e).sqrt();
-        let lv = &mut self.levels[0];
-        for j in 0..lv.ny {
-            for i in 0..lv.nx {
-                let c = lv.at(i, j);
-                lv.p[c] = if lv.boundary(i, j) {
-                    0.0
-                } else if dry {
-                    // Wider than Hertz (the solver has to find Hertz), same load.
-                    let (x, y) = (lv.x[i] / 1.5, lv.y[j] / (1.5 * k));
-                    (1.0 - x * x - y * y).max(0.0).sqrt() / 2.25
-                } else if rigid {
-                    let r = 1.5 * lh;
-                    let s2 = ((lv.x[i] + 0.5 * lh).powi(2) + lv.y[j].powi(2)) / (r * r);
-                    // integral of (1 - s^2) over the disc of radius r: pi r^2 / 2.
-                    load * 2.0 / (std::f64::consts::PI * r * r) * (1.0 - s2).max(0.0)
-                } else {
-                    (1.0 - lv.x[i].powi(2) - (lv.y[j] / k).powi(2))
-                        .max(0.0)
-                        .sqrt()
-                };
-            }
-        }
-        lv.update_film(&self.phys, 0.0);
-        let ic = self.centre_index(0);
-        let lv = &mut self.levels[0];
-        self.h0 = h_e - lv.film[ic];
-        lv.update_film(&self.phys, self.h0);
-    }
-
-    fn coarse_start(&mut self, with_slope: bool) -> NewtonOutcome {
-        let lv = &mut self.levels[0];
-        lv.f.fill(0.0);
-        lv.g = self.phys.load;
-        let np = NewtonParams {
-            max_iter: self.params.newton_max_iter,
-            ..NewtonParams::default()
-        };
-        let out = newton_solve(lv, &self.phys, &mut self.h0, &np);
-        self.work_units += PointContact::newton_cost(self, out.iterations);
-        if !(out.converged || out.residual < 1e-6) {
-            self.levels[0].update_film(&self.phys, self.h0);
-            for _ in 0..20 * self.params.coarse_sweeps {
-                self.relax_level(0);
-                let lv = &mut self.levels[0];
-                self.h0 += 0.02 * (lv.load() - lv.g);
-                lv.update_film(&self.phys, self.h0);
-            }
-        }
-        if !with_slope {
-            return out;
-        }
-        let ic = self.centre_index(0);
-        let lv = &mut self.levels[0];
-        let dh = 1e-3 * lv.film[ic].abs().max(1e-3 * self.domain.h_estimate);
-        let fallback = -lv.g / self.domain.h_estimate;
-        let (slope, iterations) = load_slope(lv, &self.phys, self.h0, dh, fallback);
-        self.load_slope = slope;
-        self.work_units += PointContact::newton_cost(self, iterations);
-        out
-    }
-
-    fn interpolate(&mut self, l: usize) {
-        let (lo, hi) = self.levels.split_at_mut(l);
-        let (coarse, fine) = (&lo[l - 1], &mut hi[0]);
-        let (cnx, cny, fnx) = (coarse.nx, coarse.ny, fine.nx);
-        // Even fine rows from the coarse rows (cubic along x), then odd rows along y.
-        for jc in 0..cny {
-            let row = &coarse.p[jc * cnx..(jc + 1) * cnx];
-            let base = 2 * jc * fnx;
-            for ic in 0..cnx {
-                fine.p[base + 2 * ic] = row[ic];
-                if ic + 1 < cnx {
-                    fine.p[base + 2 * ic + 1] = mid(row, ic);
-                }
-            }
-        }
-        let mut col = vec![0.0; cny];
-        for i in 0..fnx {
-            for (jc, v) in col.iter_mut().enumerate() {
-                *v = fine.p[2 * jc * fnx + i];
-            }
-            for jc in 0..cny - 1 {
-                fine.p[(2 * jc + 1) * fnx + i] = mid(&col, jc);
-            }
-        }
-        for j in 0..fine.ny {
-            for i in 0..fnx {
-                let c = fine.at(i, j);
-                fine.p[c] = if fine.boundary(i, j) {
-                    0.0
-                } else {
-                    fine.p[c].max(0.0)
-                };
-            }
-        }
-        fine.f.fill(0.0);
-        fine.frozen.fill(false);
-        fine.g = self.phys.load;
-        fine.update_film(&self.phys, self.h0);
-    }
-}
+impl Multigrid<PointContact> {}
 
 /// The point contact's part of [`Multigrid`] (see [`crate::solve::multilevel::Contact`]).
 pub struct PointContact;
@@ -260,16 +121,14 @@ fn full_weight(fine: &PointLevel, r: &[f64], i: usize, j: usize) -> f64 {
         / 16.0
 }
 
-impl GridLevel for PointLevel {
-    grid_level_common!(PointPhysics);
+impl DomainRule for PointDomain {
+    type Params = PointDomainParams;
 }
 
 impl Contact for PointContact {
     type Level = PointLevel;
     type Domain = PointDomain;
     type Extra = PointExtra;
-    const COARSE_BUDGET_GROWTH: usize = 2;
-
     fn sweep(mg: &mut PointMultigrid, l: usize) -> f64 {
         let lv = &mut mg.levels[l];
         // Zebra rows on the rayon pool only where a level has enough rows to share.
@@ -356,13 +215,117 @@ impl Contact for PointContact {
     fn h_estimate(mg: &PointMultigrid) -> f64 {
         mg.domain.h_estimate
     }
+    /// The Hertz ellipsoid sqrt(1 - X^2 - (Y/k)^2) (load 2 pi k/3) for elastic surfaces (in the dry
+    /// limit one 1.5 times wider with the same load, so the solver has to find Hertz); for rigid
+    /// ones, and where the rigid-isoviscous weight exceeds 1/2, a paraboloid of radius 1.5 l_h
+    /// centred 0.5 l_h upstream, with the same load; H0 so that the central film equals the
+    /// estimate.
     fn initialise(mg: &mut PointMultigrid) {
-        mg.start()
+        let h_e = mg.domain.h_estimate;
+        // Where the rigid-isoviscous regime dominates, the Hertz pressure is far from the answer
+        // (and Newton from it can land on a spurious solution with a negative film).
+        let rigid = !mg.phys.elastic || mg.domain.rigid_weight > 0.5;
+        let dry = mg.phys.dry;
+        let (k, load) = (mg.phys.k, mg.phys.load);
+        let lh = (2.0 * h_e).sqrt();
+        let lv = &mut mg.levels[0];
+        for j in 0..lv.ny {
+            for i in 0..lv.nx {
+                let c = lv.at(i, j);
+                lv.p[c] = if lv.boundary(i, j) {
+                    0.0
+                } else if dry {
+                    // Wider than Hertz (the solver has to find Hertz), same load.
+                    let (x, y) = (lv.x[i] / 1.5, lv.y[j] / (1.5 * k));
+                    (1.0 - x * x - y * y).max(0.0).sqrt() / 2.25
+                } else if rigid {
+                    let r = 1.5 * lh;
+                    let s2 = ((lv.x[i] + 0.5 * lh).powi(2) + lv.y[j].powi(2)) / (r * r);
+                    // integral of (1 - s^2) over the disc of radius r: pi r^2 / 2.
+                    load * 2.0 / (std::f64::consts::PI * r * r) * (1.0 - s2).max(0.0)
+                } else {
+                    (1.0 - lv.x[i].powi(2) - (lv.y[j] / k).powi(2))
+                        .max(0.0)
+                        .sqrt()
+                };
+            }
+        }
+        lv.update_film(&mg.phys, 0.0);
+        let ic = mg.centre_index(0);
+        let lv = &mut mg.levels[0];
+        mg.h0 = h_e - lv.film[ic];
+        lv.update_film(&mg.phys, mg.h0);
     }
     fn start_coarse(mg: &mut PointMultigrid, with_slope: bool) -> NewtonOutcome {
-        mg.coarse_start(with_slope)
+        let lv = &mut mg.levels[0];
+        lv.f.fill(0.0);
+        lv.g = mg.phys.load;
+        let np = NewtonParams {
+            max_iter: mg.params.newton_max_iter,
+            ..NewtonParams::default()
+        };
+        let out = newton_solve(lv, &mg.phys, &mut mg.h0, &np);
+        mg.work_units += PointContact::newton_cost(mg, out.iterations);
+        if !(out.converged || out.residual < 1e-6) {
+            mg.levels[0].update_film(&mg.phys, mg.h0);
+            for _ in 0..20 * mg.params.coarse_sweeps {
+                mg.relax_level(0);
+                let lv = &mut mg.levels[0];
+                mg.h0 += 0.02 * (lv.load() - lv.g);
+                lv.update_film(&mg.phys, mg.h0);
+            }
+        }
+        if !with_slope {
+            return out;
+        }
+        let ic = mg.centre_index(0);
+        let lv = &mut mg.levels[0];
+        let dh = 1e-3 * lv.film[ic].abs().max(1e-3 * mg.domain.h_estimate);
+        let fallback = -lv.g / mg.domain.h_estimate;
+        let (slope, iterations) = load_slope(lv, &mg.phys, mg.h0, dh, fallback);
+        mg.load_slope = slope;
+        mg.work_units += PointContact::newton_cost(mg, iterations);
+        out
     }
     fn fmg_interpolate(mg: &mut PointMultigrid, l: usize) {
-        mg.interpolate(l)
+        let (lo, hi) = mg.levels.split_at_mut(l);
+        let (coarse, fine) = (&lo[l - 1], &mut hi[0]);
+        let (cnx, cny, fnx) = (coarse.nx, coarse.ny, fine.nx);
+        // Even fine rows from the coarse rows (cubic along x), then odd rows along y.
+        for jc in 0..cny {
+            let row = &coarse.p[jc * cnx..(jc + 1) * cnx];
+            let base = 2 * jc * fnx;
+            for ic in 0..cnx {
+                fine.p[base + 2 * ic] = row[ic];
+                if ic + 1 < cnx {
+                    fine.p[base + 2 * ic + 1] = mid(row, ic);
+                }
+            }
+        }
+        let mut col = vec![0.0; cny];
+        for i in 0..fnx {
+            for (jc, v) in col.iter_mut().enumerate() {
+                *v = fine.p[2 * jc * fnx + i];
+            }
+            for jc in 0..cny - 1 {
+                fine.p[(2 * jc + 1) * fnx + i] = mid(&col, jc);
+            }
+        }
+        for j in 0..fine.ny {
+            for i in 0..fnx {
+                let c = fine.at(i, j);
+                fine.p[c] = if fine.boundary(i, j) {
+                    0.0
+                } else {
+                    fine.p[c].max(0.0)
+                };
+            }
+        }
+        fine.f.fill(0.0);
+        fine.frozen.fill(false);
+        fine.g = mg.phys.load;
+        fine.update_film(&mg.phys, mg.h0);
     }
+
+    const COARSE_BUDGET_GROWTH: usize = 2;
 }
