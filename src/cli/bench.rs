@@ -111,7 +111,8 @@ pub fn run_bench(a: &BenchArgs) -> Result<i32, InputError> {
             )
         })
         .collect();
-    bench_charts::err_vs_time(&a.out.join("error_vs_time.png"), &panels).map_err(InputError)?;
+    bench_charts::err_vs_time(&a.out.join("error_vs_time.png"), &panels)
+        .map_err(|e| InputError(e.to_string()))?;
     let mut md = String::from("# ehlmap bench (line and point contacts, one thread)\n\n");
     for r in &refs {
         let slopes = bench_charts::time_vs_n(
@@ -122,7 +123,7 @@ pub fn run_bench(a: &BenchArgs) -> Result<i32, InputError> {
             &r.case,
             &method_series(&rows, &r.case, |x| (x.grid as f64, x.wall_s)),
         )
-        .map_err(InputError)?;
+        .map_err(|e| InputError(e.to_string()))?;
         let _ = writeln!(
             md,
             "{}: reference H_c {:.6}, H_min {:.6}; time ~ N^slope: {}\n",
@@ -285,7 +286,7 @@ pub fn run_stability(a: &StabilityArgs) -> Result<i32, InputError> {
         .collect();
     let map: Vec<MapCell> = cells.iter().map(map_cell).collect();
     bench_charts::stability_chart(&a.out.join("stability.png"), &names, &map, &ms, &ls)
-        .map_err(InputError)?;
+        .map_err(|e| InputError(e.to_string()))?;
     let mut md = String::from("| method | converged | of |\n|---|---|---|\n");
     for (n, ok, all) in stability::summary(&cells) {
         let _ = writeln!(md, "| {n} | {ok} | {all} |");

@@ -3,6 +3,7 @@
 
 use crate::cli::error::InputError;
 use crate::cli::output::report_plot;
+use ehlmap::render::style::RenderError;
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
@@ -41,7 +42,10 @@ pub fn run_case(a: &CaseArgs) -> Result<i32, InputError> {
             Some(ehlmap::cases::CaseFields::Point(f)) => {
                 ehlmap::render::pictures::draw_point(dir, &stem, f, o)
             }
-            None => Err(format!("the solve returned no fields ({})", o.status)),
+            None => Err(RenderError(format!(
+                "the solve returned no fields ({})",
+                o.status
+            ))),
         };
         report_plot(files);
     }

@@ -8,6 +8,7 @@ use crate::cli::output::report_plot;
 use clap::ValueEnum;
 use ehlmap::model::case::{Case, Elasticity, LineCase, Models, ParamError, PointCase};
 use ehlmap::model::lubricant::{Density, Viscosity};
+use ehlmap::render::style::RenderError;
 use ehlmap::solve::line::multigrid::CycleType;
 use ehlmap::solve::params::Method;
 use ehlmap::solve::solution::{ModelUsed, Outputs, Solution};
@@ -380,10 +381,10 @@ fn plot_arg(dir: &std::path::Path, case: &Case, s: &Solution) {
     report_plot(match (&s.profile, &s.fields) {
         (Some(prof), _) => ehlmap::render::pictures::draw_line(dir, &stem, prof, &s.outputs),
         (_, Some(f)) => ehlmap::render::pictures::draw_point(dir, &stem, f, &s.outputs),
-        _ => Err(format!(
+        _ => Err(RenderError(format!(
             "the solve returned no profile or fields ({})",
             s.outputs.status
-        )),
+        ))),
     });
 }
 

@@ -69,7 +69,7 @@ fn env_usize(name: &str) -> Result<Option<usize>, InputError> {
 /// The shard from `--shard`, else from the Slurm array variables, else the whole sweep.
 pub fn resolve_shard(arg: Option<&str>) -> Result<Shard, InputError> {
     if let Some(s) = arg {
-        return Shard::parse(s).map_err(InputError);
+        return Shard::parse(s).map_err(|e| InputError(e.to_string()));
     }
     let Some(id) = env_usize("SLURM_ARRAY_TASK_ID")? else {
         return Ok(Shard::WHOLE);

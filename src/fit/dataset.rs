@@ -17,6 +17,7 @@
 //! the report).
 
 use crate::discrete::point::domain::PointDomain;
+use crate::fit::error::FitError;
 use crate::model::case::{Contact, PointCase};
 use crate::solve::film::Film;
 use crate::solve::solution::ModelUsed;
@@ -108,14 +109,17 @@ pub struct FitInput {
 ///
 /// Errors: a path that is not a directory, or a dataset that cannot be read (the message names
 /// it).
-pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, String> {
+pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, FitError> {
     let mut by_id = BTreeMap::new();
     let mut duplicates = 0;
     for dir in dirs {
         if !dir.is_dir() {
-            return Err(format!("{}: not a dataset directory", dir.display()));
+            return Err(FitError::Dataset(format!(
+                "{}: not a dataset directory",
+                dir.display()
+            )));
         }
-        for row in read_dataset(dir).map_err(|e| e.to_string())? {
+        for row in read_dataset(dir).map_err(|e| FitError::Dataset(e.to_string()))? {
             if by_id.contains_key(&row.case_id) {
                 duplicates += 1;
             } else {

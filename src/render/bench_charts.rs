@@ -2,7 +2,7 @@
 //! stability map (each method's outcome over an (M, L) map). They take plain series, not the
 //! bench's rows.
 
-use crate::render::style::{e, ensure_font, COLORS};
+use crate::render::style::{e, ensure_font, RenderError, COLORS};
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -17,7 +17,7 @@ pub struct Series {
 
 /// The error of H_c against wall time, one panel per case (`panels`: the case's name and one
 /// series per method), log-log.
-pub fn err_vs_time(path: &Path, panels: &[(String, Vec<Series>)]) -> Result<(), String> {
+pub fn err_vs_time(path: &Path, panels: &[(String, Vec<Series>)]) -> Result<(), RenderError> {
     ensure_font();
     let root = BitMapBackend::new(path, (560 * panels.len() as u32, 480)).into_drawing_area();
     root.fill(&WHITE).map_err(e)?;
@@ -58,7 +58,7 @@ fn draw_series(
     pts: &[(f64, f64)],
     label: &str,
     c: RGBColor,
-) -> Result<(), String> {
+) -> Result<(), RenderError> {
     ch.draw_series(LineSeries::new(pts.to_vec(), c.stroke_width(2)))
         .map_err(e)?
         .label(label)
@@ -68,7 +68,7 @@ fn draw_series(
     Ok(())
 }
 
-fn legend(ch: &mut LogChart) -> Result<(), String> {
+fn legend(ch: &mut LogChart) -> Result<(), RenderError> {
     ch.configure_series_labels()
         .background_style(WHITE.mix(0.8))
         .border_style(BLACK)
@@ -94,7 +94,11 @@ pub fn slope(pts: &[(f64, f64)]) -> f64 {
 
 /// Wall time against grid points, one series per method, log-log; returns each series' fitted
 /// slope (time ~ N^slope), also shown in the legend.
-pub fn time_vs_n(path: &Path, case: &str, series: &[Series]) -> Result<Vec<(String, f64)>, String> {
+pub fn time_vs_n(
+    path: &Path,
+    case: &str,
+    series: &[Series],
+) -> Result<Vec<(String, f64)>, RenderError> {
     ensure_font();
     let root = BitMapBackend::new(path, (760, 520)).into_drawing_area();
     root.fill(&WHITE).map_err(e)?;
@@ -167,7 +171,7 @@ pub fn stability_chart(
     cells: &[MapCell],
     ms: &[f64],
     ls: &[f64],
-) -> Result<(), String> {
+) -> Result<(), RenderError> {
     ensure_font();
     let root = BitMapBackend::new(path, (1000, 760)).into_drawing_area();
     root.fill(&WHITE).map_err(e)?;

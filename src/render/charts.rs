@@ -8,7 +8,7 @@
 use crate::render::charts_map::{error_map, regime_map};
 pub(crate) use crate::render::style::both;
 pub use crate::render::style::ensure_font;
-use crate::render::style::{e, log_grid, Ctx, Res};
+use crate::render::style::{e, log_grid, Ctx, RenderError, Res};
 use crate::report::{Film, FitPoint, FittedModel};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -202,7 +202,7 @@ pub fn write_charts(
     prefix: &str,
     pts: &[FitPoint],
     model: &FittedModel,
-) -> Result<Vec<String>, String> {
+) -> Result<Vec<String>, RenderError> {
     // The charts show H_c: the cases whose H_c is within the fit's error limit.
     let pts: &[FitPoint] = &pts
         .iter()

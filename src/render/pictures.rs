@@ -7,14 +7,12 @@
 //!   from H_min to 2.5 H_c, with the Hertz ellipse `X^2 + (Y/k)^2 = 1`, H_c and H_min marked;
 //!   and `STEM-pressure`: a filled colour map of P/P_max (blue 0 to red 1) with the ellipse.
 
-use crate::render::style::e;
+use crate::render::style::{e, RenderError, Res};
 use crate::solve::point::PointFields;
 use crate::solve::solution::{Outputs, Profile};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
-
-type Res = Result<(), String>;
 
 /// Draw with `f` on a PNG and an SVG backend: `dir/stem.png`, `dir/stem.svg`.
 fn both(
@@ -23,7 +21,7 @@ fn both(
     size: (u32, u32),
     f: impl Fn(&DrawingArea<BitMapBackend, Shift>) -> Res,
     g: impl Fn(&DrawingArea<SVGBackend, Shift>) -> Res,
-) -> Result<Vec<PathBuf>, String> {
+) -> Result<Vec<PathBuf>, RenderError> {
     std::fs::create_dir_all(dir).map_err(|x| format!("--plot {}: {x}", dir.display()))?;
     crate::render::style::both(&dir.join(stem), size, f, g)?;
     Ok(vec![
@@ -160,7 +158,7 @@ pub fn draw_line(
     stem: &str,
     prof: &Profile,
     o: &Outputs,
-) -> Result<Vec<PathBuf>, String> {
+) -> Result<Vec<PathBuf>, RenderError> {
     let l = Line {
         x: &prof.x,
         p: &prof.p,
@@ -204,7 +202,7 @@ fn map_axes<'a, DB: DrawingBackend + 'a>(
         DB,
         Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
     >,
-    String,
+    RenderError,
 > {
     let (x0, x1) = range(&f.x);
     let (y0, y1) = range(&f.y);
@@ -326,7 +324,7 @@ pub fn draw_point(
     stem: &str,
     f: &PointFields,
     o: &Outputs,
-) -> Result<Vec<PathBuf>, String> {
+) -> Result<Vec<PathBuf>, RenderError> {
     let nx = f.x.len();
     // centre line: the row nearest Y = 0
     let j0 = (0..f.y.len())

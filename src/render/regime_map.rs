@@ -3,7 +3,7 @@
 
 use crate::model::formulas::Regime;
 use crate::model::regimes::{boundary_points, regime, short, LOG_M, L_MAX};
-use crate::render::style::{e, ensure_font};
+use crate::render::style::{e, ensure_font, RenderError};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
@@ -21,7 +21,7 @@ fn draw<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     d: Option<f64>,
     mark: Option<(f64, f64, &str)>,
-) -> Result<(), String> {
+) -> Result<(), RenderError> {
     let title = match d {
         None => "Regimes of a line contact (Moes 1992 asymptotes)".to_string(),
         Some(d) => format!("Regimes of a point contact, D = {d:.4} (NVM 1994 asymptotes)"),
@@ -104,7 +104,7 @@ pub fn write_regime_map(
     dir: &Path,
     d: Option<f64>,
     mark: Option<(f64, f64, &str)>,
-) -> Result<Vec<PathBuf>, String> {
+) -> Result<Vec<PathBuf>, RenderError> {
     ensure_font();
     std::fs::create_dir_all(dir).map_err(|x| format!("--out {}: {x}", dir.display()))?;
     let stem = match d {

@@ -21,8 +21,19 @@ pub fn ensure_font() {
     });
 }
 
-/// The result of a drawing step: the error is plotters' error as text.
-pub(crate) type Res = Result<(), String>;
+/// Why a chart or picture could not be drawn or written (plotters' error, or the file's).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{0}")]
+pub struct RenderError(pub String);
+
+impl From<String> for RenderError {
+    fn from(msg: String) -> Self {
+        RenderError(msg)
+    }
+}
+
+/// The result of a drawing step.
+pub(crate) type Res = Result<(), RenderError>;
 
 /// Series colours of the charts, in order.
 pub const COLORS: [RGBColor; 6] = [
@@ -34,9 +45,9 @@ pub const COLORS: [RGBColor; 6] = [
     RGBColor(140, 86, 75),
 ];
 
-/// A drawing error as text (its `Debug` form).
-pub(crate) fn e<T: std::fmt::Debug>(x: T) -> String {
-    format!("{x:?}")
+/// A drawing error (its `Debug` form).
+pub(crate) fn e<T: std::fmt::Debug>(x: T) -> RenderError {
+    RenderError(format!("{x:?}"))
 }
 
 /// Draw with `f` into `stem.png` and with `g` into `stem.svg` (shared by every chart module).

@@ -8,6 +8,7 @@
 //! row with status `panic` instead of ending the sweep.
 
 use crate::solve::Status;
+use crate::store::error::StoreError;
 use crate::store::results::{self, CaseRow};
 use crate::sweep::plan::{Case, Shard};
 use crate::sweep::row::solve_guarded;
@@ -19,6 +20,24 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::mpsc;
 use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
+
+/// Why a sweep run stopped: an I/O failure of the dataset (the message names the file), or a
+/// worker pool that could not start. Numerical failures are rows, never errors.
+#[derive(Debug, thiserror::Error)]
+pub enum SweepError {
+    /// A file or directory operation failed.
+    #[error("{0}")]
+    Io(String),
+    /// A part file could not be read or written.
+    #[error(transparent)]
+    Store(#[from] StoreError),
+}
+
+impl From<String> for SweepError {
+    fn from(msg: String) -> Self {
+        SweepError::Io(msg)
+    }
+}
 
 /// How progress is shown on stderr.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -141,7 +160,7 @@ fn shard_temps(dir: &Path, shard: &Shard) -> Vec<(PathBuf, u32)> {
 
 /// Claim the next run number of this shard: the part file path, whose temporary file now exists
 /// (created exclusively, so two processes never get the same file).
-fn claim_part(dir: &Path, shard: &Shard) -> Result<PathBuf, String> {
+fn claim_part(dir: &Path, shard: &Shard) -> Result<PathBuf, SweepError> {
     let label = shard.label();
     let mut next = 1;
     let rd = std::fs::read_dir(dir).map_err(|e| format!("cannot read {}: {e}", dir.display()))?;
@@ -167,7 +186,7 @@ fn claim_part(dir: &Path, shard: &Shard) -> Result<PathBuf, String> {
         {
             Ok(_) => return Ok(path),
             Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => next += 1,
-            Err(e) => return Err(format!("cannot create {}: {e}", tmp.display())),
+            Err(e) => return Err(format!("cannot create {}: {e}", tmp.display()).into()),
         }
     }
 }
@@ -257,7 +276,11 @@ impl Reporter {
 /// Run the cases of `opts.shard` that the dataset does not hold yet. `cases` is the whole plan
 /// (largest cost first). Returns an error message on an I/O failure; numerical failures are
 /// rows.
-pub fn execute(spec: &SweepSpec, cases: &[Case], opts: &RunOptions) -> Result<RunReport, String> {
+pub fn execute(
+    spec: &SweepSpec,
+    cases: &[Case],
+    opts: &RunOptions,
+) -> Result<RunReport, SweepError> {
     let start = Instant::now();
     let dir = &opts.dataset;
     std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
@@ -310,8 +333,8 @@ fn cases_to_solve<'c>(
     dir: &Path,
     cases: &'c [Case],
     shard: &Shard,
-) -> Result<(Vec<&'c Case>, Vec<&'c Case>), String> {
-    let stored = results::stored_ids(dir).map_err(|e| e.to_string())?;
+) -> Result<(Vec<&'c Case>, Vec<&'c Case>), SweepError> {
+    let stored = results::stored_ids(dir)?;
     let shard_cases: Vec<&Case> = cases.iter().filter(|c| shard.contains(c.id)).collect();
     let todo: Vec<&Case> = shard_cases
         .iter()
@@ -322,12 +345,12 @@ fn cases_to_solve<'c>(
 }
 
 /// A dedicated rayon pool of `threads` workers.
-fn worker_pool(threads: usize) -> Result<rayon::ThreadPool, String> {
+fn worker_pool(threads: usize) -> Result<rayon::ThreadPool, SweepError> {
     rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .thread_name(|i| format!("ehlmap-sweep-{i}"))
         .build()
-        .map_err(|e| format!("cannot start {threads} threads: {e}"))
+        .map_err(|e| format!("cannot start {threads} threads: {e}").into())
 }
 
 /// The footer metadata of every part file of this run (each flush adds `run` and `rows`).
@@ -395,7 +418,7 @@ struct PartWriter<'a> {
 }
 
 impl PartWriter<'_> {
-    fn flush(&mut self) -> Result<(), String> {
+    fn flush(&mut self) -> Result<(), SweepError> {
         if self.part.is_none() {
             self.part = Some(claim_part(self.dir, self.shard)?);
         }
@@ -408,7 +431,7 @@ impl PartWriter<'_> {
         let mut meta = self.meta.clone();
         meta.push(("run".to_string(), run.to_string()));
         meta.push(("rows".to_string(), self.rows.len().to_string()));
-        results::write_part(path, &self.rows, &meta).map_err(|e| e.to_string())
+        Ok(results::write_part(path, &self.rows, &meta)?)
     }
 }
 
@@ -432,10 +455,10 @@ fn collect(
     reporter: &mut Reporter,
     writer: &mut PartWriter,
     stop: &AtomicBool,
-) -> Option<String> {
+) -> Option<SweepError> {
     let flush_every = Duration::from_secs_f64(spec.output.flush_seconds);
     let batch = spec.output.batch.max(1);
-    let mut failure: Option<String> = None;
+    let mut failure: Option<SweepError> = None;
     let mut pending = 0usize;
     let mut last_flush = Instant::now();
     loop {

@@ -13,6 +13,11 @@ use crate::sweep::spec::{Contact, ContactSpec, Numerics, SpecError, SweepSpec, V
 use std::collections::HashSet;
 use std::fmt;
 
+/// A shard argument that is not `i/n` with 1 <= i <= n.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{0}")]
+pub struct ShardError(pub String);
+
 /// Version tag of the canonical string: bump it when the meaning of a setting changes.
 const CANON_VERSION: &str = "ehlmap-case-v1";
 
@@ -260,20 +265,20 @@ impl Shard {
     pub const WHOLE: Shard = Shard { index: 1, count: 1 };
 
     /// Parse `i/n` with 1 <= i <= n.
-    pub fn parse(s: &str) -> Result<Shard, String> {
+    pub fn parse(s: &str) -> Result<Shard, ShardError> {
         let (i, n) = s
             .split_once('/')
-            .ok_or_else(|| format!("--shard {s}: expected i/n, e.g. 1/4"))?;
+            .ok_or_else(|| ShardError(format!("--shard {s}: expected i/n, e.g. 1/4")))?;
         let i: usize = i
             .trim()
             .parse()
-            .map_err(|_| format!("--shard {s}: i is not a positive integer"))?;
+            .map_err(|_| ShardError(format!("--shard {s}: i is not a positive integer")))?;
         let n: usize = n
             .trim()
             .parse()
-            .map_err(|_| format!("--shard {s}: n is not a positive integer"))?;
+            .map_err(|_| ShardError(format!("--shard {s}: n is not a positive integer")))?;
         if n == 0 || i == 0 || i > n {
-            return Err(format!("--shard {s}: needs 1 <= i <= n"));
+            return Err(ShardError(format!("--shard {s}: needs 1 <= i <= n")));
         }
         Ok(Shard { index: i, count: n })
     }
