@@ -8,9 +8,9 @@
 //! and parsed back with `FromStr`; an unknown name is an error of the setter, carrying the
 //! parser's message.
 
+use crate::model::error::ParamError;
 use crate::store::results::row::CaseRow;
 use arrow_schema::{DataType, Field, Schema};
-use std::fmt::Display;
 use std::str::FromStr;
 use std::sync::Arc;
 
@@ -28,8 +28,8 @@ pub enum Access {
     Str {
         /// The value of a row.
         get: fn(&CaseRow) -> &str,
-        /// Store a value read from a file; `Err` holds why it is not understood.
-        set: fn(&mut CaseRow, &str) -> Result<(), String>,
+        /// Store a value read from a file; `Err` says why it is not understood.
+        set: fn(&mut CaseRow, &str) -> Result<(), ParamError>,
     },
     /// A nullable string.
     OptStr {
@@ -114,12 +114,9 @@ impl Column {
     }
 }
 
-/// `s` parsed as a named value, or the parser's message.
-fn parse<T: FromStr>(s: &str) -> Result<T, String>
-where
-    T::Err: Display,
-{
-    s.parse().map_err(|e: T::Err| e.to_string())
+/// `s` parsed as a named value (contact, model, status ...).
+fn parse<T: FromStr<Err = ParamError>>(s: &str) -> Result<T, ParamError> {
+    s.parse()
 }
 
 /// The [`Access`] of a row field by kind: `str` (a `String`), `name` (a type with `as_str` and
@@ -343,6 +340,6 @@ mod tests {
             panic!("status is a string column")
         };
         let e = set(&mut back, "done").unwrap_err();
-        assert!(e.contains("\"done\""), "{e}");
+        assert!(e.to_string().contains("\"done\""), "{e}");
     }
 }

@@ -64,7 +64,9 @@ fn bind<'a>(c: &Column, a: &'a dyn Array) -> Option<Setter<'a>> {
     Some(match c.access {
         Access::Str { set, .. } => {
             let a = any.downcast_ref::<StringArray>()?;
-            Box::new(move |r, j| set(r, a.value(j)).map_err(|e| (a.value(j).to_string(), e)))
+            Box::new(move |r, j| {
+                set(r, a.value(j)).map_err(|e| (a.value(j).to_string(), e.to_string()))
+            })
         }
         Access::OptStr { set, .. } => {
             let a = any.downcast_ref::<StringArray>()?;
