@@ -1,7 +1,7 @@
 //! ehlmap: steady isothermal elastohydrodynamic lubrication (EHL) of line contacts and of point
 //! contacts of any ellipticity, by full multigrid, in Moes' parameters (M, L) and D = Rx/Ry.
 //!
-//! One [`solve`] takes a [`Case`] (a [`LineCase`] or a [`PointCase`]) and [`SolveParams`] and
+//! One [`solve()`] takes a [`Case`] (a [`LineCase`] or a [`PointCase`]) and [`SolveParams`] and
 //! returns a [`Solution`]: the films and pressures in [`Outputs`], with a [`Status`] and a reason
 //! (numerical failure is a result, never a panic).
 //!
@@ -19,10 +19,10 @@
 //! [`model`] (the case, lubricant, Hertz, published formulas, SI case files) ->
 //! [`discrete`] (domains, kernels, discrete operators) -> [`mod@solve`] (multigrid, fallback
 //! ladder, Newton; line and point twins behind one interface) -> [`strategy`] (accuracy targets,
-//! model selection, warm starts, the one [`solve`]) -> [`cases`] (dimensional cases) ->
+//! model selection, warm starts, the one [`solve()`]) -> [`cases`] (dimensional cases) ->
 //! [`store`] (Parquet) and [`sweep`] (spec, plan, executor) -> [`limits`] (the asymptote limit
 //! solves) -> [`fit`] (fitted film formulas) -> [`report`] (report.md, fit.json) -> [`render`]
-//! (charts and pictures) -> [`bench`] (speed and stability). The command line is the binary's
+//! (charts and pictures) -> [`mod@bench`] (speed and stability). The command line is the binary's
 //! own `cli` module.
 
 // Stencil and kernel loops index several arrays by node number; iterator chains would hide that.

@@ -24,7 +24,9 @@ pub struct FmgControl {
     pub fmg_cycles: usize,
     /// Cycles allowed on the finest level.
     pub max_cycles: usize,
+    /// Load tolerance on the finest level: |load error| below it converges.
     pub tol_load: f64,
+    /// Relative change of H_c and H_min per cycle below which the finest level converges.
     pub tol_h: f64,
     /// Load tolerance on the coarser FMG levels.
     pub tol_load_fmg: f64,
@@ -38,6 +40,7 @@ pub struct FmgControl {
 
 /// What the FMG driver needs from a multilevel solver.
 pub trait Fas {
+    /// The driver's controls (cycle budgets, tolerances).
     fn control(&self) -> FmgControl;
     /// Index of the finest level (0 = coarsest).
     fn top(&self) -> usize;
@@ -46,6 +49,7 @@ pub trait Fas {
     /// Exact solve on the coarsest level with the load equation; with `with_slope`, also
     /// estimate dG/dH0 for [`Fas::load_slope`].
     fn start_coarse(&mut self, with_slope: bool) -> NewtonOutcome;
+    /// Estimate of d(load)/dH0 from the coarsest level, for the first secant step.
     fn load_slope(&self) -> f64;
     /// Start level l from level l-1's solution.
     fn fmg_interpolate(&mut self, l: usize);
@@ -53,7 +57,9 @@ pub trait Fas {
     fn cycle(&mut self, l: usize);
     /// One relaxation sweep of level l (counted in work units).
     fn relax(&mut self, l: usize);
+    /// Convergence measures of level `l` after a cycle.
     fn record(&mut self, l: usize) -> CycleRecord;
+    /// The current film constant H0 (Hertzian units).
     fn h0(&self) -> f64;
     /// Set H0 and refresh level l's film.
     fn set_h0(&mut self, l: usize, h0: f64);

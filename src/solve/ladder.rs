@@ -10,9 +10,13 @@ use crate::solve::{SolveInfo, Status};
 
 /// A solve result the ladder can rank and annotate.
 pub trait Attempt {
+    /// The solve's info and outputs, to annotate.
     fn parts(&mut self) -> (&mut SolveInfo, &mut Outputs);
+    /// The solve's info (status, history, cost).
     fn info(&self) -> &SolveInfo;
+    /// Record which attempt (1-based) produced this result.
     fn set_attempt(&mut self, k: usize);
+    /// Which attempt (1-based) produced this result.
     fn attempt(&self) -> usize;
 }
 

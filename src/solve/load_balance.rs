@@ -38,6 +38,7 @@ impl LoadBalance {
         self.last = None;
     }
 
+    /// The current estimate of d(load)/dH0.
     pub fn slope(&self) -> f64 {
         self.slope
     }

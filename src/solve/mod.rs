@@ -21,13 +21,18 @@ use std::fmt;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Status {
+    /// The load error and the change of H_c and H_min per cycle are below the tolerances.
     Converged,
+    /// The residual or a film became non-finite, or grew without bound.
     Diverged,
+    /// The load balance stopped making progress (the load error is stuck).
     Stalled,
+    /// The cycle or iteration limit was reached first.
     MaxIterations,
 }
 
 impl Status {
+    /// The name in JSON and Parquet: converged, diverged, stalled, max-iterations.
     pub fn as_str(&self) -> &'static str {
         match self {
             Status::Converged => "converged",
@@ -60,14 +65,19 @@ pub struct CycleRecord {
 /// Convergence information returned with every solve.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SolveInfo {
+    /// How the solve ended.
     pub status: Status,
+    /// Why, in words (the attempt of the fallback ladder that answered included).
     pub reason: String,
+    /// One record per cycle on the finest level.
     pub history: Vec<CycleRecord>,
     /// Relaxation sweeps in finest-grid equivalents.
     pub work_units: f64,
+    /// Wall time of the solve (s), all attempts included.
     pub wall_s: f64,
     /// Points of the finest level.
     pub grid: usize,
+    /// Levels of the multigrid hierarchy.
     pub levels: usize,
 }
 
@@ -76,9 +86,13 @@ pub struct SolveInfo {
 /// `ehlmap solve --trace`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CycleEvent {
+    /// The FMG level (0 the coarsest).
     pub level: usize,
+    /// The cycle's index on that level.
     pub cycle: usize,
+    /// The cycle's record.
     pub record: CycleRecord,
+    /// The film constant H0 after the cycle (Hertzian units).
     pub h0: f64,
 }
 

@@ -18,6 +18,7 @@ use nalgebra::{DMatrix, DVector};
 /// Newton settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NewtonParams {
+    /// Iterations allowed.
     pub max_iter: usize,
     /// Converged when the scaled residual norm is below this.
     pub tol: f64,
@@ -38,7 +39,9 @@ impl Default for NewtonParams {
 /// Result of a Newton solve on one level.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NewtonOutcome {
+    /// Iterations made.
     pub iterations: usize,
+    /// Whether the residual met the tolerance.
     pub converged: bool,
     /// Final scaled residual norm.
     pub residual: f64,
@@ -81,6 +84,7 @@ pub fn dense_jacobian<R>(
 /// A discrete level that Newton can solve: unknown pressures at the interior nodes (storage
 /// indices from [`NewtonLevel::unknowns`]) and H0.
 pub trait NewtonLevel {
+    /// The discrete physics of the level.
     type Phys;
     /// Storage indices of the unknown pressures, in Jacobian order.
     fn unknowns(&self) -> Vec<usize>;
@@ -89,9 +93,13 @@ pub trait NewtonLevel {
     fn dense_jacobian(&self, phys: &Self::Phys, unknowns: &[usize]) -> DMatrix<f64>;
     /// f - L at storage index c.
     fn residual_at(&self, phys: &Self::Phys, c: usize) -> f64;
+    /// Whether the node at storage index c is held fixed (frozen).
     fn frozen_at(&self, c: usize) -> bool;
+    /// The pressure P at every node, to update.
     fn pressure(&mut self) -> &mut [f64];
+    /// The load sum of the level (the left-hand side of the load equation).
     fn load_sum(&self) -> f64;
+    /// The load equation's right-hand side g.
     fn load_rhs(&self) -> f64;
     /// Recompute the film and coefficients for H0.
     fn refresh(&mut self, phys: &Self::Phys, h0: f64);

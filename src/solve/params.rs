@@ -12,7 +12,9 @@ use serde::{Deserialize, Serialize};
 #[serde(rename_all = "lowercase")]
 pub enum CycleType {
     #[default]
+    /// V cycles: one coarse-grid correction per level.
     V,
+    /// W cycles: two coarse-grid corrections per level.
     W,
 }
 
@@ -86,20 +88,26 @@ pub struct MgParams<D> {
     /// Points of the finest level (2^k n0 + 1 for the domain rule's n0; other values are rounded
     /// up to the next such size).
     pub grid: usize,
+    /// V or W cycles.
     pub cycle: CycleType,
+    /// Relaxations before the coarse-grid correction.
     pub pre: usize,
+    /// Relaxations after the coarse-grid correction.
     pub post: usize,
     /// Cycles on each FMG level before moving to the next finer one.
     pub fmg_cycles: usize,
     /// Cycles allowed on the finest level after FMG.
     pub max_cycles: usize,
+    /// The smoother's constants.
     pub relax: RelaxParams,
     /// Damping of the secant load-balance step on H0 (`None`: 1).
     pub load_factor: Option<f64>,
+    /// Relaxations of the coarsest level when its Newton solve fails.
     pub coarse_sweeps: usize,
     /// Converged when |load error| < tol_load and the relative change of H_c and H_min over a
     /// cycle is below tol_h.
     pub tol_load: f64,
+    /// Converged when the relative change of H_c and H_min over a cycle is below this.
     pub tol_h: f64,
     /// Load tolerance on the coarser FMG levels before moving up.
     pub tol_load_fmg: f64,
@@ -107,6 +115,7 @@ pub struct MgParams<D> {
     pub domain: D,
     /// Line contacts: override the coarsest grid's interval count (a power of two >= 8).
     pub coarse_intervals: Option<usize>,
+    /// Second-order upwind wedge term (default) or first order.
     pub second_order: bool,
     /// Newton iterations allowed for the first coarsest-grid solve (and for the Newton method).
     pub newton_max_iter: usize,

@@ -20,12 +20,18 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum ModelUsed {
+    /// Martin's closed form (rigid isoviscous line contact).
     ClosedForm,
+    /// A rigid isoviscous solve.
     RigidIsoviscous,
+    /// A rigid (piezoviscous) solve.
     Rigid,
+    /// An elastic isoviscous solve.
     Isoviscous,
+    /// A slender ellipse answered by the equivalent line contact.
     SlenderLine,
     #[default]
+    /// The full model.
     Full,
 }
 
@@ -82,7 +88,9 @@ impl PartialEq<&str> for ModelUsed {
 /// A secondary pressure maximum near the outlet.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Spike {
+    /// Where the spike is (X, Hertzian units).
     pub x: f64,
+    /// Its height P = p/p_h.
     pub p: f64,
 }
 
@@ -90,12 +98,16 @@ pub struct Spike {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Outputs {
     #[serde(rename = "H_c")]
+    /// The film at X = 0 (Y = 0), Moes units.
     pub h_c: f64,
     #[serde(rename = "H_c_pmax")]
+    /// The film at the global pressure maximum, Moes units.
     pub h_c_pmax: f64,
     #[serde(rename = "H_min")]
+    /// The minimum film, Moes units.
     pub h_min: f64,
     #[serde(rename = "X_min")]
+    /// Where the minimum film is along the rolling direction (X = x/b).
     pub x_min: f64,
     /// Point contacts: where the minimum film is across the rolling direction (Y = y/b).
     #[serde(rename = "Y_min", skip_serializing_if = "Option::is_none", default)]
@@ -104,17 +116,27 @@ pub struct Outputs {
     #[serde(rename = "D", skip_serializing_if = "Option::is_none", default)]
     pub d: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none", default)]
+    /// Point contacts: the Hertz ratio k = a/b.
     pub k: Option<f64>,
     #[serde(rename = "P_max")]
+    /// The maximum pressure P = p/p_h.
     pub p_max: f64,
+    /// The outlet pressure spike, when there is one.
     pub spike: Option<Spike>,
     #[serde(rename = "H0")]
+    /// The film constant H0, Moes units.
     pub h0: f64,
+    /// The rolling traction coefficient f R/b (module docs).
     pub f: f64,
+    /// The relative load error on the finest grid.
     pub load_error: f64,
+    /// How the solve ended.
     pub status: Status,
+    /// Why, in words.
     pub reason: String,
+    /// Points of the finest grid (per direction for point contacts; 0 for a closed form).
     pub grid: usize,
+    /// Levels of the multigrid hierarchy.
     pub levels: usize,
     /// Refinement level of the finest grid: log2 of its intervals over those of the smallest
     /// grid a solve accepts (32 line intervals, 16 point intervals per direction), so 257 / 1025
@@ -124,7 +146,9 @@ pub struct Outputs {
     /// The model that answered: full unless a simpler one was selected.
     #[serde(default)]
     pub model_used: ModelUsed,
+    /// Relaxation sweeps in finest-grid equivalents, all attempts and grids included.
     pub work_units: f64,
+    /// Wall time (s), all attempts and grids included.
     pub wall_s: f64,
     /// With an accuracy target only: the estimated relative discretisation error of H_c and
     /// H_min (the larger; Richardson between this grid and the one with half the intervals).
@@ -143,8 +167,11 @@ pub fn grid_level(grid: usize, base: usize) -> usize {
 /// Pressure and film along X on the finest grid (X, P in Hertzian units, H in Moes units).
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct Profile {
+    /// Node coordinates X (Hertzian units).
     pub x: Vec<f64>,
+    /// The pressure P at the nodes.
     pub p: Vec<f64>,
+    /// The film H at the nodes, Moes units.
     pub h: Vec<f64>,
 }
 
@@ -275,16 +302,22 @@ mod tests {
 /// j * x.len() + i), P (Hertzian units) and H (Moes units).
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct PointFields {
+    /// Node coordinates X along the rolling direction.
     pub x: Vec<f64>,
+    /// Node coordinates Y across it.
     pub y: Vec<f64>,
+    /// The pressure P, row-major with X fastest.
     pub p: Vec<f64>,
+    /// The film H (Moes units), row-major with X fastest.
     pub h: Vec<f64>,
 }
 
 /// Everything a solve returns, line or point contact.
 #[derive(Clone, Debug)]
 pub struct Solution {
+    /// The films, pressures, status and cost.
     pub outputs: Outputs,
+    /// The status, reason, cycle history and cost.
     pub info: SolveInfo,
     /// Which attempt of the fallback ladder (1-based) produced the result.
     pub attempt: usize,

@@ -73,7 +73,9 @@ impl Default for DomainParams {
 /// A line domain with its coarsest grid: X_in + i h0, i = 0..=n0, with X = 0 at i = i0.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LineDomain {
+    /// Inlet end X_in of the domain (Hertzian units, X = 0 on a node).
     pub x_in: f64,
+    /// Outlet end X_out of the domain.
     pub x_out: f64,
     /// Intervals of the coarsest grid.
     pub n0: usize,

@@ -85,6 +85,7 @@ impl DeformPlan1d {
         }
     }
 
+    /// Nodes of the grid the plan multiplies on.
     pub fn nodes(&self) -> usize {
         self.n
     }

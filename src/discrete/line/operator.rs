@@ -68,10 +68,12 @@ impl LineLevel {
         self.x.len()
     }
 
+    /// Nodes of the level (the same as [`LineLevel::points`]).
     pub fn len(&self) -> usize {
         self.x.len()
     }
 
+    /// True for a level without nodes (never built by the solver).
     pub fn is_empty(&self) -> bool {
         self.x.is_empty()
     }

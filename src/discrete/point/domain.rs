@@ -91,8 +91,11 @@ impl Default for PointDomainParams {
 /// coarsest intervals; X = 0 lies on a node of every level.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PointDomain {
+    /// Inlet end X_in of the domain along the rolling direction (Hertzian units).
     pub x_in: f64,
+    /// Outlet end X_out.
     pub x_out: f64,
+    /// Half width of the domain across the rolling direction: Y in [-y_half, y_half].
     pub y_half: f64,
     /// Intervals per direction of the coarsest grid (a power of two, at least 4).
     pub n0: usize,

@@ -71,12 +71,15 @@ impl std::ops::DerefMut for PointPhysics {
 pub struct PointLevel {
     /// Nodes along x and along y.
     pub nx: usize,
+    /// Nodes along y.
     pub ny: usize,
     /// Grid spacings along x and y (Hertzian units).
     pub hx: f64,
+    /// Grid spacing along y.
     pub hy: f64,
     /// Node coordinates X and Y.
     pub x: Vec<f64>,
+    /// Node coordinates Y.
     pub y: Vec<f64>,
     /// The node fields.
     pub nodes: NodeFields,
@@ -134,10 +137,12 @@ impl PointLevel {
         self.nx
     }
 
+    /// Nodes of the level, nx ny.
     pub fn len(&self) -> usize {
         self.p.len()
     }
 
+    /// True for a level without nodes (never built by the solver).
     pub fn is_empty(&self) -> bool {
         self.p.is_empty()
     }

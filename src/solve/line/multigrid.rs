@@ -12,7 +12,7 @@
 //! (cubic) as the next level's start, and predicts H0 there by extrapolating its last change.
 //!
 //! Load balance: on each level, cycles at fixed H0 until the load error has settled, then a
-//! safeguarded secant step on H0 ([`LoadBalance`]); the slope comes from the coarsest Newton and
+//! safeguarded secant step on H0 ([`crate::solve::load_balance::LoadBalance`]); the slope comes from the coarsest Newton and
 //! is refined level by level.
 
 use crate::discrete::line::domain::{DomainParams, LineDomain};
@@ -52,8 +52,11 @@ grid_level!(LineLevel, LinePhysics);
 /// this case is expected to have, to start the finest-level cycles from.
 #[derive(Clone, Debug, PartialEq)]
 pub struct WarmGuess {
+    /// Node coordinates X of the neighbour's profile.
     pub x: Vec<f64>,
+    /// The neighbour's pressure P at those nodes.
     pub p: Vec<f64>,
+    /// The central film this case is expected to have (Hertzian units).
     pub centre_film: f64,
 }
 

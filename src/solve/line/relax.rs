@@ -44,11 +44,15 @@ pub enum Smoother {
 /// Relaxation constants.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RelaxParams {
+    /// Which smoother: whole-line relaxation (default) or the classic point smoother.
     pub smoother: Smoother,
     /// Under-relaxation of the line smoother.
     pub omega_line: f64,
+    /// Under-relaxation of the point smoother's Gauss-Seidel updates.
     pub omega_gs: f64,
+    /// Under-relaxation of the point smoother's distributive Jacobi updates.
     pub omega_ja: f64,
+    /// xi = eps/h^2 below which a node is relaxed in distributed variables.
     pub xi_threshold: f64,
     /// Half bandwidth of the line system (kernel terms kept exactly within it).
     pub band: usize,

@@ -29,6 +29,7 @@ pub struct PointJacRow {
 }
 
 impl PointJacRow {
+    /// The Jacobian row of the interior node (i, j) of `lv`.
     pub fn new(lv: &PointLevel, phys: &PointPhysics, i: usize, j: usize) -> Self {
         let coef = if phys.elastic { phys.coef } else { 0.0 };
         if phys.dry {

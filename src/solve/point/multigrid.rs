@@ -38,6 +38,7 @@ impl FinerCoarsest for PointDomainParams {
 grid_level!(PointLevel, PointPhysics);
 
 impl Multigrid<PointContact> {
+    /// Build the levels for a case; the finest level has at least `params.grid` points per direction.
     pub fn new(case: &PointCase, params: &PointMgParams) -> Self {
         let mut phys = PointPhysics::from_case(case);
         phys.second_order = params.second_order;

@@ -17,7 +17,7 @@
 //! Files, one concept each (none imports this module):
 //! * [`row`]: the row type [`CaseRow`] and its status [`RowStatus`];
 //! * [`columns`]: the file layout, which drives writer, reader and schema;
-//! * [`write`]: rows to a part file; [`read`]: part files back to rows;
+//! * [`mod@write`]: rows to a part file; [`read`]: part files back to rows;
 //! * [`files`]: part and temporary file names.
 
 pub mod columns;
