@@ -26,7 +26,7 @@ pub struct FmgControl {
     pub max_cycles: usize,
     /// Load tolerance on the finest level: |load error| below it converges.
     pub tol_load: f64,
-    /// Relative change of H_c and H_min per cycle below which the finest level converges.
+    /// Relative change of H_c per cycle below which the finest level converges.
     pub tol_h: f64,
     /// Load tolerance on the coarser FMG levels.
     pub tol_load_fmg: f64,

@@ -21,13 +21,15 @@ use std::fmt;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Status {
-    /// The load error and the change of H_c and H_min per cycle are below the tolerances.
+    /// The load error and the relative change of H_c per cycle are below the tolerances.
     Converged,
-    /// The residual or a film became non-finite, or grew without bound.
+    /// A non-finite residual, film or H0, the finest residual grown by 1e4 over its smallest, a
+    /// load error above 10, or a singular Newton system.
     Diverged,
-    /// The load balance stopped making progress (the load error is stuck).
+    /// The load error is stuck above the tolerance: H_c no longer moves between load-balance
+    /// steps on H0.
     Stalled,
-    /// The cycle or iteration limit was reached first.
+    /// The cycle, sweep or Newton iteration limit was reached first.
     MaxIterations,
 }
 
@@ -67,7 +69,7 @@ pub struct CycleRecord {
 pub struct SolveInfo {
     /// How the solve ended.
     pub status: Status,
-    /// Why, in words (the attempt of the fallback ladder that answered included).
+    /// Why, in words; after a fallback or a failed ladder, also which attempt answered.
     pub reason: String,
     /// One record per cycle on the finest level.
     pub history: Vec<CycleRecord>,

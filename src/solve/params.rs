@@ -104,10 +104,11 @@ pub struct MgParams<D> {
     pub load_factor: Option<f64>,
     /// Relaxations of the coarsest level when its Newton solve fails.
     pub coarse_sweeps: usize,
-    /// Converged when |load error| < tol_load and the relative change of H_c and H_min over a
-    /// cycle is below tol_h.
+    /// Converged when |load error| < tol_load and the relative change of H_c over a cycle is
+    /// below tol_h.
     pub tol_load: f64,
-    /// Converged when the relative change of H_c and H_min over a cycle is below this.
+    /// Converged when the relative change of H_c over a cycle is below this (and |load error| <
+    /// tol_load).
     pub tol_h: f64,
     /// Load tolerance on the coarser FMG levels before moving up.
     pub tol_load_fmg: f64,

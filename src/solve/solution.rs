@@ -112,7 +112,7 @@ pub struct Outputs {
     /// Point contacts: where the minimum film is across the rolling direction (Y = y/b).
     #[serde(rename = "Y_min", skip_serializing_if = "Option::is_none", default)]
     pub y_min: Option<f64>,
-    /// Point contacts: the ellipticity parameter D = Rx/Ry and the Hertz ratio k = a/b.
+    /// Point contacts: the ellipticity parameter D = Rx/Ry.
     #[serde(rename = "D", skip_serializing_if = "Option::is_none", default)]
     pub d: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none", default)]

@@ -46,7 +46,7 @@ pub struct SolveParams {
     pub max_cycles: Option<usize>,
     /// Convergence tolerance on the load error; `None`: the contact's default.
     pub tol_load: Option<f64>,
-    /// Convergence tolerance on the relative change of H_c and H_min per cycle; `None`: the
+    /// Convergence tolerance on the relative change of H_c per cycle; `None`: the
     /// contact's default.
     pub tol_h: Option<f64>,
     /// Retry a failed solve with conservative settings (the fallback ladder).

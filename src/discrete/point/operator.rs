@@ -69,15 +69,15 @@ impl std::ops::DerefMut for PointPhysics {
 /// One grid level of a point contact: its grid, the rigid gap, the deformation kernel and the
 /// node fields ([`NodeFields`], which the level dereferences to), row-major with X fastest.
 pub struct PointLevel {
-    /// Nodes along x and along y.
+    /// Nodes along x.
     pub nx: usize,
     /// Nodes along y.
     pub ny: usize,
-    /// Grid spacings along x and y (Hertzian units).
+    /// Grid spacing along x (Hertzian units).
     pub hx: f64,
-    /// Grid spacing along y.
+    /// Grid spacing along y (Hertzian units).
     pub hy: f64,
-    /// Node coordinates X and Y.
+    /// Node coordinates X.
     pub x: Vec<f64>,
     /// Node coordinates Y.
     pub y: Vec<f64>,

@@ -52,7 +52,8 @@ pub struct RelaxParams {
     pub omega_gs: f64,
     /// Under-relaxation of the point smoother's distributive Jacobi updates.
     pub omega_ja: f64,
-    /// xi = eps/h^2 below which a node is relaxed in distributed variables.
+    /// xi = min(eps at the node's faces along x)/h^2 below which a node is relaxed in
+    /// distributed variables (distributive Jacobi in the point smoother).
     pub xi_threshold: f64,
     /// Half bandwidth of the line system (kernel terms kept exactly within it).
     pub band: usize,

@@ -45,7 +45,7 @@ pub struct Numerics {
     pub fallback: bool,
     /// Convergence tolerance on the load error, in (0, 1).
     pub tol_load: f64,
-    /// Convergence tolerance on the relative change of H_c and H_min over a cycle, in (0, 1).
+    /// Convergence tolerance on the relative change of H_c over a cycle, in (0, 1).
     pub tol_h: f64,
     /// Also solve each case on the half grid and store the Richardson error estimates
     /// (H_c_err, H_min_err).
