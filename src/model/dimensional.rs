@@ -390,14 +390,30 @@ fn curvature(name: &str, inv: f64, why: &str) -> Result<f64, CaseError> {
     Ok(inv)
 }
 
+/// The bodies' radius_y checked for the contact, and 1/Rx1 + 1/Rx2 (1/m), which must be
+/// positive.
+fn x_curvature(spec: &CaseSpec, contact: Contact) -> Result<f64, CaseError> {
+    check_radius_y(spec, contact)?;
+    let (name, why) = match contact {
+        Contact::Line => (
+            "1/R1 + 1/R2",
+            "the surfaces do not form a convex contact (concave radius too small)",
+        ),
+        Contact::Point => (
+            "1/Rx1 + 1/Rx2",
+            "the surfaces do not form a convex contact along x (concave radius too small)",
+        ),
+    };
+    curvature(
+        name,
+        1.0 / spec.body1.radius_x + 1.0 / spec.body2.radius_x,
+        why,
+    )
+}
+
 /// A line case's radius R and contact length (m), validated.
 fn line_geometry(spec: &CaseSpec) -> Result<(f64, f64), CaseError> {
-    check_radius_y(spec, Contact::Line)?;
-    let inv = curvature(
-        "1/R1 + 1/R2",
-        1.0 / spec.body1.radius_x + 1.0 / spec.body2.radius_x,
-        "the surfaces do not form a convex contact (concave radius too small)",
-    )?;
+    let inv = x_curvature(spec, Contact::Line)?;
     let length = spec.length.ok_or(CaseError::invalid(
         "length (m) is missing: a line contact needs the contact length",
     ))?;
@@ -487,12 +503,7 @@ fn point_geometry(spec: &CaseSpec) -> Result<(f64, f64, f64), CaseError> {
             "length applies to line contacts only (a point contact's load is in N)",
         ));
     }
-    check_radius_y(spec, Contact::Point)?;
-    let inv_x = curvature(
-        "1/Rx1 + 1/Rx2",
-        1.0 / spec.body1.radius_x + 1.0 / spec.body2.radius_x,
-        "the surfaces do not form a convex contact along x (concave radius too small)",
-    )?;
+    let inv_x = x_curvature(spec, Contact::Point)?;
     let inv_y = inv_radius(spec.body1.radius_y) + inv_radius(spec.body2.radius_y);
     check(
         "1/Ry1 + 1/Ry2",
