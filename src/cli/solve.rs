@@ -299,6 +299,7 @@ fn params_arg(a: &SolveArgs, case: &Case) -> Result<SolveParams, InputError> {
         full_model: a.full_model,
         keep_fields: a.profile.is_some() || a.fields.is_some() || a.plot.is_some(),
         parallel: point && a.threads.is_some(),
+        observer: a.trace.then_some(Observer(print_cycle)),
         ..SolveParams::default()
     })
 }
@@ -310,7 +311,6 @@ fn print_cycle(e: &CycleEvent) {
 
 /// Solve on `--threads` threads when given (point contacts: parallel rows), else on this one.
 fn solve_arg(a: &SolveArgs, case: &Case, p: &SolveParams) -> Result<Solution, InputError> {
-    let observer = a.trace.then_some(Observer(print_cycle));
     match a.threads {
         Some(0) => Err(InputError("--threads 0 is invalid: give 1 or more".into())),
         Some(n) if matches!(case, Case::Point(_)) => {
@@ -318,14 +318,10 @@ fn solve_arg(a: &SolveArgs, case: &Case, p: &SolveParams) -> Result<Solution, In
                 .num_threads(n)
                 .build()
                 .map_err(|e| InputError(format!("--threads {n}: {e}")))?;
-            Ok(pool.install(|| solve_observed(case, p, observer)))
+            Ok(pool.install(|| solve(case, p)))
         }
-        _ => Ok(solve_observed(case, p, observer)),
+        _ => Ok(solve(case, p)),
     }
-}
-
-fn solve_observed(case: &Case, p: &SolveParams, observer: Option<Observer>) -> Solution {
-    solve(case, &SolveParams { observer, ..*p })
 }
 
 /// The footer metadata of a profile or fields file.
@@ -346,21 +342,13 @@ fn file_meta(case: &Case, o: &Outputs) -> Vec<(&'static str, String)> {
 /// `--profile` (line) or `--fields` (point): write the file, or say why there is none.
 fn write_fields_arg(a: &SolveArgs, case: &Case, s: &Solution) -> Result<(), InputError> {
     let meta = file_meta(case, &s.outputs);
-    let written = match (&a.profile, &a.fields, &s.profile, &s.fields) {
-        (Some(path), _, Some(prof), _) => Some(
-            ehlmap::store::profile::write_profile(path, prof, &meta)
-                .map_err(|e| InputError(format!("--profile: {e}"))),
-        ),
-        (_, Some(path), _, Some(f)) => Some(
-            ehlmap::store::fields::write_fields(path, f, &meta)
-                .map_err(|e| InputError(format!("--fields: {e}"))),
-        ),
-        _ => None,
-    };
-    match (written, a.profile.as_ref().or(a.fields.as_ref())) {
-        (Some(r), _) => r,
-        // A failed solve is a result (exit 0), but say why the file is missing.
-        (None, Some(path)) => {
+    match (&a.profile, &a.fields, &s.profile, &s.fields) {
+        (Some(path), _, Some(prof), _) => ehlmap::store::profile::write_profile(path, prof, &meta)
+            .map_err(|e| InputError(format!("--profile: {e}"))),
+        (_, Some(path), _, Some(f)) => ehlmap::store::fields::write_fields(path, f, &meta)
+            .map_err(|e| InputError(format!("--fields: {e}"))),
+        (Some(path), ..) | (_, Some(path), ..) => {
+            // A failed solve is a result (exit 0), but say why the file is missing.
             eprintln!(
                 "ehlmap: the solve returned no profile or fields ({}), {} not written",
                 s.outputs.status,
@@ -368,7 +356,7 @@ fn write_fields_arg(a: &SolveArgs, case: &Case, s: &Solution) -> Result<(), Inpu
             );
             Ok(())
         }
-        (None, None) => Ok(()),
+        _ => Ok(()),
     }
 }
 

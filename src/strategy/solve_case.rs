@@ -133,14 +133,6 @@ impl SolveParams {
     pub fn point_params(&self) -> PointSolveParams {
         self.contact_params(self.point_domain)
     }
-
-    /// The finest grid this solve starts from for `contact`.
-    pub fn grid_for(&self, contact: Contact) -> usize {
-        match contact {
-            Contact::Line => self.line_params().mg.grid,
-            Contact::Point => self.point_params().mg.grid,
-        }
-    }
 }
 
 /// Solve a line or point case (see the module docs).
