@@ -3,8 +3,8 @@
 //! smoother alone up to 65^2.
 
 use crate::model::case::{LineCase, PointCase};
-use crate::solve::line::multigrid::CycleType;
 use crate::solve::line::{solve_line, LineSolveParams};
+use crate::solve::params::CycleType;
 use crate::solve::params::Method;
 use crate::solve::point::{solve_point, PointSolveParams};
 use crate::solve::solution::Outputs;

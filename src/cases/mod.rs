@@ -4,7 +4,8 @@
 //! `Lambda = h_min/sigma`: `< 1` boundary, `1..3` mixed, `> 3` full film.
 
 use crate::model::case::Contact;
-pub use crate::model::dimensional::{read_case, Body, CaseError, CaseSpec, Groups};
+pub use crate::model::case_file::{read_case, Body, CaseError, CaseSpec};
+pub use crate::model::dimensional::Groups;
 use crate::model::lubricant::Viscosity;
 use crate::solve::solution::{Outputs, PointFields, Profile};
 use crate::solve::Status;

@@ -9,7 +9,7 @@ use clap::ValueEnum;
 use ehlmap::model::case::{Case, Elasticity, LineCase, Models, ParamError, PointCase};
 use ehlmap::model::lubricant::{Density, Viscosity};
 use ehlmap::render::style::RenderError;
-use ehlmap::solve::line::multigrid::CycleType;
+use ehlmap::solve::params::CycleType;
 use ehlmap::solve::params::Method;
 use ehlmap::solve::solution::{ModelUsed, Outputs, Solution};
 use ehlmap::solve::{CycleEvent, Observer};

@@ -4,6 +4,7 @@
 //! textbook regime classification ([`regimes`]).
 
 pub mod case;
+pub mod case_file;
 pub mod dimensional;
 pub mod error;
 pub mod formulas;

@@ -6,9 +6,7 @@
 //! Point charts are drawn at D = 1 (curves, contours) or over all D (parity, error map).
 
 use crate::render::charts_map::{error_map, regime_map};
-pub(crate) use crate::render::style::both;
-pub use crate::render::style::ensure_font;
-use crate::render::style::{e, log_grid, Ctx, RenderError, Res};
+use crate::render::style::{both, e, log_grid, Ctx, RenderError, Res};
 use crate::report::{Film, FitPoint, FittedModel};
 use plotters::coord::Shift;
 use plotters::prelude::*;

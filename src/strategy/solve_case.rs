@@ -13,8 +13,8 @@
 use crate::discrete::line::domain::DomainParams;
 use crate::discrete::point::domain::PointDomainParams;
 use crate::model::case::{Case, Contact};
-use crate::solve::line::multigrid::CycleType;
 use crate::solve::line::{solve_line, LineSolveParams};
+use crate::solve::params::CycleType;
 use crate::solve::params::Method;
 use crate::solve::params::{ContactParams, MgParams};
 use crate::solve::point::{solve_point, PointSolveParams};

@@ -65,7 +65,7 @@ impl LineLevel {
 
     /// Points of the level.
     pub fn points(&self) -> usize {
-        self.x.len()
+        self.len()
     }
 
     /// Nodes of the level (the same as [`LineLevel::points`]).

@@ -21,7 +21,6 @@ use crate::model::case::LineCase;
 use crate::solve::line::relax::{relax, LineScratch};
 use crate::solve::multilevel::{grid_level, Contact, DomainRule, Multigrid};
 use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
-pub use crate::solve::params::CycleType;
 use crate::solve::params::{FinerCoarsest, MgParams};
 use std::f64::consts::PI;
 

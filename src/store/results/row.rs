@@ -6,7 +6,7 @@
 //! `valid` is false (the writer nulls such values and clears `valid` anyway).
 
 use crate::model::case::{Contact, Elasticity, ParamError};
-use crate::solve::line::multigrid::CycleType;
+use crate::solve::params::CycleType;
 use crate::solve::solution::ModelUsed;
 use crate::solve::Status;
 use std::fmt;

@@ -8,7 +8,7 @@ use super::contacts::ContactAxes;
 use super::ctx::{join, Ctx, Table};
 use super::error::SpecError;
 use super::types::{Contact, ContactSpec, Numerics};
-use crate::solve::line::multigrid::CycleType;
+use crate::solve::params::CycleType;
 use std::ops::Range;
 
 /// The settings a `[numerics]` table (or one of its per-contact tables) may hold.

@@ -5,7 +5,7 @@ use super::error::SpecError;
 pub use crate::model::case::Contact;
 use crate::model::case::Elasticity;
 use crate::model::lubricant::Density;
-use crate::solve::line::multigrid::CycleType;
+use crate::solve::params::CycleType;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
