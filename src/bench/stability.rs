@@ -7,10 +7,10 @@
 //! is classed `too-slow`: it converged, but no one would run it that way.
 
 use crate::model::case::{LineCase, PointCase};
-use crate::solve::line::relax::Smoother;
 use crate::solve::line::{solve_line, LineSolveParams};
 use crate::solve::params::Method;
 use crate::solve::point::{solve_point, PointSolveParams};
+use crate::solve::relax::Smoother;
 use crate::solve::solution::Outputs;
 use serde::Serialize;
 

@@ -11,6 +11,7 @@ pub mod multilevel;
 pub mod newton;
 pub mod params;
 pub mod point;
+pub mod relax;
 pub mod single_grid;
 pub mod solution;
 

@@ -4,7 +4,7 @@
 //! conservative settings a failed attempt is retried with.
 
 use crate::solve::fmg::FmgControl;
-use crate::solve::line::relax::RelaxParams;
+use crate::solve::relax::RelaxParams;
 use serde::{Deserialize, Serialize};
 
 /// V or W cycles.

@@ -17,11 +17,11 @@
 
 use crate::discrete::point::operator::{PointLevel, PointPhysics};
 use crate::solve::banded::solve_banded;
-use crate::solve::line::relax::{
+use crate::solve::point::jacobian::PointJacRow;
+use crate::solve::relax::{
     distributed, distributed_row, node_kind, pinned_row, relaxed, undistributed,
     viscosity_step_limit, xi, Kind, RelaxParams,
 };
-use crate::solve::point::jacobian::PointJacRow;
 
 /// Work buffers of the point smoother, reused across rows, sweeps and levels.
 #[derive(Default)]
