@@ -3,7 +3,7 @@
 
 use ehlmap::model::case::{Elasticity, LineCase, Models};
 use ehlmap::solve::line::{solve_line, LineSolveParams};
-use ehlmap::solve::params::Method;
+use ehlmap::solve::params::{Converge, Method};
 use ehlmap::solve::Status;
 
 fn run(case: &LineCase, method: Method, grid: usize) -> ehlmap::solve::solution::Outputs {
@@ -14,6 +14,8 @@ fn run(case: &LineCase, method: Method, grid: usize) -> ehlmap::solve::solution:
     p.mg.grid = grid;
     p.mg.tol_load = 1e-10;
     p.mg.tol_h = 1e-10;
+    // The same discrete problem solved to the tolerances: tight convergence.
+    p.mg.converge = Converge::Tight;
     solve_line(case, &p).outputs
 }
 

@@ -16,17 +16,35 @@ fn methods_share_the_discretisation_error_and_pareto_is_consistent() {
     assert_eq!(refs.len(), 1);
     assert!(rows.iter().all(|r| r.status == "converged"), "{rows:?}");
     for g in [257usize, 513] {
+        // Every method converged tightly solves the same discrete problem: one error.
         let errs: Vec<f64> = rows
             .iter()
-            .filter(|r| r.grid == g)
+            .filter(|r| r.grid == g && r.method != "multigrid-V-fast")
             .map(|r| r.err_h_c)
             .collect();
-        assert_eq!(errs.len(), 6, "six methods at {g} points");
+        assert_eq!(errs.len(), 6, "six tight methods at {g} points");
         let spread = errs.iter().fold(0.0f64, |a, &e| a.max((e - errs[0]).abs()));
         assert!(spread < 1e-5, "methods differ on the same grid: {errs:?}");
+        // The default stopping rule leaves an algebraic error of about a tenth of the
+        // discretisation error: its error is within 20 % of the tight one's.
+        let fast = rows
+            .iter()
+            .find(|r| r.grid == g && r.method == "multigrid-V-fast")
+            .unwrap();
+        assert!(
+            (fast.err_h_c - errs[0]).abs() < 0.2 * errs[0],
+            "fast {} against tight {}",
+            fast.err_h_c,
+            errs[0]
+        );
     }
-    let e257 = rows.iter().find(|r| r.grid == 257).unwrap().err_h_c;
-    let e513 = rows.iter().find(|r| r.grid == 513).unwrap().err_h_c;
+    let tight = |g: usize| {
+        rows.iter()
+            .find(|r| r.grid == g && r.method == "multigrid-V")
+            .unwrap()
+            .err_h_c
+    };
+    let (e257, e513) = (tight(257), tight(513));
     let order = (e257 / e513).log2();
     assert!(order > 1.6 && order < 2.4, "observed order {order}");
     for (_, t, best) in speed::pareto(&rows, &[0.05, 1e-6]) {
@@ -50,6 +68,7 @@ fn point_bench_runs_every_method_and_newton_matches_multigrid() {
     assert_eq!(
         methods,
         [
+            "multigrid-V-fast",
             "multigrid-V",
             "multigrid-V-1cycle",
             "multigrid-V-direct",
@@ -59,7 +78,13 @@ fn point_bench_runs_every_method_and_newton_matches_multigrid() {
         ]
     );
     let get = |m: &str| rows.iter().find(|r| r.method == m).unwrap();
-    for m in ["multigrid-V", "multigrid-V-direct", "multigrid-W", "newton"] {
+    for m in [
+        "multigrid-V-fast",
+        "multigrid-V",
+        "multigrid-V-direct",
+        "multigrid-W",
+        "newton",
+    ] {
         assert_eq!(get(m).status, "converged", "{m}");
     }
     // FFT and direct deformation products give the same discrete solution.

@@ -50,6 +50,7 @@ fn json_has_exactly_the_documented_fields() {
         "model_used",
         "work_units",
         "wall_s",
+        "algebraic_error",
     ];
     want.sort();
     assert_eq!(keys, want);

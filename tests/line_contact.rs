@@ -6,14 +6,20 @@ use ehlmap::model::case::{Elasticity, LineCase, Models};
 use ehlmap::model::formulas::moes_line_hc;
 use ehlmap::solve::line::multigrid::{LineMgParams, LineMultigrid};
 use ehlmap::solve::line::{solve_line, LineSolveParams};
+use ehlmap::solve::params::Converge;
 use ehlmap::solve::solution::Solution;
 use ehlmap::solve::Status;
 use ehlmap::strategy::accuracy::richardson3;
 
 fn solve(m: f64, l: f64, models: Models, grid: usize) -> Solution {
+    solve_with(m, l, models, grid, Converge::Fast)
+}
+
+fn solve_with(m: f64, l: f64, models: Models, grid: usize, converge: Converge) -> Solution {
     let case = LineCase::with_models(m, l, models).unwrap();
     let mut p = LineSolveParams::default();
     p.mg.grid = grid;
+    p.mg.converge = converge;
     p.keep_fields = true;
     solve_line(&case, &p)
 }
@@ -263,9 +269,15 @@ fn steep_piezoviscous_spike_on_4097_points_converges() {
     // order 1 for 60 cycles); the fallback ladder's V(4, 4) attempt converges. The films agree
     // with the 2049-point solves to the discretisation error of that grid (measured H_c 6.9931
     // against 6.9859 and 6.0955 against 6.0795: 0.10 % and 0.26 %).
-    for m in [103.15852, 326.21596] {
-        let fine = solve(m, 20.0, Models::default(), 4097).outputs;
-        let coarse = solve(m, 20.0, Models::default(), 2049).outputs;
+    // Tight convergence (the load balance to 1e-6) and the default stopping rule alike.
+    for (m, converge) in [
+        (103.15852, Converge::Tight),
+        (326.21596, Converge::Tight),
+        (103.15852, Converge::Fast),
+        (326.21596, Converge::Fast),
+    ] {
+        let fine = solve_with(m, 20.0, Models::default(), 4097, converge).outputs;
+        let coarse = solve_with(m, 20.0, Models::default(), 2049, converge).outputs;
         assert_eq!(fine.status, Status::Converged, "M = {m}: {}", fine.reason);
         assert_eq!(
             coarse.status,
@@ -273,7 +285,9 @@ fn steep_piezoviscous_spike_on_4097_points_converges() {
             "M = {m}: {}",
             coarse.reason
         );
-        assert!(fine.load_error.abs() < 1e-6, "{}", fine.load_error);
+        if converge == Converge::Tight {
+            assert!(fine.load_error.abs() < 1e-6, "{}", fine.load_error);
+        }
         let change = (fine.h_c / coarse.h_c - 1.0).abs();
         assert!(change < 5e-3, "M = {m}: H_c {} vs {}", fine.h_c, coarse.h_c);
     }

@@ -206,6 +206,7 @@ fn point_json_has_the_line_fields_plus_d_k_y_min() {
         "model_used",
         "work_units",
         "wall_s",
+        "algebraic_error",
     ];
     want.sort();
     assert_eq!(keys, want);
@@ -325,7 +326,7 @@ fn point_sweep_writes_one_row_per_case() {
     std::fs::write(
         &spec,
         "name = \"tiny-point\"\ncontact = \"point\"\n[axes]\nM = [10, 30]\nL = [0]\n\
-         D = [0.25, 1]\n[numerics]\ngrid = 33\nerror_estimate = true\n",
+         D = [0.25, 1]\n[numerics]\ngrid = 65\nerror_estimate = true\n",
     )
     .unwrap();
     let out_dir = dir.join("out");
@@ -348,7 +349,7 @@ fn point_sweep_writes_one_row_per_case() {
     for r in &rows {
         assert_eq!(r.contact, "point");
         assert_eq!(r.sweep, "tiny-point");
-        assert_eq!(r.grid_requested, 33);
+        assert_eq!(r.grid_requested, 65);
         assert!(r.half_grid_estimate);
         let d = r.d.expect("D filled");
         let k = r.k.expect("k filled");

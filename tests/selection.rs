@@ -93,7 +93,8 @@ fn the_check_grid_rejects_what_the_screen_gets_wrong() {
 #[test]
 fn point_isoviscous_selection_matches_the_full_model() {
     let c = PointCase::new(100.0, 0.001, 1.0).unwrap();
-    let (s, sel) = solve_point_selected(&c, &PointSolveParams::default(), TARGET, 257);
+    // (1 % needs 513^2 here: 257^2 estimates 1.5 %, and 33^2 does not resolve the film.)
+    let (s, sel) = solve_point_selected(&c, &PointSolveParams::default(), TARGET, 513);
     let o = &s.outputs;
     assert_eq!(sel.model, ModelUsed::Isoviscous, "{}", o.reason);
     assert_eq!(o.status, Status::Converged, "{}", o.reason);
@@ -102,6 +103,7 @@ fn point_isoviscous_selection_matches_the_full_model() {
         "point M=100 L=0.001 D=1",
         (o.h_c, o.h_min),
         o.error_estimate.unwrap(),
-        point_reference(&c, 257).0,
+        // (the reference finer than the answer's 513^2)
+        point_reference(&c, 1025).0,
     );
 }

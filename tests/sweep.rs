@@ -376,7 +376,7 @@ fn kill_9_leaves_readable_files_and_a_rerun_completes_the_set() {
 name = "k"
 contact = "line"
 [axes]
-M = { from = 2, to = 500, count = 20, scale = "log" }
+M = { from = 2, to = 400, count = 20, scale = "log" }
 L = [0, 4, 8]
 [numerics]
 grid = 257

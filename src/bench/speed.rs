@@ -4,8 +4,8 @@
 
 use crate::model::case::{LineCase, PointCase};
 use crate::solve::line::{solve_line, LineSolveParams};
-use crate::solve::params::CycleType;
 use crate::solve::params::Method;
+use crate::solve::params::{Converge, CycleType};
 use crate::solve::point::{solve_point, PointSolveParams};
 use crate::solve::solution::Outputs;
 use crate::strategy::accuracy::richardson2;
@@ -28,7 +28,9 @@ pub struct MethodSpec {
 /// dense Newton-Raphson (O(N^3), up to 1025 points), and the multigrid smoother alone (up to 1025
 /// points).
 pub fn methods() -> Vec<MethodSpec> {
-    let v = LineSolveParams::default();
+    let fast = LineSolveParams::default();
+    let mut v = fast;
+    v.mg.converge = Converge::Tight;
     let mut w = v;
     w.mg.cycle = CycleType::W;
     let newton = LineSolveParams {
@@ -45,6 +47,11 @@ pub fn methods() -> Vec<MethodSpec> {
     let mut direct = v;
     direct.mg.direct_deformation = true;
     vec![
+        MethodSpec {
+            label: "multigrid-V-fast",
+            params: fast,
+            max_grid: 1 << 20,
+        },
         MethodSpec {
             label: "multigrid-V",
             params: v,
@@ -164,6 +171,9 @@ impl BenchCase {
                     relax_max_sweeps: 20_000,
                     ..Default::default()
                 };
+                if label != "multigrid-V-fast" {
+                    p.mg.converge = Converge::Tight;
+                }
                 match label {
                     "multigrid-W" => p.mg.cycle = CycleType::W,
                     "multigrid-V-1cycle" => p.mg.fmg_cycles = 1,
@@ -188,6 +198,7 @@ impl BenchCase {
             BenchCase::Line(_) => methods().iter().map(|m| (m.label, m.max_grid)).collect(),
             // Dense 2D Newton: (N - 2)^2 unknowns, O(N^6) work; relaxation alone: O(N^2) sweeps.
             BenchCase::Point(_) => vec![
+                ("multigrid-V-fast", 1 << 12),
                 ("multigrid-V", 1 << 12),
                 ("multigrid-V-1cycle", 1 << 12),
                 // The direct 2D sum costs O(n^4) per film update.

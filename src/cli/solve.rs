@@ -9,8 +9,8 @@ use clap::ValueEnum;
 use ehlmap::model::case::{Case, Elasticity, LineCase, Models, ParamError, PointCase};
 use ehlmap::model::lubricant::{Density, Viscosity};
 use ehlmap::render::style::RenderError;
-use ehlmap::solve::params::CycleType;
 use ehlmap::solve::params::Method;
+use ehlmap::solve::params::{Converge, CycleType};
 use ehlmap::solve::solution::{ModelUsed, Outputs, Solution};
 use ehlmap::solve::{CycleEvent, Observer};
 use ehlmap::strategy::solve_case::{solve, SolveParams};
@@ -53,6 +53,14 @@ pub enum CycleArg {
     W,
 }
 
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum ConvergeArg {
+    /// Stop when the algebraic error is below a tenth of the discretisation error (default).
+    Fast,
+    /// Converge to the load and H_c tolerances (references, tests).
+    Tight,
+}
+
 #[derive(clap::Args, Debug)]
 #[command(allow_negative_numbers = true)]
 pub struct SolveArgs {
@@ -91,6 +99,9 @@ pub struct SolveArgs {
     pub grid: Option<usize>,
     #[arg(long, value_enum, default_value = "v")]
     pub cycle: CycleArg,
+    /// Stopping rule: at the discretisation error (fast) or at the tolerances (tight).
+    #[arg(long, value_enum, default_value = "fast")]
+    pub converge: ConvergeArg,
     /// Target relative accuracy of H_c and H_min: pick the cheapest adequate model (rigid,
     /// isoviscous, closed form; see --full-model) and refine the grid from 257 points until the
     /// Richardson estimate meets it (up to --max-grid); reports model_used, level,
@@ -287,6 +298,10 @@ fn params_arg(a: &SolveArgs, case: &Case) -> Result<SolveParams, InputError> {
         cycle: match a.cycle {
             CycleArg::V => CycleType::V,
             CycleArg::W => CycleType::W,
+        },
+        converge: match a.converge {
+            ConvergeArg::Fast => Converge::Fast,
+            ConvergeArg::Tight => Converge::Tight,
         },
         max_cycles: a.max_cycles,
         fallback: !a.no_fallback,

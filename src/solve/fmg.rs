@@ -14,12 +14,15 @@
 
 use crate::solve::load_balance::LoadBalance;
 use crate::solve::newton::NewtonOutcome;
+use crate::solve::params::Converge;
 use crate::solve::{CycleRecord, SolveInfo, Status};
 use std::time::Instant;
 
 /// The driver's tolerances and limits.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FmgControl {
+    /// Which stopping rule (fast: at the discretisation error; tight: at the tolerances).
+    pub converge: Converge,
     /// Cycles on each FMG level before moving to the next finer one (4x this at most).
     pub fmg_cycles: usize,
     /// Cycles allowed on the finest level.
@@ -77,6 +80,11 @@ pub trait Fas {
     fn install_guess(&mut self, _l: usize) -> bool {
         false
     }
+    /// Whether a coarsest-level solve with the load equation (fast convergence) has failed, so
+    /// that H0 no longer moves with the cycles.
+    fn coarse_load_failed(&self) -> bool {
+        false
+    }
     /// Work units spent so far (relaxation sweeps in finest-grid equivalents).
     fn work_units(&self) -> f64;
     /// Points (per direction for point contacts) of level `l`.
@@ -98,6 +106,8 @@ pub trait Fas {
             wall_s: start.elapsed().as_secs_f64(),
             grid: self.points(self.top()),
             levels: self.top() + 1,
+            algebraic_error: None,
+            discretisation_error: None,
         }
     }
 }
@@ -136,7 +146,7 @@ pub fn fmg_solve<S: Fas>(s: &mut S) -> SolveInfo {
 }
 
 /// A single level: the Newton solve of the coarse start is the whole solve.
-fn single_level<S: Fas>(s: &mut S, start: Instant, coarse: &NewtonOutcome) -> SolveInfo {
+pub(crate) fn single_level<S: Fas>(s: &mut S, start: Instant, coarse: &NewtonOutcome) -> SolveInfo {
     let rec = s.record(0);
     let (status, reason) = if coarse.converged {
         (
@@ -169,7 +179,7 @@ struct Driver {
 
 /// Start level `l` from level l-1: H0 predicted by Richardson extrapolation of its last change
 /// (from level 3 on, `h0_end` holding H0 at the end of each level), then the FMG interpolation.
-fn start_level<S: Fas>(s: &mut S, l: usize, h0_end: &[f64]) {
+pub(crate) fn start_level<S: Fas>(s: &mut S, l: usize, h0_end: &[f64]) {
     if let [.., a, b] = h0_end[..] {
         if l >= 3 {
             s.set_h0(l, b + 0.25 * (b - a));
@@ -240,7 +250,7 @@ fn run_level<S: Fas>(
 }
 
 /// Cycle `k` of level `l`: one FAS cycle and its record (sent to the observer, if any).
-fn cycle_once<S: Fas>(s: &mut S, l: usize, k: usize) -> CycleRecord {
+pub(crate) fn cycle_once<S: Fas>(s: &mut S, l: usize, k: usize) -> CycleRecord {
     s.cycle(l);
     let rec = s.record(l);
     if let Some(o) = s.observer() {
@@ -257,7 +267,7 @@ fn cycle_once<S: Fas>(s: &mut S, l: usize, k: usize) -> CycleRecord {
 /// The reason of a divergence, if the cycle diverged: a non-finite residual, film or H0 on any
 /// level; on the finest level (where `min_res` tracks the smallest residual) a residual grown
 /// by 1e4 or a load error above 10.
-fn check_divergence<S: Fas>(
+pub(crate) fn check_divergence<S: Fas>(
     s: &S,
     l: usize,
     final_level: bool,
@@ -334,7 +344,7 @@ fn stalled(rec: &CycleRecord, settled_h: &mut Option<f64>, tol_e: f64, d: &mut D
 }
 
 /// The safeguarded (and damped) secant step of the load balance on H0, after P has settled.
-fn secant_step<S: Fas>(
+pub(crate) fn secant_step<S: Fas>(
     s: &mut S,
     c: &FmgControl,
     l: usize,

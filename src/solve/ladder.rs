@@ -1,8 +1,9 @@
 //! The fallback ladder shared by the line and point solves ([`run_ladder`]): run the attempts
 //! in order until one converges; keep the converged one, or the failed one with the lowest final
 //! residual. The reason names the attempt kept, the cost (work units, wall time) covers all
-//! attempts made, and a converged solve whose H_min <= 0 carries a warning (the grid does not
-//! resolve the film).
+//! attempts made, and a converged solve whose film H_c or H_min is <= 0 (or not a number) is
+//! not an answer: its status becomes [`Status::UnderResolved`] (the grid does not resolve the
+//! film).
 
 use crate::solve::params::{FinerCoarsest, MgParams, Rung};
 use crate::solve::solution::{Outputs, Solution};
@@ -60,10 +61,16 @@ pub fn run_ladder<S: Attempt>(names: &[&str], mut run: impl FnMut(usize) -> S) -
         info.reason.push_str(&note);
         out.reason.push_str(&note);
     }
-    if info.status == Status::Converged && (out.h_min.is_nan() || out.h_min <= 0.0) {
-        let note = "; warning: H_min <= 0, the grid does not resolve the film (refine --grid)";
-        info.reason.push_str(note);
-        out.reason.push_str(note);
+    if info.status == Status::Converged && !(out.h_min > 0.0 && out.h_c > 0.0) {
+        let note = format!(
+            "; but the film is not positive (H_c = {:.3e}, H_min = {:.3e}): the grid does not \
+             resolve the case (refine it)",
+            out.h_c, out.h_min
+        );
+        info.reason.push_str(&note);
+        out.reason.push_str(&note);
+        info.status = Status::UnderResolved;
+        out.status = Status::UnderResolved;
     }
     info.work_units = spent_wu;
     info.wall_s = spent_s;
@@ -74,15 +81,24 @@ pub fn run_ladder<S: Attempt>(names: &[&str], mut run: impl FnMut(usize) -> S) -
 
 /// Run the ladder `rungs` over the settings `p` (only the first rung without `fallback`):
 /// `run` solves with each rung's settings; see [`run_ladder`].
-pub fn run_rungs<D: Copy + FinerCoarsest, S: Attempt>(
+pub fn run_rungs<D: Copy + PartialEq + FinerCoarsest, S: Attempt>(
     rungs: &[Rung],
     p: &MgParams<D>,
     fallback: bool,
     mut run: impl FnMut(&MgParams<D>) -> S,
 ) -> S {
     let rungs = if fallback { rungs } else { &rungs[..1] };
-    let names: Vec<&str> = rungs.iter().map(|r| r.name()).collect();
-    run_ladder(&names, |k| run(&rungs[k].apply(p)))
+    // A rung that changes nothing over an earlier one (the tight rung of a tight solve) is
+    // skipped.
+    let mut settings: Vec<(Rung, MgParams<D>)> = vec![];
+    for r in rungs {
+        let q = r.apply(p);
+        if !settings.iter().any(|(_, s)| *s == q) {
+            settings.push((*r, q));
+        }
+    }
+    let names: Vec<&str> = settings.iter().map(|(r, _)| r.name()).collect();
+    run_ladder(&names, |k| run(&settings[k].1))
 }
 
 impl Attempt for Solution {

@@ -4,6 +4,7 @@
 pub mod banded;
 pub mod film;
 pub mod fmg;
+pub mod fmg_fast;
 pub mod ladder;
 pub mod line;
 pub mod load_balance;
@@ -32,16 +33,21 @@ pub enum Status {
     Stalled,
     /// The cycle, sweep or Newton iteration limit was reached first.
     MaxIterations,
+    /// The iterations converged, but to a film H_c or H_min <= 0 (or not a number): the grid
+    /// does not resolve the case, so the answer is not one (refine the grid).
+    UnderResolved,
 }
 
 impl Status {
-    /// The name in JSON and Parquet: converged, diverged, stalled, max-iterations.
+    /// The name in JSON and Parquet: converged, diverged, stalled, max-iterations,
+    /// under-resolved.
     pub fn as_str(&self) -> &'static str {
         match self {
             Status::Converged => "converged",
             Status::Diverged => "diverged",
             Status::Stalled => "stalled",
             Status::MaxIterations => "max-iterations",
+            Status::UnderResolved => "under-resolved",
         }
     }
 }
@@ -61,6 +67,8 @@ pub struct CycleRecord {
     pub load_error: f64,
     /// Central film (Moes units) after the cycle.
     pub h_c: f64,
+    /// Smallest nodal film (Moes units) after the cycle.
+    pub h_min: f64,
     /// Cumulative work units.
     pub work_units: f64,
 }
@@ -82,6 +90,12 @@ pub struct SolveInfo {
     pub grid: usize,
     /// Levels of the multigrid hierarchy.
     pub levels: usize,
+    /// Fast convergence: the estimated relative algebraic error of H_c and H_min (the larger)
+    /// left on the finest level when the cycles stopped (see [`crate::solve::fmg`]).
+    pub algebraic_error: Option<f64>,
+    /// Fast convergence: the relative discretisation error of H_c and H_min (the larger)
+    /// estimated from the finest level and the next coarser one, |Q_h - Q_2h| / (3 |Q_h|).
+    pub discretisation_error: Option<f64>,
 }
 
 /// One multigrid cycle as an observer sees it: the FMG level (0 the coarsest), the cycle's index
@@ -104,8 +118,8 @@ impl fmt::Display for CycleEvent {
         let r = &self.record;
         write!(
             f,
-            "level {} cycle {} res {:.3e} load {:.3e} hc {:.7} wu {:.1} h0 {:.8}",
-            self.level, self.cycle, r.residual, r.load_error, r.h_c, r.work_units, self.h0
+            "level {} cycle {} res {:.3e} load {:.3e} hc {:.7} hmin {:.7} wu {:.1} h0 {:.8}",
+            self.level, self.cycle, r.residual, r.load_error, r.h_c, r.h_min, r.work_units, self.h0
         )
     }
 }

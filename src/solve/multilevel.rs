@@ -15,8 +15,9 @@
 //! P and the current H0.
 
 use crate::solve::fmg::{fmg_solve, Fas, FmgControl};
+use crate::solve::fmg_fast::fmg_fast_solve;
 use crate::solve::newton::{newton_solve, NewtonLevel, NewtonOutcome, NewtonParams};
-use crate::solve::params::{FinerCoarsest, MgParams};
+use crate::solve::params::{Converge, FinerCoarsest, MgParams};
 use crate::solve::{CycleRecord, Observer, SolveInfo};
 
 /// What the shared multigrid steps need from a grid level, beyond Newton's view of it.
@@ -146,6 +147,9 @@ pub struct Multigrid<C: Contact> {
     pub work_units: f64,
     /// Estimate of d(load)/dH0 from the coarsest level.
     pub(crate) load_slope: f64,
+    /// A coarsest-level solve with the load equation failed: from then on the coarsest level
+    /// is solved at fixed H0 and the driver moves H0.
+    pub(crate) coarse_load_failed: bool,
     /// The contact's own state.
     pub(crate) extra: C::Extra,
 }
@@ -169,6 +173,7 @@ impl<C: Contact> Multigrid<C> {
             p_hat,
             work_units: 0.0,
             load_slope: -1.0,
+            coarse_load_failed: false,
             extra,
         }
     }
@@ -179,24 +184,36 @@ impl<C: Contact> Multigrid<C> {
         self.work_units += cost;
     }
 
-    /// Solve the coarsest level's FAS problem for P at fixed H0 by Newton; if Newton fails, the
-    /// pressure before it is restored and relaxed `coarse_sweeps` times.
+    /// Solve the coarsest level's FAS problem by Newton: for P and H0 with the load equation
+    /// under fast convergence (the FAS load right-hand side carries the finer levels' load, so
+    /// H0 converges with the cycles), for P at fixed H0 under tight convergence (the driver's
+    /// secant step moves H0) or when that fails (then `coarse_load_failed` is set for the
+    /// driver). If Newton fails at fixed H0 too, the pressure before it is restored and relaxed
+    /// `coarse_sweeps` times. A failed solve with the load equation is not tried again.
     fn coarse_solve(&mut self) {
-        let lv = &mut self.levels[0];
-        let before = lv.p().to_vec();
-        let np = NewtonParams {
-            fix_h0: true,
-            ..NewtonParams::default()
-        };
-        let mut h0 = self.h0;
-        let out = newton_solve(lv, &self.phys, &mut h0, &np);
-        self.work_units += C::newton_cost(self, out.iterations);
-        if out.converged || (!out.singular && out.residual < 1e-6) {
-            return;
+        let before = self.levels[0].p().to_vec();
+        let free = self.params.converge == Converge::Fast && !self.coarse_load_failed;
+        for fix_h0 in if free {
+            &[false, true][..]
+        } else {
+            &[true][..]
+        } {
+            let np = NewtonParams {
+                fix_h0: *fix_h0,
+                ..NewtonParams::default()
+            };
+            let mut h0 = self.h0;
+            let out = newton_solve(&mut self.levels[0], &self.phys, &mut h0, &np);
+            self.work_units += C::newton_cost(self, out.iterations);
+            if (out.converged || (!out.singular && out.residual < 1e-6)) && h0.is_finite() {
+                self.h0 = h0;
+                return;
+            }
+            self.coarse_load_failed |= free;
+            let lv = &mut self.levels[0];
+            lv.pressure().copy_from_slice(&before);
+            lv.refresh(&self.phys, self.h0);
         }
-        let lv = &mut self.levels[0];
-        lv.pressure().copy_from_slice(&before);
-        lv.refresh(&self.phys, self.h0);
         for _ in 0..self.params.coarse_sweeps {
             self.relax_level(0);
         }
@@ -256,17 +273,23 @@ impl<C: Contact> Multigrid<C> {
         let active = fine.p().iter().filter(|&&p| p > 0.0).count().max(1);
         let residual = r.iter().map(|v| v.abs()).sum::<f64>() / active as f64;
         *fine.delta_mut() = r;
+        let h_min = fine.film().iter().fold(f64::INFINITY, |a, &b| a.min(b));
         CycleRecord {
             residual,
             load_error: (fine.load_sum() - fine.load_rhs()) / fine.load_rhs(),
             h_c: fine.film()[ic] * h_scale,
+            h_min: h_min * h_scale,
             work_units: self.work_units,
         }
     }
 
-    /// Run FMG ([`crate::solve::fmg::fmg_solve`]).
+    /// Run FMG: to the discretisation error ([`crate::solve::fmg_fast::fmg_fast_solve`]) or
+    /// to the tolerances ([`crate::solve::fmg::fmg_solve`]), as `params.converge` says.
     pub fn solve(&mut self) -> SolveInfo {
-        fmg_solve(self)
+        match self.params.converge {
+            Converge::Fast => fmg_fast_solve(self),
+            Converge::Tight => fmg_solve(self),
+        }
     }
 }
 
@@ -319,6 +342,9 @@ impl<C: Contact> Fas for Multigrid<C> {
     }
     fn install_guess(&mut self, l: usize) -> bool {
         C::install_guess(self, l)
+    }
+    fn coarse_load_failed(&self) -> bool {
+        self.coarse_load_failed
     }
     fn work_units(&self) -> f64 {
         self.work_units

@@ -55,6 +55,52 @@ impl std::fmt::Display for CycleType {
     }
 }
 
+/// How far the finest level is converged.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum Converge {
+    /// To the discretisation error (default): full multigrid with a few cycles per level and
+    /// the load balance inside the cycle (H0 solved on the coarsest level); on every level the
+    /// cycles stop when the algebraic error estimate of H_c and H_min is below a tenth of the
+    /// discretisation error estimate (the difference to the next coarser level's solution).
+    #[default]
+    Fast,
+    /// To the tolerances (`tol_load`, `tol_h`): cycles until P settles, a secant step on H0 per
+    /// settled state, the algebraic error driven far below the discretisation error (for
+    /// references and tests).
+    Tight,
+}
+
+impl Converge {
+    /// The name on the command line and in TOML (`fast`, `tight`).
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Converge::Fast => "fast",
+            Converge::Tight => "tight",
+        }
+    }
+}
+
+impl std::str::FromStr for Converge {
+    type Err = crate::model::error::ParamError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        [Converge::Fast, Converge::Tight]
+            .into_iter()
+            .find(|c| c.as_str() == s)
+            .ok_or_else(|| crate::model::error::ParamError::Unknown {
+                what: "convergence",
+                name: s.to_string(),
+                expected: "fast or tight",
+            })
+    }
+}
+
+impl std::fmt::Display for Converge {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
 /// Which solver.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -94,7 +140,10 @@ pub struct MgParams<D> {
     pub pre: usize,
     /// Relaxations after the coarse-grid correction.
     pub post: usize,
-    /// Cycles on each FMG level before moving to the next finer one.
+    /// How far the finest level is converged (the stopping rule).
+    pub converge: Converge,
+    /// Cycles on each FMG level before moving to the next finer one (tight convergence: 4x
+    /// this at most, growing on coarser levels; fast convergence: 2x this at most).
     pub fmg_cycles: usize,
     /// Cycles allowed on the finest level after FMG.
     pub max_cycles: usize,
@@ -140,6 +189,7 @@ impl<D> MgParams<D> {
             cycle: CycleType::V,
             pre: 2,
             post: 1,
+            converge: Converge::Fast,
             fmg_cycles: 2,
             max_cycles,
             relax: RelaxParams::default(),
@@ -162,6 +212,7 @@ impl<D> MgParams<D> {
     /// `coarse_budget_growth` per level below the finest.
     pub fn control(&self, coarse_budget_growth: usize) -> FmgControl {
         FmgControl {
+            converge: self.converge,
             fmg_cycles: self.fmg_cycles,
             max_cycles: self.max_cycles,
             tol_load: self.tol_load,
@@ -194,6 +245,9 @@ pub enum Rung {
     DistributiveW,
     /// Distributive relaxation with W cycles and a finer coarsest grid.
     DistributiveWFiner,
+    /// The settings as given, converged tightly (the secant load balance between settled
+    /// states instead of H0 solved inside the cycle).
+    Tight,
 }
 
 impl Rung {
@@ -206,14 +260,20 @@ impl Rung {
             Rung::Distributive => "distributive line relaxation everywhere",
             Rung::DistributiveW => "distributive relaxation, W cycles",
             Rung::DistributiveWFiner => "distributive relaxation, W cycles, finer coarsest grid",
+            Rung::Tight => "default smoother, tight convergence",
         }
     }
 
-    /// `p` changed as this rung says.
+    /// `p` changed as this rung says; every rung but the first converges tightly (the
+    /// conservative load balance).
     pub fn apply<D: Copy + FinerCoarsest>(self, p: &MgParams<D>) -> MgParams<D> {
         let mut q = *p;
+        if self != Rung::Default {
+            q.converge = Converge::Tight;
+        }
         match self {
             Rung::Default => {}
+            Rung::Tight => {}
             Rung::Smooth44 => {
                 q.pre = p.pre.max(4);
                 q.post = p.post.max(4);

@@ -150,6 +150,11 @@ pub struct Outputs {
     pub work_units: f64,
     /// Wall time (s), all attempts and grids included.
     pub wall_s: f64,
+    /// The estimated relative algebraic error of H_c and H_min (the larger) left on the finest
+    /// grid when the cycles stopped (fast convergence; none under tight convergence, where it
+    /// is far below the tolerances, and for a closed form).
+    #[serde(skip_serializing_if = "Option::is_none", default)]
+    pub algebraic_error: Option<f64>,
     /// With an accuracy target only: the estimated relative discretisation error of H_c and
     /// H_min (the larger; Richardson between this grid and the one with half the intervals).
     #[serde(skip_serializing_if = "Option::is_none", default)]
@@ -266,6 +271,7 @@ pub fn line_outputs(
         model_used: ModelUsed::Full,
         work_units: info.work_units,
         wall_s: info.wall_s,
+        algebraic_error: info.algebraic_error,
         error_estimate: None,
         accuracy_met: None,
     }

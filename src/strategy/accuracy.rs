@@ -70,7 +70,7 @@ pub const COARSE_LADDER_CYCLES: usize = 20;
 /// Solve on `start`, 2 start - 1, ... points (up to `max_grid`) until the error estimate between
 /// the last two grids is below `target`. The estimate is Richardson's with order p,
 /// |Q_h - Q_2h| / ((2^p - 1) |Q_h|), max over H_c and H_min, from two consecutive converged
-/// grids. `solve(grid, last)` is told whether `grid` is the finest allowed: callers run their
+/// grids, plus the algebraic error estimates of both solves. `solve(grid, last)` is told whether `grid` is the finest allowed: callers run their
 /// fallback ladder there only, so a coarse grid that does not resolve the case costs one attempt
 /// and the ladder moves on to a finer grid instead of stopping. Returns the finest solution with
 /// `error_estimate` and `accuracy_met` set; the cost of all grids is counted.
@@ -94,7 +94,11 @@ pub fn refine_to_accuracy<S: Attempt>(
         let converged = si.status == Status::Converged;
         let est = prev.as_mut().filter(|_| converged).map(|c| {
             let (_, co) = c.parts();
+            // The algebraic errors the cycles left on both grids add to the estimate (they
+            // contaminate the difference as well as the fine answer).
+            let algebraic = so.algebraic_error.unwrap_or(0.0) + co.algebraic_error.unwrap_or(0.0);
             relative_error(co.h_c, so.h_c, order).max(relative_error(co.h_min, so.h_min, order))
+                + algebraic
         });
         if est.is_some_and(|e| e <= target) || last {
             so.error_estimate = est;

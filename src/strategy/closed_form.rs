@@ -38,6 +38,7 @@ pub fn closed_form_line(m: f64) -> Solution {
         model_used: ModelUsed::ClosedForm,
         work_units: 0.0,
         wall_s: 0.0,
+        algebraic_error: Some(0.0),
         error_estimate: Some(0.0),
         accuracy_met: Some(true),
     };
@@ -49,6 +50,8 @@ pub fn closed_form_line(m: f64) -> Solution {
         wall_s: 0.0,
         grid: 0,
         levels: 0,
+        algebraic_error: Some(0.0),
+        discretisation_error: Some(0.0),
     };
     Solution {
         outputs,

@@ -12,7 +12,8 @@
 //! data they were fitted to (at M = 0.05, L = 5 Moes' blend puts the piezoviscous effect at
 //! 1.5e-4; the solver measures 3.8e-3), so a candidate is then **verified**: the full and the
 //! simplified model are solved on a coarse check grid (257 line points, 33^2 point nodes, a few
-//! per cent of a fine solve) and the candidate is kept only when the measured change of H_c and
+//! per cent of a fine solve; refined twice at most while the full check does not resolve the
+//! film, status under-resolved) and the candidate is kept only when the measured change of H_c and
 //! H_min is below `CHECK_FRACTION` times the target; the measured effect becomes the neglected
 //! part of the error estimate. Otherwise the full model is solved. Where the full check itself
 //! fails (very small M: at M = 0.01 the elastic solve takes 52 s on 1025 points and does not
@@ -181,27 +182,38 @@ fn measured_effect(full: &Outputs, simple: &Outputs) -> Option<f64> {
     (ok && e.is_finite()).then_some(e)
 }
 
-/// Verify a screened candidate with the check-grid solves (`check(model)`); returns the kept
+/// Verify a screened candidate with the check-grid solves (`check(model, grid)`, from `grid`,
+/// refined twice at most while the full solve does not resolve the film); returns the kept
 /// selection and the cost (work units, seconds) of the checks.
 fn verify(
     sel: Selection,
     target: f64,
-    check: impl Fn(ModelUsed) -> Outputs,
+    grid: usize,
+    check: impl Fn(ModelUsed, usize) -> Outputs,
 ) -> (Selection, f64, f64) {
     if sel.model == ModelUsed::Full {
         return (sel, 0.0, 0.0);
     }
-    let full = check(ModelUsed::Full);
+    let (mut grid, mut spent) = (grid, (0.0, 0.0));
+    let mut full = check(ModelUsed::Full, grid);
+    for _ in 0..2 {
+        if full.status != Status::UnderResolved {
+            break;
+        }
+        spent = (spent.0 + full.work_units, spent.1 + full.wall_s);
+        grid = 2 * (grid - 1) + 1;
+        full = check(ModelUsed::Full, grid);
+    }
     // The closed form is checked through its discrete twin, so that the coarse grid's
     // discretisation error cancels in the comparison.
     let twin = match sel.model {
         ModelUsed::ClosedForm => ModelUsed::RigidIsoviscous,
         m => m,
     };
-    let simple = check(twin);
+    let simple = check(twin, grid);
     let cost = (
-        full.work_units + simple.work_units,
-        full.wall_s + simple.wall_s,
+        spent.0 + full.work_units + simple.work_units,
+        spent.1 + full.wall_s + simple.wall_s,
     );
     let limit = CHECK_FRACTION * target;
     let screened = sel.neglected * SCREEN_MARGIN;
@@ -272,9 +284,12 @@ pub fn solve_line_selected(
 ) -> (Solution, Selection) {
     let screened = select(case.m, case.l, None, &case.models, target);
     let mut cp = *params;
-    cp.mg.grid = CHECK_GRID_LINE;
     cp.keep_fields = false;
-    let (sel, wu, wall) = verify(screened, target, |model| solve_line_model(case, &cp, model));
+    let (sel, wu, wall) = verify(screened, target, CHECK_GRID_LINE, |model, grid| {
+        let mut cp = cp;
+        cp.mg.grid = grid;
+        solve_line_model(case, &cp, model)
+    });
     let full = |p: &LineSolveParams| solve_line_to_accuracy(case, p, target, max_grid);
     let s = match sel.model {
         ModelUsed::Full => full(params),
@@ -316,9 +331,10 @@ pub fn solve_point_selected(
         return finish(s, sel, || full(params), (0.0, 0.0));
     }
     let mut cp = *params;
-    cp.mg.grid = CHECK_GRID_POINT;
     cp.keep_fields = false;
-    let (sel, wu, wall) = verify(screened, target, |model| {
+    let (sel, wu, wall) = verify(screened, target, CHECK_GRID_POINT, |model, grid| {
+        let mut cp = cp;
+        cp.mg.grid = grid;
         solve_point_model(case, &cp, model)
     });
     let s = match sel.model {

@@ -14,9 +14,9 @@ use crate::discrete::line::domain::DomainParams;
 use crate::discrete::point::domain::PointDomainParams;
 use crate::model::case::{Case, Contact};
 use crate::solve::line::{solve_line, LineSolveParams};
-use crate::solve::params::CycleType;
 use crate::solve::params::Method;
 use crate::solve::params::{ContactParams, MgParams};
+use crate::solve::params::{Converge, CycleType};
 use crate::solve::point::{solve_point, PointSolveParams};
 use crate::solve::solution::Solution;
 use crate::solve::Observer;
@@ -42,6 +42,9 @@ pub struct SolveParams {
     pub grid: Option<usize>,
     /// Multigrid cycle type.
     pub cycle: CycleType,
+    /// The stopping rule: at the discretisation error (fast, default) or at the tolerances
+    /// (tight, for references).
+    pub converge: Converge,
     /// Cycles allowed on the finest level; `None`: the contact's default.
     pub max_cycles: Option<usize>,
     /// Convergence tolerance on the load error; `None`: the contact's default.
@@ -77,6 +80,7 @@ impl Default for SolveParams {
             method: line.method,
             grid: None,
             cycle: line.mg.cycle,
+            converge: line.mg.converge,
             max_cycles: None,
             tol_load: None,
             tol_h: None,
@@ -106,6 +110,7 @@ impl SolveParams {
             ..ContactParams::default()
         };
         p.mg.cycle = self.cycle;
+        p.mg.converge = self.converge;
         p.mg.domain = domain;
         p.mg.observer = self.observer;
         p.mg.parallel = self.parallel;

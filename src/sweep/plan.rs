@@ -19,7 +19,7 @@ use std::fmt;
 pub struct ShardError(pub String);
 
 /// Version tag of the canonical string: bump it when the meaning of a setting changes.
-const CANON_VERSION: &str = "ehlmap-case-v1";
+const CANON_VERSION: &str = "ehlmap-case-v2";
 
 /// One case to solve.
 #[derive(Clone, Debug, PartialEq)]
@@ -74,14 +74,15 @@ impl Case {
         let d = self.d.map_or("-".to_string(), |d| format!("{d:e}"));
         format!(
             "{CANON_VERSION};contact={};M={:e};L={:e};D={d};elasticity={};viscosity={visc};\
-             density={dens};grid={};cycle={};max_cycles={};fallback={};tol_load={:e};tol_h={:e};\
-             error_estimate={}",
+             density={dens};grid={};cycle={};converge={};max_cycles={};fallback={};tol_load={:e};\
+             tol_h={:e};error_estimate={}",
             self.contact.as_str(),
             self.m,
             self.l,
             self.models.elasticity,
             n.grid,
             n.cycle.as_str(),
+            n.converge.as_str(),
             n.max_cycles,
             n.fallback,
             n.tol_load,
@@ -354,9 +355,9 @@ mod tests {
         let c = cases.iter().find(|c| c.m == 1.0 && c.l == 0.0).unwrap();
         assert_eq!(
             c.canonical(),
-            "ehlmap-case-v1;contact=line;M=1e0;L=0e0;D=-;elasticity=elastic;viscosity=barus;\
-             density=incompressible;grid=2049;cycle=v;max_cycles=60;fallback=true;tol_load=1e-7;\
-             tol_h=1e-6;error_estimate=false"
+            "ehlmap-case-v2;contact=line;M=1e0;L=0e0;D=-;elasticity=elastic;viscosity=barus;\
+             density=incompressible;grid=2049;cycle=v;converge=fast;max_cycles=60;fallback=true;\
+             tol_load=1e-7;tol_h=1e-6;error_estimate=false"
         );
         assert_eq!(c.id_hex(), id_hex(fnv1a64(c.canonical().as_bytes())));
         // Largest cost first.
@@ -394,9 +395,9 @@ mod tests {
         // Pinned like the line string above.
         assert_eq!(
             c.canonical(),
-            "ehlmap-case-v1;contact=point;M=1e1;L=0e0;D=5e-1;elasticity=elastic;viscosity=barus;\
-             density=incompressible;grid=129;cycle=v;max_cycles=60;fallback=true;tol_load=1e-7;\
-             tol_h=1e-6;error_estimate=false"
+            "ehlmap-case-v2;contact=point;M=1e1;L=0e0;D=5e-1;elasticity=elastic;viscosity=barus;\
+             density=incompressible;grid=129;cycle=v;converge=fast;max_cycles=60;fallback=true;\
+             tol_load=1e-7;tol_h=1e-6;error_estimate=false"
         );
         assert!(c.point_case().is_ok() && c.line_case().is_ok());
         assert!(cases.windows(2).all(|w| w[0].cost >= w[1].cost));

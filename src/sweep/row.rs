@@ -43,6 +43,7 @@ pub fn input_row(case: &Case, sweep: &str) -> CaseRow {
         ph: ph_v.or(ph_d),
         grid_requested: n.grid as i64,
         cycle: n.cycle,
+        converge: n.converge,
         max_cycles: n.max_cycles as i64,
         fallback: n.fallback,
         tol_load: n.tol_load,
@@ -60,6 +61,7 @@ pub fn solve_params(case: &Case, grid: usize) -> SolveParams {
     SolveParams {
         grid: Some(grid),
         cycle: n.cycle,
+        converge: n.converge,
         max_cycles: Some(n.max_cycles),
         tol_load: Some(n.tol_load),
         tol_h: Some(n.tol_h),
@@ -203,6 +205,8 @@ fn build_row(
     let mut row = input_row(case, sweep);
     let mut valid = true;
     fill_outputs(&mut row, o, attempt, &mut valid);
+    // A film <= 0 is no answer: the row stays, flagged.
+    valid &= o.status != Status::UnderResolved;
     let (mut wu, mut wall) = (o.work_units, o.wall_s);
     if let Some(est) = o.error_estimate {
         // Accuracy target: the estimate of the chosen grid (max over H_c and H_min).
@@ -216,7 +220,10 @@ fn build_row(
     }
     row.work_units = finite(wu, &mut valid);
     row.wall_s = finite(wall, &mut valid);
-    row.error_estimate = larger_error(row.h_c_err, row.h_min_err);
+    // The algebraic error left by the cycles adds to the discretisation estimate.
+    row.algebraic_error = o.algebraic_error.and_then(|a| finite(a, &mut valid));
+    row.error_estimate =
+        larger_error(row.h_c_err, row.h_min_err).map(|e| e + row.algebraic_error.unwrap_or(0.0));
     row.valid = valid;
     row
 }
@@ -265,6 +272,7 @@ mod tests {
             model_used: ModelUsed::Full,
             work_units: 1.0,
             wall_s: 0.0,
+            algebraic_error: None,
             error_estimate: None,
             accuracy_met: None,
         }

@@ -33,8 +33,9 @@ use crate::solve::SolveInfo;
 pub type LineSolveParams = ContactParams<DomainParams>;
 
 /// The fallback ladder (module doc).
-const LADDER: [Rung; 5] = [
+const LADDER: [Rung; 6] = [
     Rung::Default,
+    Rung::Tight,
     Rung::Smooth44,
     Rung::Damped,
     Rung::Distributive,

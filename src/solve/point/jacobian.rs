@@ -121,6 +121,35 @@ impl PointJacRow {
         v
     }
 
+    /// dL_ij/dP at the nodes (k, j) of the row itself for k in lo..=hi, into `out[k]`: the
+    /// values of [`PointJacRow::entry`], computed together (the zero weights that `entry` skips
+    /// add exact zeros here, so the values are the same to the bit).
+    pub fn row_entries(&self, kernel: &[f64], nx: usize, lo: usize, hi: usize, out: &mut [f64]) {
+        let i = self.i;
+        let out = &mut out[lo..=hi];
+        if self.coef != 0.0 {
+            let (k0, k1) = (&kernel[..nx], &kernel[nx..2 * nx]);
+            let [g0, g1, g2, g3] = self.g_h;
+            let [gy0, gy1] = self.g_y;
+            for (o, k) in out.iter_mut().zip(lo..) {
+                let s = 0.0
+                    + g0 * k0[i.abs_diff(k + 2)]
+                    + g1 * k0[(i + 1).abs_diff(k + 2)]
+                    + g2 * k0[i.abs_diff(k)]
+                    + g3 * k0[(i + 1).abs_diff(k)];
+                let dx = i.abs_diff(k);
+                *o = self.coef * (s + gy0 * k1[dx] + gy1 * k1[dx]);
+            }
+        } else {
+            out.fill(0.0);
+        }
+        for (t, &v) in self.local.iter().enumerate() {
+            if let Some(k) = (i + t).checked_sub(2).filter(|k| (lo..=hi).contains(k)) {
+                out[k - lo] += v;
+            }
+        }
+    }
+
     /// dL_ij/dH0.
     pub fn d_h0(&self) -> f64 {
         self.g_h.iter().sum::<f64>() + self.g_y.iter().sum::<f64>()
@@ -201,6 +230,16 @@ mod tests {
                     (fd - an).abs() <= 1e-4 * (1.0 + an.abs()),
                     "row {r} col {q}: fd {fd} an {an}"
                 );
+            }
+        }
+        // The row's entries computed together are entry() to the bit.
+        let mut out = vec![f64::NAN; lv.nx];
+        for (i, j) in [(1usize, 1usize), (2, 5), (7, 6), (14, 10)] {
+            let row = PointJacRow::new(&lv, &phys, i, j);
+            let (lo, hi) = (i.saturating_sub(5).max(1), (i + 5).min(lv.nx - 2));
+            row.row_entries(&lv.kernel, lv.nx, lo, hi, &mut out);
+            for (k, &o) in out.iter().enumerate().take(hi + 1).skip(lo) {
+                assert_eq!(o.to_bits(), row.entry(&lv.kernel, lv.nx, k, j).to_bits());
             }
         }
         let mut plus = mk();

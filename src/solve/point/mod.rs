@@ -18,7 +18,6 @@ pub mod relax;
 use crate::discrete::point::domain::PointDomainParams;
 use crate::discrete::point::domain::BIAS_CAUTION;
 use crate::model::case::PointCase;
-use crate::solve::fmg::fmg_solve;
 use crate::solve::ladder::run_rungs;
 use crate::solve::params::{ContactParams, Method, Rung};
 pub use crate::solve::point::multigrid::PointMgParams;
@@ -107,7 +106,7 @@ pub fn point_outputs(mg: &PointMultigrid, info: &SolveInfo) -> Outputs {
 
 fn run(case: &PointCase, p: &PointMgParams, keep_fields: bool) -> Solution {
     let mut mg = PointMultigrid::new(case, p);
-    let info = fmg_solve(&mut mg);
+    let info = mg.solve();
     package(&mg, info, keep_fields)
 }
 
@@ -132,8 +131,9 @@ fn package(mg: &PointMultigrid, info: SolveInfo, keep_fields: bool) -> Solution 
 }
 
 /// The fallback ladder (module doc).
-const LADDER: [Rung; 4] = [
+const LADDER: [Rung; 5] = [
     Rung::Default,
+    Rung::Tight,
     Rung::Damped,
     Rung::Distributive,
     Rung::DistributiveW,

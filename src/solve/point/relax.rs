@@ -153,9 +153,7 @@ fn row_changes(
         }
         let lo = i.saturating_sub(bw + 1).max(1);
         let hi = (i + bw + 1).min(nx - 2);
-        for k in lo..=hi {
-            ent[k] = rows[row].entry(&lv.kernel, nx, k, j);
-        }
+        rows[row].row_entries(&lv.kernel, nx, lo, hi, ent);
         let ent = &*ent;
         distributed_row(a_row, i, bw, nx - 2, jset, |k| {
             if k >= lo && k <= hi {
@@ -197,23 +195,33 @@ fn local_film_update(
 ) {
     let (nx, ny) = (lv.nx, lv.ny);
     let law = phys.coefficients();
+    // (moved out for the loop, so the film can be borrowed beside it; put back below)
+    let kernel = std::mem::take(&mut lv.kernel);
     for jj in j..(j + 3).min(ny - 1) {
         let dy = jj - j;
+        if phys.elastic {
+            // Scattered change by change: film_i += c dP_k K(|i - k|, dy) for |i - k| <= reach,
+            // the nodes at and after k (krow forward) and before it (krow backward).
+            let krow = &kernel[dy * nx..(dy + 1) * nx];
+            let film = &mut lv.film[jj * nx..(jj + 1) * nx];
+            for (k, &dpk) in change.iter().enumerate().take(nx - 1).skip(1) {
+                if dpk == 0.0 {
+                    continue;
+                }
+                let d = phys.coef * dpk;
+                let (lo, hi) = (k.saturating_sub(reach).max(1), (k + reach).min(nx - 2));
+                for (f, &kv) in film[k..=hi].iter_mut().zip(krow) {
+                    *f += d * kv;
+                }
+                for (f, &kv) in film[lo..k].iter_mut().rev().zip(&krow[1..]) {
+                    *f += d * kv;
+                }
+            }
+        }
         for i in 1..nx - 1 {
             let c = lv.at(i, jj);
-            if phys.elastic {
-                let krow = &lv.kernel[dy * nx..(dy + 1) * nx];
-                let lo = i.saturating_sub(reach).max(1);
-                let hi = (i + reach).min(nx - 2);
-                let mut s = 0.0;
-                for (k, &dpk) in change.iter().enumerate().take(hi + 1).skip(lo) {
-                    if dpk != 0.0 {
-                        s += krow[i.abs_diff(k)] * dpk;
-                    }
-                }
-                lv.film[c] += phys.coef * s;
-            }
             (lv.rho[c], lv.eps[c]) = law.at(lv.p[c], lv.film[c]);
         }
     }
+    lv.kernel = kernel;
 }

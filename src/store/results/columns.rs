@@ -17,7 +17,8 @@ use std::sync::Arc;
 /// Version of the row layout, stored in the footer as `ehlmap_schema`; no [`Column::since`] is
 /// larger. Schema 2 added `accuracy`, `model_used`, `level`, `error_estimate` (a float) and
 /// `warm_start`, and renamed schema 1's boolean `error_estimate` to `half_grid_estimate`.
-pub const SCHEMA_VERSION: u32 = 2;
+/// Schema 3 added `converge` (the stopping rule) and `algebraic_error`.
+pub const SCHEMA_VERSION: u32 = 3;
 
 /// How one column's values are taken from a row (`get`) and put into one (`set`). The variant
 /// fixes the Arrow type (Utf8, Float64, Int64, Boolean) and the nullability (`Opt*` columns are
@@ -213,11 +214,13 @@ pub static COLUMNS: &[Column] = &[
     col!("fallback", bool, fallback),
     col!("tol_load", f64, tol_load),
     col!("tol_h", f64, tol_h),
+    col!("converge", name, converge, 3),
     col!("half_grid_estimate", bool, half_grid_estimate),
     col!("accuracy", opt_f64, accuracy, 2),
     col!("model_used", name, model_used, 2),
     col!("level", opt_i64, level, 2),
     col!("error_estimate", opt_f64, error_estimate, 2),
+    col!("algebraic_error", opt_f64, algebraic_error, 3),
     col!("warm_start", opt_str, warm_start, 2),
     col!("grid", opt_i64, grid),
     col!("levels", opt_i64, levels),
@@ -278,11 +281,13 @@ mod tests {
             ("fallback", B, false),
             ("tol_load", F, false),
             ("tol_h", F, false),
+            ("converge", S, false),
             ("half_grid_estimate", B, false),
             ("accuracy", F, true),
             ("model_used", S, false),
             ("level", I, true),
             ("error_estimate", F, true),
+            ("algebraic_error", F, true),
             ("warm_start", S, true),
             ("grid", I, true),
             ("levels", I, true),

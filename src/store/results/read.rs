@@ -4,11 +4,12 @@
 //!
 //! Files of every schema are read. A file whose `error_estimate` column is boolean is of schema
 //! 1: that column is today's `half_grid_estimate`, the columns introduced later (`since` > 1)
-//! keep the [`CaseRow::default`] value (`model_used = "full"`, the rest null), and
-//! `error_estimate` is derived by [`larger_error`] from `H_c_err` and `H_min_err`. A missing
+//! keep the [`CaseRow::default`] value (`model_used = "full"`, the rest null; files before
+//! schema 3 read `converge = "tight"`, the only rule then), and `error_estimate` is derived by [`larger_error`] from `H_c_err` and `H_min_err`. A missing
 //! column of the file's schema, a column of another type, or an unknown name (status, contact
 //! ...) is an error naming the file and the column.
 
+use crate::solve::params::Converge;
 use crate::store::error::StoreError;
 use crate::store::results::columns::{Access, Column, COLUMNS, SCHEMA_VERSION};
 use crate::store::results::files::part_files;
@@ -33,13 +34,16 @@ pub struct Part {
 /// Columns renamed since: (today's name, the last schema of the old name, the old name).
 const RENAMED: &[(&str, u32, &str)] = &[("half_grid_estimate", 1, "error_estimate")];
 
-/// The schema version of a batch: 1 when `error_estimate` is boolean, else [`SCHEMA_VERSION`].
+/// The schema version of a batch: 1 when `error_estimate` is boolean, 2 without `converge`,
+/// else [`SCHEMA_VERSION`].
 fn schema_of(b: &RecordBatch) -> u32 {
     let v1 = b
         .column_by_name("error_estimate")
         .is_some_and(|c| c.as_any().is::<BooleanArray>());
     if v1 {
         1
+    } else if b.column_by_name("converge").is_none() {
+        2
     } else {
         SCHEMA_VERSION
     }
@@ -145,6 +149,10 @@ fn batch_rows(b: &RecordBatch, path: &Path) -> Result<Vec<CaseRow>, StoreError> 
         }
         if derive_error {
             r.error_estimate = larger_error(r.h_c_err, r.h_min_err);
+        }
+        if schema < 3 {
+            // Before schema 3 every solve converged to the tolerances.
+            r.converge = Converge::Tight;
         }
         rows.push(r);
     }

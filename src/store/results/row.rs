@@ -6,7 +6,7 @@
 //! `valid` is false (the writer nulls such values and clears `valid` anyway).
 
 use crate::model::case::{Contact, Elasticity, ParamError};
-use crate::solve::params::CycleType;
+use crate::solve::params::{Converge, CycleType};
 use crate::solve::solution::ModelUsed;
 use crate::solve::Status;
 use std::fmt;
@@ -24,6 +24,9 @@ pub enum RowStatus {
     Stalled,
     /// The solve ran out of cycles (`max-iterations`).
     MaxIterations,
+    /// The solve converged to a film <= 0: the grid does not resolve the case
+    /// (`under-resolved`).
+    UnderResolved,
     /// Not solved yet: a row of inputs only (`not-run`).
     #[default]
     NotRun,
@@ -35,11 +38,12 @@ pub enum RowStatus {
 
 impl RowStatus {
     /// Every status, the solver's first.
-    pub const ALL: [RowStatus; 7] = [
+    pub const ALL: [RowStatus; 8] = [
         RowStatus::Converged,
         RowStatus::Diverged,
         RowStatus::Stalled,
         RowStatus::MaxIterations,
+        RowStatus::UnderResolved,
         RowStatus::NotRun,
         RowStatus::Invalid,
         RowStatus::Panic,
@@ -52,6 +56,7 @@ impl RowStatus {
             RowStatus::Diverged => "diverged",
             RowStatus::Stalled => "stalled",
             RowStatus::MaxIterations => "max-iterations",
+            RowStatus::UnderResolved => "under-resolved",
             RowStatus::NotRun => "not-run",
             RowStatus::Invalid => "invalid",
             RowStatus::Panic => "panic",
@@ -66,6 +71,7 @@ impl From<Status> for RowStatus {
             Status::Diverged => RowStatus::Diverged,
             Status::Stalled => RowStatus::Stalled,
             Status::MaxIterations => RowStatus::MaxIterations,
+            Status::UnderResolved => RowStatus::UnderResolved,
         }
     }
 }
@@ -148,6 +154,8 @@ pub struct CaseRow {
     pub tol_load: f64,
     /// Film-change tolerance.
     pub tol_h: f64,
+    /// The stopping rule of the multigrid (stored `fast`, `tight`).
+    pub converge: Converge,
     /// The spec asked for a half-grid twin solve and its Richardson error columns.
     pub half_grid_estimate: bool,
     /// The spec's target relative accuracy of H_c and H_min, when it gave one.
@@ -161,6 +169,9 @@ pub struct CaseRow {
     /// Estimated relative error of H_c and H_min (the larger): the discretisation estimate
     /// plus, for a simplified model, the estimated effect of what it neglects.
     pub error_estimate: Option<f64>,
+    /// Estimated relative algebraic error of H_c and H_min (the larger) left on the finest grid
+    /// when its cycles stopped (fast convergence); part of `error_estimate`.
+    pub algebraic_error: Option<f64>,
     /// Case id of the neighbour this case was warm-started from, when it was.
     pub warm_start: Option<String>,
     /// Finest-grid points actually used (point: per direction).
@@ -232,11 +243,13 @@ impl Default for CaseRow {
             fallback: false,
             tol_load: 0.0,
             tol_h: 0.0,
+            converge: Converge::default(),
             half_grid_estimate: false,
             accuracy: None,
             model_used: ModelUsed::default(),
             level: None,
             error_estimate: None,
+            algebraic_error: None,
             warm_start: None,
             grid: None,
             levels: None,
@@ -304,11 +317,13 @@ pub(crate) fn sample(id: &str) -> CaseRow {
         fallback: true,
         tol_load: 1e-7,
         tol_h: 1e-6,
+        converge: Converge::Fast,
         half_grid_estimate: false,
         accuracy: Some(0.005),
         model_used: ModelUsed::Full,
         level: Some(0),
         error_estimate: Some(2e-3),
+        algebraic_error: Some(1e-5),
         warm_start: Some("00000000000000cc".into()),
         grid: Some(257),
         levels: Some(4),

@@ -8,13 +8,14 @@ use super::contacts::ContactAxes;
 use super::ctx::{join, Ctx, Table};
 use super::error::SpecError;
 use super::types::{Contact, ContactSpec, Numerics};
-use crate::solve::params::CycleType;
+use crate::solve::params::{Converge, CycleType};
 use std::ops::Range;
 
 /// The settings a `[numerics]` table (or one of its per-contact tables) may hold.
-const KEYS: [&str; 8] = [
+const KEYS: [&str; 9] = [
     "grid",
     "cycle",
+    "converge",
     "max_cycles",
     "fallback",
     "tol_load",
@@ -109,6 +110,12 @@ fn apply(
         n.cycle = match cx.choice(v, &join(prefix, "cycle"), &["v", "w"])? {
             "v" => CycleType::V,
             _ => CycleType::W,
+        };
+    }
+    if let Some(v) = t.get("converge") {
+        n.converge = match cx.choice(v, &join(prefix, "converge"), &["fast", "tight"])? {
+            "fast" => Converge::Fast,
+            _ => Converge::Tight,
         };
     }
     if let Some(v) = t.get("max_cycles") {

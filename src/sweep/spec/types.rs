@@ -5,7 +5,7 @@ use super::error::SpecError;
 pub use crate::model::case::Contact;
 use crate::model::case::Elasticity;
 use crate::model::lubricant::Density;
-use crate::solve::params::CycleType;
+use crate::solve::params::{Converge, CycleType};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
@@ -39,6 +39,9 @@ pub struct Numerics {
     pub grid: usize,
     /// Multigrid cycle type (`cycle = "v"` or `"w"`).
     pub cycle: CycleType,
+    /// The stopping rule (`converge = "fast"`, the default: at the discretisation error;
+    /// `"tight"`: at the tolerances).
+    pub converge: Converge,
     /// Cycles allowed on the finest level.
     pub max_cycles: usize,
     /// Retry a failed solve with conservative settings (the fallback ladder).
@@ -60,6 +63,7 @@ impl Default for Numerics {
         Numerics {
             grid: 2049,
             cycle: CycleType::V,
+            converge: Converge::Fast,
             max_cycles: 60,
             fallback: true,
             tol_load: 1e-7,

@@ -1,0 +1,211 @@
+//! Full multigrid converged to the discretisation error (the default stopping rule,
+//! [`crate::solve::params::Converge::Fast`]).
+//!
+//! From the coarsest level's Newton solve (P and H0 with the load equation), each finer level
+//! l starts from level l-1's solution (FMG interpolation, H0 predicted by Richardson
+//! extrapolation of its last change) and runs FAS cycles whose coarsest-level solve includes
+//! the load equation, so H0 converges with P inside the cycle (where that coarsest solve fails,
+//! the coarsest level is solved at fixed H0 and the cycle is followed by a secant step of the
+//! load balance on H0, as in [`crate::solve::fmg`]). After each cycle, with Q_l the
+//! vector (H_c, H_min) of level l:
+//! * the algebraic error of each of H_c and H_min is estimated from its change over the cycle,
+//!   delta_k = |Q^k - Q^(k-1)| / |Q^k| (the first cycle compared with the interpolated start),
+//!   and the convergence factor rho, the larger of delta_k / delta_(k-1) and the residual's
+//!   contraction over the cycle (clamped to [0.1, 0.9], 0.5 after the first cycle), as the
+//!   geometric tail 2 delta_k rho / (1 - rho) with a safety factor of 2 (rho is observed over
+//!   two cycles only); e_a is the larger of the two tails plus 2 |load error|, the
+//!   load error, which moves H by at most twice its relative size (H ~ W^-2 in the
+//!   rigid-isoviscous limit, weaker elsewhere);
+//! * the discretisation error of level l is estimated by Richardson for second order from level
+//!   l-1's final values, e_d = max |Q_l - Q_(l-1)| / (3 |Q_l|);
+//! * the level stops when e_a <= max(e_d / 10, tol_h): coarser levels after at most
+//!   2 `fmg_cycles` cycles, the finest after at most `max_cycles` (status max-iterations then).
+//!
+//! The finest level's e_a and e_d are returned in [`SolveInfo::algebraic_error`] and
+//! [`SolveInfo::discretisation_error`]. Divergence (non-finite values, residual growth) is
+//! reported as by [`crate::solve::fmg::fmg_solve`], and so is a level whose residual grows by
+//! 100 over its smallest or has not fallen below the first cycle's after 8 cycles. Reference: Brandt's FMG with the global
+//! constraint on the coarsest grid; Venner & Lubrecht, Multilevel Methods in Lubrication (2000),
+//! ch. 4 and 7.
+
+use crate::solve::fmg::{
+    check_divergence, cycle_once, secant_step, single_level, start_level, Fas,
+};
+use crate::solve::load_balance::LoadBalance;
+use crate::solve::{CycleRecord, SolveInfo, Status};
+use std::time::Instant;
+
+/// Relative change from `a` to `b` (a floor for the dry limit, where films vanish).
+fn rel(a: f64, b: f64) -> f64 {
+    (b - a).abs() / b.abs().max(1e-6)
+}
+
+/// The relative changes of H_c and H_min from `a` to `b`.
+fn changes(a: &CycleRecord, b: &CycleRecord) -> [f64; 2] {
+    [rel(a.h_c, b.h_c), rel(a.h_min, b.h_min)]
+}
+
+/// The remaining algebraic error of one quantity after a cycle that changed it by `delta`, the
+/// previous cycle by `prev`, with `res_ratio` the residual's contraction over the cycle (none
+/// for the first cycle of a level): the geometric tail 2 delta rho / (1 - rho) with rho the
+/// larger of the two observed contractions, clamped to [0.1, 0.9] (0.5 when none is known).
+pub fn tail(delta: f64, prev: Option<f64>, res_ratio: Option<f64>) -> f64 {
+    let observed = prev.filter(|p| *p > 0.0).map(|p| delta / p);
+    let rho = match (observed, res_ratio) {
+        (None, None) => 0.5,
+        (a, b) => a.unwrap_or(0.0).max(b.unwrap_or(0.0)),
+    }
+    .clamp(0.1, 0.9);
+    2.0 * delta * rho / (1.0 - rho)
+}
+
+/// The algebraic error estimate of H_c and H_min (the larger, module docs) after a cycle that
+/// changed them by `delta`, the previous cycle by `prev`, with the residual's contraction
+/// `res_ratio` and the relative load error `load_error`.
+pub fn algebraic_error(
+    delta: [f64; 2],
+    prev: Option<[f64; 2]>,
+    res_ratio: Option<f64>,
+    load_error: f64,
+) -> f64 {
+    let t = |q: usize| tail(delta[q], prev.map(|p| p[q]), res_ratio);
+    t(0).max(t(1)) + 2.0 * load_error.abs()
+}
+
+/// The reason to give up on level `l` after cycle `k`: its residual grew by 100 over its
+/// smallest on the level, or is no smaller than at the first cycle after 8 cycles. (Cycles that
+/// do not contract are better spent on the fallback ladder's conservative settings.)
+fn no_contraction(l: usize, k: usize, rec: &CycleRecord, min_res: &mut f64) -> Result<(), String> {
+    if k == 0 {
+        *min_res = rec.residual;
+    }
+    let first = *min_res;
+    *min_res = min_res.min(rec.residual);
+    if rec.residual > 100.0 * *min_res {
+        return Err(format!(
+            "residual grew to {:.3e} (min {:.3e}) on level {l}",
+            rec.residual, *min_res
+        ));
+    }
+    if k >= 8 && rec.residual >= first {
+        return Err(format!(
+            "no contraction on level {l}: residual {:.3e} after {} cycles (first {first:.3e})",
+            rec.residual,
+            k + 1
+        ));
+    }
+    Ok(())
+}
+
+/// Run full multigrid to the discretisation error (see the module docs).
+pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
+    let c = s.control();
+    let start = Instant::now();
+    s.initialise();
+    let top = s.top();
+    let coarse = s.start_coarse(true);
+    if top == 0 {
+        return single_level(s, start, &coarse);
+    }
+    let mut lb = LoadBalance::new(s.load_slope());
+    let mut history = vec![];
+    let mut min_res = f64::INFINITY;
+    let mut h0_end = vec![s.h0()];
+    let warm = s.install_guess(top);
+    let mut coarser = if warm { None } else { Some(s.record(0)) };
+    let (mut status, mut reason) = (
+        Status::MaxIterations,
+        format!("no convergence in {} cycles", c.max_cycles),
+    );
+    let (mut e_a, mut e_d) = (None, None);
+    for l in (if warm { top } else { 1 })..=top {
+        if !warm {
+            start_level(s, l, &h0_end);
+        }
+        let final_level = l == top;
+        let max = if final_level {
+            c.max_cycles
+        } else {
+            2 * c.fmg_cycles
+        };
+        let mut last = s.record(l);
+        let mut prev_delta = None;
+        lb.reset();
+        let mut level_min_res = f64::INFINITY;
+        for k in 0..max {
+            let rec = cycle_once(s, l, k);
+            if final_level {
+                history.push(rec);
+            }
+            let diverged = check_divergence(s, l, final_level, &rec, &mut min_res)
+                .and_then(|()| no_contraction(l, k, &rec, &mut level_min_res));
+            if let Err(why) = diverged {
+                let mut info = s.finish(start, Status::Diverged, why, history);
+                info.algebraic_error = e_a;
+                info.discretisation_error = e_d;
+                return info;
+            }
+            let delta = changes(&last, &rec);
+            let res_ratio = (k > 0).then(|| rec.residual / last.residual.max(1e-300));
+            let alg = algebraic_error(delta, prev_delta, res_ratio, rec.load_error);
+            let disc = coarser.map(|q| {
+                let d = changes(&q, &rec);
+                d[0].max(d[1]) / 3.0
+            });
+            if final_level {
+                e_a = Some(alg);
+                e_d = disc;
+            }
+            last = rec;
+            prev_delta = Some(delta);
+            let goal = (0.1 * disc.unwrap_or(0.0)).max(c.tol_h);
+            if alg <= goal {
+                if final_level {
+                    status = Status::Converged;
+                    reason = format!(
+                        "algebraic error {alg:.1e} below a tenth of the discretisation error {:.1e} \
+                         (load error {:.1e})",
+                        disc.unwrap_or(f64::NAN),
+                        rec.load_error
+                    );
+                }
+                break;
+            }
+            if s.coarse_load_failed() {
+                // H0 did not move with the cycle: a secant step of the load balance instead.
+                secant_step(s, &c, l, &mut lb, &rec);
+            }
+        }
+        coarser = Some(last);
+        h0_end.push(s.h0());
+    }
+    let mut info = s.finish(start, status, reason, history);
+    info.algebraic_error = e_a;
+    info.discretisation_error = e_d;
+    info
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn algebraic_error_sums_the_geometric_tail_and_the_load_error() {
+        // A contraction by 1/2 per cycle: the remaining error equals the last change (twice
+        // that with the safety factor).
+        assert!((tail(1e-3, Some(2e-3), None) - 2e-3).abs() < 1e-15);
+        // By 1/10: a ninth of it.
+        assert!((tail(1e-4, Some(1e-3), None) - 2e-4 / 9.0).abs() < 1e-15);
+        // The residual contracting more slowly than the quantity decides.
+        assert!((tail(1e-4, Some(1e-3), Some(0.5)) - 2e-4).abs() < 1e-15);
+        // No contraction observed: the factor is capped at 0.9 (9 times the change).
+        assert!((tail(1e-3, Some(1e-3), None) - 18e-3).abs() < 1e-15);
+        // The first cycle assumes 1/2.
+        assert!((tail(1e-3, None, None) - 2e-3).abs() < 1e-15);
+        // The larger of the two quantities' tails, plus twice the load error.
+        let e = algebraic_error([1e-3, 1e-4], Some([2e-3, 1e-3]), None, -1e-4);
+        assert!((e - 2.2e-3).abs() < 1e-15);
+        let e = algebraic_error([1e-5, 1e-4], Some([1e-3, 2e-4]), Some(0.1), 0.0);
+        assert!((e - 2e-4).abs() < 1e-15);
+    }
+}
