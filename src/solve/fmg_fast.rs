@@ -18,8 +18,9 @@
 //!   rigid-isoviscous limit, weaker elsewhere);
 //! * the discretisation error of level l is estimated by Richardson for second order from level
 //!   l-1's final values, e_d = max |Q_l - Q_(l-1)| / (3 |Q_l|);
-//! * the level stops when e_a <= max(e_d / 10, tol_h): coarser levels after at most
-//!   2 `fmg_cycles` cycles, the finest after at most `max_cycles` (status max-iterations then).
+//! * the finest level stops when e_a <= max(e_d / 10, tol_h) ([`FINEST_FRACTION`]), after at
+//!   most `max_cycles` cycles (status max-iterations then); a coarser level when
+//!   e_a <= max(e_d, tol_h) ([`COARSE_FRACTION`]), after at most 2 `fmg_cycles` cycles.
 //!
 //! The finest level's e_a and e_d are returned in [`SolveInfo::algebraic_error`] and
 //! [`SolveInfo::discretisation_error`]. Divergence (non-finite values, residual growth) is
@@ -34,6 +35,15 @@ use crate::solve::fmg::{
 use crate::solve::load_balance::LoadBalance;
 use crate::solve::{CycleRecord, SolveInfo, Status};
 use std::time::Instant;
+
+/// The finest level stops when its algebraic error estimate is below this fraction of its
+/// discretisation error estimate.
+pub const FINEST_FRACTION: f64 = 0.1;
+
+/// A coarser FMG level stops when its algebraic error estimate is below this fraction of its
+/// discretisation error estimate: the next level's interpolated start needs no more (classic
+/// FMG), and the finest level's cycles remove what is left.
+pub const COARSE_FRACTION: f64 = 1.0;
 
 /// Relative change from `a` to `b` (a floor for the dry limit, where films vanish).
 fn rel(a: f64, b: f64) -> f64 {
@@ -158,7 +168,12 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
             }
             last = rec;
             prev_delta = Some(delta);
-            let goal = (0.1 * disc.unwrap_or(0.0)).max(c.tol_h);
+            let fraction = if final_level {
+                FINEST_FRACTION
+            } else {
+                COARSE_FRACTION
+            };
+            let goal = (fraction * disc.unwrap_or(0.0)).max(c.tol_h);
             if alg <= goal {
                 if final_level {
                     status = Status::Converged;
