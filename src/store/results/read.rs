@@ -432,6 +432,22 @@ mod tests {
         }
     }
 
+    #[test]
+    fn a_codec_the_build_lacks_is_named() {
+        let m = "Parquet error: Disabled feature at compile time: brotli";
+        assert_eq!(disabled_codec(m).as_deref(), Some("brotli"));
+        assert_eq!(disabled_codec("Parquet error: EOF"), None);
+        let e = StoreError::Compression {
+            path: "d/x.parquet".into(),
+            codec: "brotli".into(),
+        };
+        assert!(
+            e.to_string()
+                .starts_with("d/x.parquet: compressed with brotli"),
+            "{e}"
+        );
+    }
+
     /// The committed datasets: schema 1 (`smoke-line`, a boolean `error_estimate`) and 2.
     #[test]
     fn committed_datasets_of_schema_1_and_2_read() {
