@@ -143,14 +143,20 @@ fn a_second_run_refuses_naming_the_holder_and_a_killed_holder_is_taken_over() {
         assert!(t0.elapsed() < Duration::from_secs(60), "no lock appeared");
         std::thread::sleep(Duration::from_millis(5));
     };
-    assert_eq!((held.pid, held.host.as_str()), (first.id(), hostname().as_str()));
+    assert_eq!(
+        (held.pid, held.host.as_str()),
+        (first.id(), hostname().as_str())
+    );
     assert_eq!(held.shard, "1/1");
     assert!(held.command.contains("sweep") && held.command.contains("lk.toml"));
     assert!(held.started.ends_with('Z'));
     // Once the first run has stored a case (so that --resume has a dataset to resume) ...
     while part_files(&ds).unwrap().is_empty() {
         assert!(first.try_wait().unwrap().is_none(), "the first run ended");
-        assert!(t0.elapsed() < Duration::from_secs(120), "no part file appeared");
+        assert!(
+            t0.elapsed() < Duration::from_secs(120),
+            "no part file appeared"
+        );
         std::thread::sleep(Duration::from_millis(5));
     }
     // The same shard, and an overlapping one: refused, naming the holder and the lock file.
@@ -161,7 +167,11 @@ fn a_second_run_refuses_naming_the_holder_and_a_killed_holder_is_taken_over() {
         let want = format!("pid {} on {}", first.id(), hostname());
         assert!(err.contains(&want), "{extra:?}: want `{want}` in {err}");
         assert!(err.contains(&lock.display().to_string()), "{err}");
-        assert_eq!(err.lines().filter(|l| l.starts_with("ehlmap:")).count(), 1, "{err}");
+        assert_eq!(
+            err.lines().filter(|l| l.starts_with("ehlmap:")).count(),
+            1,
+            "{err}"
+        );
     }
     let (_, err) = sweep(&spec, &out, &["--shard", "2/3"]);
     assert!(err.contains("overlaps shard 1/1"), "{err}");
@@ -206,13 +216,23 @@ fn stale_locks_are_taken_over_live_ones_refuse() {
     assert!(err.contains("process 999999999 no longer runs"), "{err}");
     no_leftovers(&out);
     // A live holder (this test process) on this host: refused.
-    write_lock(&lock, &holder(&spec, "1/1", std::process::id(), &host), fresh);
+    write_lock(
+        &lock,
+        &holder(&spec, "1/1", std::process::id(), &host),
+        fresh,
+    );
     let (code, err) = sweep(&spec, &out, &[]);
     assert_eq!(code, Some(1), "{err}");
-    let want = format!("pid {} on {host} since 2025-01-01T00:00:00Z", std::process::id());
+    let want = format!(
+        "pid {} on {host} since 2025-01-01T00:00:00Z",
+        std::process::id()
+    );
     assert!(err.contains(&want), "{err}");
     assert!(err.contains("ehlmap sweep fabricated-by-the-test"), "{err}");
-    assert!(lock.exists(), "a refused run leaves the holder's lock alone");
+    assert!(
+        lock.exists(),
+        "a refused run leaves the holder's lock alone"
+    );
     // Another host: live while refreshed, stale when not refreshed for ten minutes.
     write_lock(&lock, &holder(&spec, "1/1", 1, "elsewhere"), fresh);
     let (code, err) = sweep(&spec, &out, &[]);
@@ -246,11 +266,19 @@ fn other_shards_run_side_by_side_unless_their_settings_differ() {
     let lock2 = lock_path(&ds, &Shard { index: 2, count: 2 });
     let me = std::process::id();
     // Shard 2/2 held (by this process) with the same settings: shard 1/2 runs.
-    write_lock(&lock2, &holder(&spec, "2/2", me, &hostname()), Duration::ZERO);
+    write_lock(
+        &lock2,
+        &holder(&spec, "2/2", me, &hostname()),
+        Duration::ZERO,
+    );
     let (code, err) = sweep(&spec, &out, &["--shard", "1/2"]);
     assert_eq!(code, Some(0), "{err}");
     // Held with other settings: refused, naming the setting.
-    write_lock(&lock2, &holder(&other, "2/2", me, &hostname()), Duration::ZERO);
+    write_lock(
+        &lock2,
+        &holder(&other, "2/2", me, &hostname()),
+        Duration::ZERO,
+    );
     let (code, err) = sweep(&spec, &out, &["--shard", "1/2"]);
     assert_eq!(code, Some(1), "{err}");
     assert!(
@@ -258,7 +286,11 @@ fn other_shards_run_side_by_side_unless_their_settings_differ() {
         "{err}"
     );
     // A 1/4 shard overlaps 1/2's cases only: with 2/2 held, 2/4 and 4/4 overlap it.
-    write_lock(&lock2, &holder(&spec, "2/2", me, &hostname()), Duration::ZERO);
+    write_lock(
+        &lock2,
+        &holder(&spec, "2/2", me, &hostname()),
+        Duration::ZERO,
+    );
     for (shard, code_want) in [("1/4", 0), ("3/4", 0), ("2/4", 1), ("4/4", 1)] {
         let (code, err) = sweep(&spec, &out, &["--shard", shard]);
         assert_eq!(code, Some(code_want), "{shard}: {err}");
@@ -296,19 +328,29 @@ fn a_changed_spec_refuses_new_dataset_moves_the_old_parts_same_settings_resume()
         ] {
             assert!(err.contains(want), "want `{want}` in {err}");
         }
-        assert_eq!(err.lines().filter(|l| l.starts_with("ehlmap:")).count(), 1, "{err}");
+        assert_eq!(
+            err.lines().filter(|l| l.starts_with("ehlmap:")).count(),
+            1,
+            "{err}"
+        );
         assert_eq!(part_files(&ds).unwrap().len(), 1);
         assert_eq!(read_dataset(&ds).unwrap(), first);
         no_leftovers(&out);
     }
     let (code, err) = sweep(&spec, &out, &["--resume", "--new-dataset"]);
     assert_eq!(code, Some(2), "{err}");
-    assert!(err.contains("--new-dataset") && err.contains("--resume"), "{err}");
+    assert!(
+        err.contains("--new-dataset") && err.contains("--resume"),
+        "{err}"
+    );
     // --new-dataset: the old part moves to r.old-<its hash>/, a readable dataset of its own.
     let (code, err) = sweep(&spec, &out, &["--new-dataset"]);
     assert_eq!(code, Some(0), "{err}");
     let moved_dir = out.join(format!("r.old-{}", old.hash()));
-    assert!(err.contains("moved") && err.contains(&moved_dir.display().to_string()), "{err}");
+    assert!(
+        err.contains("moved") && err.contains(&moved_dir.display().to_string()),
+        "{err}"
+    );
     assert!(err.contains("0 already stored, 4 solved"), "{err}");
     assert_eq!(read_dataset(&moved_dir).unwrap(), first);
     let rows = read_dataset(&ds).unwrap();
@@ -323,7 +365,10 @@ fn a_changed_spec_refuses_new_dataset_moves_the_old_parts_same_settings_resume()
     // --new-dataset with nothing of other settings moves nothing.
     let (code, err) = sweep(&spec, &out, &["--new-dataset"]);
     assert_eq!(code, Some(0), "{err}");
-    assert!(err.contains("6 already stored, 0 solved") && !err.contains("moved"), "{err}");
+    assert!(
+        err.contains("6 already stored, 0 solved") && !err.contains("moved"),
+        "{err}"
+    );
     // Back to 257: the dataset is now of 513 points, so that refuses in turn; a second
     // --new-dataset keeps both old generations apart.
     std::fs::write(&spec, spec_text("r", "[5, 20]", 257)).unwrap();
