@@ -172,7 +172,7 @@ fn pandas_and_polars_types_read() {
     std::fs::create_dir_all(&ds).unwrap();
     write(
         &ds.join("part-0.parquet"),
-        &[resaved.clone()],
+        std::slice::from_ref(&resaved),
         Compression::SNAPPY,
     );
     assert_eq!(read_dataset(&ds).unwrap(), want);

@@ -438,7 +438,13 @@ pub fn acquire(
     };
     // Other shards: refuse an overlapping shard or other settings while their holder runs.
     for (other, p) in other_locks(dataset, shard) {
-        let State::Live(h) = inspect(&p, &host)? else {
+        let mut state = inspect(&p, &host)?;
+        // A lock being created this instant: wait for its content (it is stale after a while).
+        while matches!(state, State::Starting) {
+            std::thread::sleep(Duration::from_millis(50));
+            state = inspect(&p, &host)?;
+        }
+        let State::Live(h) = state else {
             continue;
         };
         if overlap(shard, &other) {
