@@ -90,7 +90,11 @@ def main(ehlmap, dataset, work):
 if __name__ == "__main__":
     if len(sys.argv) not in (3, 4):
         sys.exit(__doc__)
-    work = sys.argv[3] if len(sys.argv) == 4 else tempfile.mkdtemp(prefix="ehlmap-foreign-")
+    given = len(sys.argv) == 4
+    work = sys.argv[3] if given else tempfile.mkdtemp(prefix="ehlmap-foreign-")
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
-    sys.exit(main(sys.argv[1], sys.argv[2], work))
+    code = main(sys.argv[1], sys.argv[2], work)
+    if not given and code == 0:
+        shutil.rmtree(work, ignore_errors=True)
+    sys.exit(code)
