@@ -1,11 +1,22 @@
-//! Speed benchmark of the line-contact solver (`cargo bench`): median wall time over repeats, the
-//! work units, and the scaling of time with the number of grid points.
+//! Speed benchmark of the multigrid solvers (`cargo bench`): median wall time over repeats, the
+//! work units, the deviation from the tightly converged answer on the same grid, the growth of
+//! time with the grid, and the zebra-parallel speed-up of one point solve on 2 threads.
 //!
-//! Target (issue 2): M = 20, L = 10 on 4097 points converged (load error < 1e-6, H_c within 0.1 %
-//! of the fully converged value) in under 50 ms on one core.
+//! The targets checked (issue 21; one thread unless said, median of at least 5 runs):
+//! - line M = 20, L = 10, 4097 points: at most 15 ms and 20 work units;
+//! - circular M = 20, L = 10: 257^2 within 0.1 % of the tight answer in at most 25 WU and 0.3 s;
+//!   513^2 in at most 1.3 s, 1025^2 in at most 6 s; time growing no faster than N^1.15 from 129^2
+//!   to 1025^2 (N the number of nodes);
+//! - circular M = 200, L = 10 and M = 1000, L = 0 on 513^2: converged, each in at most 2 s;
+//! - one 513^2 (and 1025^2) solve on 2 threads (zebra rows) at least 1.7 times faster.
+//!
+//! Each line of the summary says `met` or `NOT met`.
 
-use ehlmap::model::case::LineCase;
+use ehlmap::model::case::{LineCase, PointCase};
 use ehlmap::solve::line::{solve_line, LineSolveParams};
+use ehlmap::solve::params::Converge;
+use ehlmap::solve::point::{solve_point, PointSolveParams};
+use ehlmap::solve::solution::Outputs;
 use std::time::Instant;
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -13,71 +24,163 @@ fn median(mut v: Vec<f64>) -> f64 {
     v[v.len() / 2]
 }
 
-fn bench(
-    case: &LineCase,
-    grid: usize,
-    tol_load: f64,
-    tol_h: f64,
-    repeats: usize,
-) -> (f64, f64, f64, String) {
-    let mut p = LineSolveParams::default();
-    p.mg.grid = grid;
-    p.mg.tol_load = tol_load;
-    p.mg.tol_h = tol_h;
+/// Median wall time of `repeats` runs of `run`, and the last run's outputs.
+fn time(repeats: usize, run: impl Fn() -> Outputs) -> (f64, Outputs) {
     let mut times = vec![];
     let mut last = None;
     for _ in 0..repeats {
         let t = Instant::now();
-        let s = solve_line(case, &p);
+        let o = run();
         times.push(t.elapsed().as_secs_f64());
-        last = Some(s);
+        last = Some(o);
     }
-    let s = last.expect("at least one repeat");
-    (
-        median(times),
-        s.outputs.work_units,
-        s.outputs.h_c,
-        s.outputs.status.to_string(),
-    )
+    (median(times), last.expect("at least one repeat"))
+}
+
+fn line(case: &LineCase, grid: usize, converge: Converge) -> Outputs {
+    let mut p = LineSolveParams::default();
+    p.mg.grid = grid;
+    p.mg.converge = converge;
+    solve_line(case, &p).outputs
+}
+
+fn point(case: &PointCase, grid: usize, converge: Converge, parallel: bool) -> Outputs {
+    let mut p = PointSolveParams::default();
+    p.mg.grid = grid;
+    p.mg.converge = converge;
+    p.mg.parallel = parallel;
+    solve_point(case, &p).outputs
+}
+
+/// `threads` rayon threads for `run`.
+fn on_threads<T: Send>(threads: usize, run: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("a thread pool")
+        .install(run)
+}
+
+fn verdict(ok: bool) -> &'static str {
+    if ok {
+        "met"
+    } else {
+        "NOT met"
+    }
 }
 
 fn main() {
     // `cargo bench` passes --bench; ignore arguments.
-    let case = LineCase::new(20.0, 10.0).expect("valid case");
-    let reference = {
-        let mut p = LineSolveParams::default();
-        p.mg.grid = 4097;
-        p.mg.tol_load = 1e-10;
-        p.mg.tol_h = 1e-10;
-        solve_line(&case, &p).outputs.h_c
-    };
-    println!("line M=20 L=10, one thread; fully converged H_c on 4097 points = {reference:.6}");
+    let mut summary: Vec<String> = vec![];
+
+    let lc = LineCase::new(20.0, 10.0).expect("valid case");
+    let tight = line(&lc, 4097, Converge::Tight);
+    let (t, o) = time(9, || line(&lc, 4097, Converge::Fast));
+    let dev = (o.h_c / tight.h_c - 1.0).abs();
     println!(
-        "{:>7} {:>9} {:>11} {:>9} {:>10} {:>12}",
-        "grid", "tol_load", "median_ms", "WU", "H_c", "dev_vs_full"
+        "line M=20 L=10 4097: {:.1} ms, {:.1} WU, H_c {:.6} (tight {:.6}, dev {dev:.1e}), {}",
+        1e3 * t,
+        o.work_units,
+        o.h_c,
+        tight.h_c,
+        o.status
     );
-    for (grid, tl, th) in [(4097, 1e-6, 1e-4), (4097, 1e-7, 1e-6)] {
-        let (t, wu, hc, st) = bench(&case, grid, tl, th, 7);
+    summary.push(format!(
+        "line 4097 <= 15 ms and 20 WU: {:.1} ms, {:.1} WU: {}",
+        1e3 * t,
+        o.work_units,
+        verdict(t <= 0.015 && o.work_units <= 20.0)
+    ));
+    println!("\nline scaling (fast):");
+    for grid in [1025, 2049, 4097, 8193, 16385] {
+        let (t, o) = time(5, || line(&lc, grid, Converge::Fast));
         println!(
-            "{grid:>7} {tl:>9.0e} {:>11.2} {wu:>9.1} {hc:>10.6} {:>11.2e}  {st}",
+            "{grid:>7} {:>8.2} ms {:>6.1} WU  H_c {:.6}  {}",
             1e3 * t,
-            (hc / reference - 1.0).abs()
+            o.work_units,
+            o.h_c,
+            o.status
         );
     }
-    println!("\nscaling (tol_load 1e-6):");
-    let mut prev: Option<(usize, f64)> = None;
-    for grid in [513, 1025, 2049, 4097, 8193, 16385] {
-        let (t, wu, hc, st) = bench(&case, grid, 1e-6, 1e-4, 3);
-        let slope = prev.map_or(String::new(), |(g0, t0)| {
-            format!(
-                "slope {:.2}",
-                (t / t0).ln() / ((grid - 1) as f64 / (g0 - 1) as f64).ln()
-            )
+
+    let pc = PointCase::new(20.0, 10.0, 1.0).expect("valid case");
+    println!("\ncircular M=20 L=10, one thread (fast; dev against tight on the same grid):");
+    let mut times = vec![];
+    for grid in [129usize, 257, 513, 1025] {
+        let repeats = if grid >= 1025 { 5 } else { 7 };
+        let (t, o) = time(repeats, || point(&pc, grid, Converge::Fast, false));
+        let dev = (grid <= 257).then(|| {
+            let tight = point(&pc, grid, Converge::Tight, false);
+            (o.h_c / tight.h_c - 1.0).abs()
         });
         println!(
-            "{grid:>7} {:>11.2} ms {wu:>7.1} WU  H_c {hc:.6}  {st}  {slope}",
-            1e3 * t
+            "{grid:>5}^2 {:>8.3} s {:>6.1} WU  H_c {:.6}  H_min {:.6}  dev {}  {}",
+            t,
+            o.work_units,
+            o.h_c,
+            o.h_min,
+            dev.map_or("-".to_string(), |d| format!("{d:.1e}")),
+            o.status
         );
-        prev = Some((grid, t));
+        match grid {
+            257 => summary.push(format!(
+                "point 257^2 within 0.1 % in <= 25 WU and 0.3 s: dev {:.1e}, {:.1} WU, {t:.3} s: {}",
+                dev.unwrap_or(f64::NAN),
+                o.work_units,
+                verdict(dev.is_some_and(|d| d <= 1e-3) && o.work_units <= 25.0 && t <= 0.3)
+            )),
+            513 => summary.push(format!("point 513^2 <= 1.3 s: {t:.3} s: {}", verdict(t <= 1.3))),
+            1025 => summary.push(format!("point 1025^2 <= 6 s: {t:.3} s: {}", verdict(t <= 6.0))),
+            _ => {}
+        }
+        times.push((grid, t));
+    }
+    let (g0, t0) = times[0];
+    let (g1, t1) = times[times.len() - 1];
+    let exponent = (t1 / t0).ln() / (((g1 * g1) as f64) / ((g0 * g0) as f64)).ln();
+    summary.push(format!(
+        "point time ~ N^{exponent:.2} from {g0}^2 to {g1}^2 (<= 1.15): {}",
+        verdict(exponent <= 1.15)
+    ));
+
+    println!("\nhard circular cases on 513^2, one thread:");
+    for (m, l) in [(200.0, 10.0), (1000.0, 0.0)] {
+        let c = PointCase::new(m, l, 1.0).expect("valid case");
+        let (t, o) = time(5, || point(&c, 513, Converge::Fast, false));
+        println!(
+            "M={m} L={l}: {t:.3} s, {:.1} WU, H_c {:.6}, {}",
+            o.work_units, o.h_c, o.status
+        );
+        summary.push(format!(
+            "point M={m} L={l} 513^2 converged in <= 2 s: {} in {t:.3} s: {}",
+            o.status,
+            verdict(o.status.as_str() == "converged" && t <= 2.0)
+        ));
+    }
+
+    println!("\nzebra rows on 1 and 2 threads (circular M=20 L=10):");
+    for grid in [513usize, 1025] {
+        let repeats = if grid >= 1025 { 3 } else { 5 };
+        let (t1, o1) = on_threads(1, || {
+            time(repeats, || point(&pc, grid, Converge::Fast, true))
+        });
+        let (t2, o2) = on_threads(2, || {
+            time(repeats, || point(&pc, grid, Converge::Fast, true))
+        });
+        let same = o1.h_c.to_bits() == o2.h_c.to_bits();
+        println!(
+            "{grid:>5}^2: 1 thread {t1:.3} s, 2 threads {t2:.3} s, speed-up {:.2} (identical H_c: {same})",
+            t1 / t2
+        );
+        summary.push(format!(
+            "zebra {grid}^2 speed-up on 2 threads >= 1.7: {:.2}: {}",
+            t1 / t2,
+            verdict(t1 / t2 >= 1.7)
+        ));
+    }
+
+    println!("\ntargets:");
+    for s in summary {
+        println!("  {s}");
     }
 }

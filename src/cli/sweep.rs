@@ -10,6 +10,8 @@
 //!   part file (a plain rerun skips stored cases too, and may start a new dataset).
 //! * `--dry-run`: print the planned cases of the shard (id, M, L, D for point contacts, estimated
 //!   cost, stored or not) and exit.
+//! * `--new-dataset`: when the dataset holds rows of other settings than the spec, move those
+//!   part files to `<out>/<name>.old-<hash>/` instead of refusing.
 
 use crate::cli::error::InputError;
 use clap::ValueEnum;
@@ -42,8 +44,12 @@ pub struct SweepArgs {
     #[arg(long)]
     pub shard: Option<String>,
     /// Continue an earlier run (the dataset must exist); stored cases are always skipped.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "new_dataset")]
     pub resume: bool,
+    /// Start a new dataset: move the part files of other settings than the spec's to
+    /// <out>/<name>.old-<hash>/ (a run into such a dataset refuses otherwise).
+    #[arg(long)]
+    pub new_dataset: bool,
     /// Print the planned cases and exit without solving.
     #[arg(long)]
     pub dry_run: bool,
@@ -131,6 +137,7 @@ pub fn run_sweep(args: &SweepArgs) -> Result<i32, InputError> {
             ProgressArg::Log => Progress::Log,
             ProgressArg::None => Progress::None,
         },
+        new_dataset: args.new_dataset,
     };
     eprintln!(
         "sweep {}: {} cases, shard {shard} holds {}; {} threads -> {}",
@@ -150,7 +157,7 @@ pub fn run_sweep(args: &SweepArgs) -> Result<i32, InputError> {
         }
         Err(e) => {
             eprintln!("ehlmap: sweep {}: {e}", spec.name);
-            Ok(1)
+            Ok(e.exit_code())
         }
     }
 }
@@ -193,6 +200,9 @@ fn report_run(name: &str, r: &executor::RunReport) {
         .file
         .as_ref()
         .map_or("no file written".to_string(), |p| p.display().to_string());
+    for (from, to) in &r.moved {
+        eprintln!("sweep {name}: moved {} to {}", from.display(), to.display());
+    }
     eprintln!(
         "sweep {name}: {} already stored, {} solved ({} failed) in {:.1} s; {}",
         r.already_stored, r.solved, r.failed, r.wall_s, file

@@ -1,4 +1,6 @@
-//! Reading sweep datasets for the fit: every part file of each directory (arrow-rs reader),
+//! Reading sweep datasets for the fit: every Parquet file of each directory, or a single Parquet
+//! file (arrow-rs reader, any codec the build reads; a file of another layout is an error naming
+//! the file and the missing column),
 //! deduplicated by case id across directories, converged valid rows only, split by contact
 //! (line / point; a mixed dataset gives both); failed rows and duplicates are counted for the
 //! report. A film whose Richardson error estimate (H_c_err, H_min_err) exceeds
@@ -21,7 +23,7 @@ use crate::fit::error::FitError;
 use crate::model::case::{Contact, PointCase};
 use crate::solve::film::Film;
 use crate::solve::solution::ModelUsed;
-use crate::store::results::{read_dataset, CaseRow, RowStatus};
+use crate::store::results::{read_dataset, read_part, CaseRow, RowStatus};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -107,19 +109,23 @@ pub struct FitInput {
 /// Load the fit input from one or more dataset directories (module doc: which rows are kept,
 /// left out or counted as failed).
 ///
-/// Errors: a path that is not a directory, or a dataset that cannot be read (the message names
-/// it).
+/// Errors: a path that is neither a directory nor a file, or a dataset that cannot be read (the
+/// message names the file).
 pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, FitError> {
     let mut by_id = BTreeMap::new();
     let mut duplicates = 0;
     for dir in dirs {
-        if !dir.is_dir() {
+        let rows = if dir.is_dir() {
+            read_dataset(dir)
+        } else if dir.is_file() {
+            read_part(dir).map(|p| p.rows)
+        } else {
             return Err(FitError::Dataset(format!(
-                "{}: not a dataset directory",
+                "{}: not a dataset directory or Parquet file",
                 dir.display()
             )));
-        }
-        for row in read_dataset(dir).map_err(|e| FitError::Dataset(e.to_string()))? {
+        };
+        for row in rows.map_err(|e| FitError::Dataset(e.to_string()))? {
             if by_id.contains_key(&row.case_id) {
                 duplicates += 1;
             } else {

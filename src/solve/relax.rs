@@ -45,7 +45,7 @@ impl Default for RelaxParams {
             omega_gs: 0.6,
             omega_ja: 0.3,
             xi_threshold: 100.0,
-            band: 3,
+            band: 4,
             picard: false,
         }
     }

@@ -46,21 +46,40 @@ pub enum StoreError {
     /// Columns that do not form a record batch (built in memory, before any file).
     #[error("{0}")]
     Batch(#[source] arrow_schema::ArrowError),
-    /// A file lacks a column its schema requires.
-    #[error("{}: no column `{column}`", path.display())]
+    /// A file lacks a column its schema requires: a Parquet file of another layout.
+    #[error("{}: not an ehlmap dataset: missing column `{column}`", path.display())]
     NoColumn {
         /// The file.
         path: PathBuf,
         /// The missing column.
         column: String,
     },
-    /// A column of a file has another Arrow type than the layout's.
-    #[error("{}: column `{column}` has an unexpected type", path.display())]
+    /// A column of a file has a type the layout's cannot be read from.
+    #[error(
+        "{}: not an ehlmap dataset: column `{column}` is {found}, expected {expected}",
+        path.display()
+    )]
     ColumnType {
         /// The file.
         path: PathBuf,
         /// The column.
         column: String,
+        /// Its type in the file.
+        found: String,
+        /// The layout's type.
+        expected: String,
+    },
+    /// A Parquet file compressed with a codec this build does not decompress.
+    #[error(
+        "{}: compressed with {codec}, which ehlmap does not read (it reads uncompressed, zstd, \
+         snappy, gzip and lz4 Parquet): re-save it with one of those",
+        path.display()
+    )]
+    Compression {
+        /// The file.
+        path: PathBuf,
+        /// The codec, as the Parquet library names it.
+        codec: String,
     },
     /// A value of a named column (a contact, status, model ...) is not one of the known names.
     #[error("{}: column `{column}`: value {value:?} not understood: {reason}", path.display())]

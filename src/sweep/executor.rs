@@ -1,6 +1,12 @@
 //! The executor: solve the cases of one shard on a rayon pool and write them to the dataset in
 //! batches.
 //!
+//! Before anything is solved the run takes the shard's lock ([`crate::sweep::lock`]; a second
+//! run refuses, a stale lock is taken over) and checks the stored parts against the spec's
+//! settings ([`crate::sweep::dataset`]; other settings refuse, or with `new_dataset` are moved
+//! aside). Only then are the stored case ids read, so a run never re-solves what a run that
+//! ended just before it stored.
+//!
 //! `threads` workers of a dedicated rayon pool take cases from a shared queue in plan order
 //! (largest cost first) and send finished rows to the calling thread, which owns the part file:
 //! after `batch` rows, or `flush_seconds` after the previous flush, it rewrites the file with all
@@ -10,19 +16,24 @@
 use crate::solve::Status;
 use crate::store::error::StoreError;
 use crate::store::results::{self, CaseRow};
+use crate::sweep::dataset;
+use crate::sweep::lock::{self, DatasetLock, LockError, HEARTBEAT};
 use crate::sweep::plan::{Case, Shard};
 use crate::sweep::row::solve_guarded;
 pub use crate::sweep::row::{input_row, solve_case};
+use crate::sweep::settings::Settings;
 use crate::sweep::spec::SweepSpec;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::collections::HashSet;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::mpsc;
 use std::time::{Duration, Instant, SystemTime, UNIX_EPOCH};
 
-/// Why a sweep run stopped: an I/O failure of the dataset (the message names the file), or a
-/// worker pool that could not start. Numerical failures are rows, never errors.
+/// Why a sweep run stopped: an I/O failure of the dataset (the message names the file), a
+/// worker pool that could not start, a dataset another run is writing, or a dataset of other
+/// settings. Numerical failures are rows, never errors.
 #[derive(Debug, thiserror::Error)]
 pub enum SweepError {
     /// A file or directory operation failed.
@@ -31,6 +42,34 @@ pub enum SweepError {
     /// A part file could not be read or written.
     #[error(transparent)]
     Store(#[from] StoreError),
+    /// Another run holds the shard's lock, an overlapping shard's, or another shard's with
+    /// other settings; the message names the holder and the lock file. Nothing was run.
+    #[error("{0}")]
+    Busy(String),
+    /// The dataset holds rows of other settings than the spec (and `new_dataset` was not
+    /// asked); the message names the setting, the part and both values. Nothing was run.
+    #[error("{0}")]
+    Settings(String),
+}
+
+impl SweepError {
+    /// The exit code of the command line: 2 for a spec that conflicts with the dataset (bad
+    /// input, like a bad spec), 1 for the rest (I/O, a busy dataset: a later run may succeed).
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            SweepError::Settings(_) => 2,
+            _ => 1,
+        }
+    }
+}
+
+impl From<LockError> for SweepError {
+    fn from(e: LockError) -> Self {
+        match e {
+            LockError::Busy(m) => SweepError::Busy(m),
+            LockError::Io(m) => SweepError::Io(m),
+        }
+    }
 }
 
 impl From<String> for SweepError {
@@ -64,6 +103,9 @@ pub struct RunOptions {
     pub shard: Shard,
     /// How progress is shown.
     pub progress: Progress,
+    /// Start a new dataset: move the parts of other settings aside instead of refusing
+    /// ([`crate::sweep::dataset`]).
+    pub new_dataset: bool,
 }
 
 /// What a run did.
@@ -85,6 +127,8 @@ pub struct RunReport {
     pub model_seconds: std::collections::BTreeMap<String, f64>,
     /// The part file this run wrote (none when there was nothing to do).
     pub file: Option<PathBuf>,
+    /// Part files of other settings moved out of the dataset (`new_dataset`): (from, to).
+    pub moved: Vec<(PathBuf, PathBuf)>,
     /// Wall time of the run (s).
     pub wall_s: f64,
 }
@@ -282,13 +326,31 @@ pub fn execute(
     opts: &RunOptions,
 ) -> Result<RunReport, SweepError> {
     let start = Instant::now();
+    let created = iso8601(SystemTime::now());
     let dir = &opts.dataset;
     std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-    let (shard_cases, todo) = cases_to_solve(dir, cases, &opts.shard)?;
+    let settings = Settings::of_spec(spec);
+    let (mut lock, warnings) = lock::acquire(dir, &opts.shard, &settings, &created)?;
+    for w in warnings {
+        eprintln!("ehlmap: warning: {w}");
+    }
+    let parts = dataset::scan(dir)?;
+    let conflicts = dataset::conflicts(&parts, &settings);
+    let mut moved = vec![];
+    if !conflicts.is_empty() {
+        if !opts.new_dataset {
+            let msg = dataset::refusal(dir, &spec.file, &parts, &conflicts);
+            return Err(SweepError::Settings(msg));
+        }
+        moved = dataset::move_aside(dir, &parts, &conflicts)?;
+    }
+    let stored = dataset::kept_ids(&parts, &conflicts);
+    let (shard_cases, todo) = cases_to_solve(&stored, cases, &opts.shard);
     let mut report = RunReport {
         total: cases.len(),
         in_shard: shard_cases.len(),
         already_stored: shard_cases.len() - todo.len(),
+        moved,
         ..RunReport::default()
     };
     if todo.is_empty() {
@@ -301,7 +363,7 @@ pub fn execute(
     let mut writer = PartWriter {
         dir,
         shard: &opts.shard,
-        meta: part_metadata(spec, &opts.shard, cases.len(), shard_cases.len()),
+        meta: part_metadata(spec, &settings, &created, &opts.shard, &report),
         rows: vec![],
         part: None,
     };
@@ -317,7 +379,13 @@ pub fn execute(
         let (stop, todo, pool) = (&stop, &todo, &pool);
         let sweep = spec.name.as_str();
         ts.spawn(move || solve_all(pool, threads, todo, sweep, stop, tx));
-        collect(rx, spec, &mut report, &mut reporter, &mut writer, stop)
+        let sink = Sink {
+            report: &mut report,
+            reporter: &mut reporter,
+            writer: &mut writer,
+            lock: &mut lock,
+        };
+        collect(rx, spec, sink, stop)
     });
     reporter.finish();
     if let Some(e) = failure {
@@ -328,20 +396,19 @@ pub fn execute(
     Ok(report)
 }
 
-/// The cases of `shard`, and those of them that the dataset in `dir` does not hold yet.
+/// The cases of `shard`, and those of them that are not in `stored`.
 fn cases_to_solve<'c>(
-    dir: &Path,
+    stored: &HashSet<String>,
     cases: &'c [Case],
     shard: &Shard,
-) -> Result<(Vec<&'c Case>, Vec<&'c Case>), SweepError> {
-    let stored = results::stored_ids(dir)?;
+) -> (Vec<&'c Case>, Vec<&'c Case>) {
     let shard_cases: Vec<&Case> = cases.iter().filter(|c| shard.contains(c.id)).collect();
     let todo: Vec<&Case> = shard_cases
         .iter()
         .copied()
         .filter(|c| !stored.contains(&c.id_hex()))
         .collect();
-    Ok((shard_cases, todo))
+    (shard_cases, todo)
 }
 
 /// A dedicated rayon pool of `threads` workers.
@@ -356,11 +423,11 @@ fn worker_pool(threads: usize) -> Result<rayon::ThreadPool, SweepError> {
 /// The footer metadata of every part file of this run (each flush adds `run` and `rows`).
 fn part_metadata(
     spec: &SweepSpec,
+    settings: &Settings,
+    created: &str,
     shard: &Shard,
-    cases_total: usize,
-    cases_shard: usize,
+    report: &RunReport,
 ) -> Vec<(String, String)> {
-    let created = iso8601(SystemTime::now());
     vec![
         (
             "git_commit".to_string(),
@@ -369,10 +436,12 @@ fn part_metadata(
         ("sweep".to_string(), spec.name.clone()),
         ("spec_file".to_string(), spec.file.clone()),
         ("spec".to_string(), spec.text.clone()),
-        ("created".to_string(), created),
+        ("spec_hash".to_string(), settings.hash()),
+        ("spec_settings".to_string(), settings.to_string()),
+        ("created".to_string(), created.to_string()),
         ("shard".to_string(), shard.to_string()),
-        ("cases_total".to_string(), cases_total.to_string()),
-        ("cases_shard".to_string(), cases_shard.to_string()),
+        ("cases_total".to_string(), report.total.to_string()),
+        ("cases_shard".to_string(), report.in_shard.to_string()),
     ]
 }
 
@@ -446,23 +515,42 @@ fn tally(report: &mut RunReport, row: &CaseRow) {
         .or_default() += row.wall_s.unwrap_or(0.0);
 }
 
+/// Where [`collect`] puts what it receives: the run's report, its progress, its part file, and
+/// the lock it refreshes.
+struct Sink<'s, 'w> {
+    report: &'s mut RunReport,
+    reporter: &'s mut Reporter,
+    writer: &'s mut PartWriter<'w>,
+    lock: &'s mut DatasetLock,
+}
+
 /// Receive the rows until the workers are done, flushing after `batch` rows or `flush_seconds`
-/// (of `spec.output`); on a write error, set `stop` and return the error.
+/// (of `spec.output`) and refreshing the lock every [`HEARTBEAT`]; on a write error, set `stop`
+/// and return the error.
 fn collect(
     rx: mpsc::Receiver<CaseRow>,
     spec: &SweepSpec,
-    report: &mut RunReport,
-    reporter: &mut Reporter,
-    writer: &mut PartWriter,
+    sink: Sink,
     stop: &AtomicBool,
 ) -> Option<SweepError> {
+    let Sink {
+        report,
+        reporter,
+        writer,
+        lock,
+    } = sink;
     let flush_every = Duration::from_secs_f64(spec.output.flush_seconds);
     let batch = spec.output.batch.max(1);
     let mut failure: Option<SweepError> = None;
     let mut pending = 0usize;
     let mut last_flush = Instant::now();
     loop {
-        let wait = flush_every.saturating_sub(last_flush.elapsed());
+        if let Some(w) = lock.heartbeat() {
+            eprintln!("ehlmap: warning: {w}");
+        }
+        let wait = flush_every
+            .saturating_sub(last_flush.elapsed())
+            .min(HEARTBEAT);
         match rx.recv_timeout(wait.max(Duration::from_millis(1))) {
             Ok(row) => {
                 tally(report, &row);

@@ -24,10 +24,23 @@
 //!   loses at most the cases solved since the last flush, and never leaves a file that a reader
 //!   chokes on. Failed solves are rows with their `status` and `reason`; non-finite outputs are
 //!   nulls with `valid = false`.
+//! * **One writer per shard** ([`lock`]): a run holds the lock file `<out>/.<name>.<i>of<n>.lock`
+//!   (pid, host, start, command); a second run of the shard (or of an overlapping shard, or of
+//!   another shard with other settings) refuses naming the holder; a stale lock (its process
+//!   gone, e.g. after `kill -9`) is taken over with a warning; the lock goes at the end of the
+//!   run, normal or not.
+//! * **Tied to the spec** ([`settings`], [`dataset`]): every part file's footer holds the
+//!   spec's row-defining settings (models, each contact's numerics) and their hash; a run into a
+//!   dataset holding rows of other settings refuses (exit code 2) unless asked to start a new
+//!   dataset, which moves those parts to `<out>/<name>.old-<hash>/`.
 //! * **Exit codes**: 0 when every case of the shard is stored (numerical failures included),
-//!   1 on an I/O error while running, 2 on a bad spec or bad arguments.
+//!   1 on an I/O error while running or a dataset shard another run holds, 2 on a bad spec, bad
+//!   arguments or a spec whose settings conflict with the dataset's.
 
+pub mod dataset;
 pub mod executor;
+pub mod lock;
 pub mod plan;
 pub mod row;
+pub mod settings;
 pub mod spec;

@@ -23,6 +23,7 @@
 //! grid = 2049                    # finest-grid points (the solver rounds up to 2^k n0 + 1), 33..=1048577;
 //!                                # point contacts: per direction, default 129, 17..=2049
 //! cycle = "v"                    # or "w"
+//! converge = "fast"              # or "tight" (stopping rule, solve::params::Converge)
 //! max_cycles = 60
 //! fallback = true
 //! tol_load = 1e-7

@@ -1,6 +1,7 @@
-//! The file names of a dataset directory: which names are part files ([`is_part_name`],
-//! [`part_files`]) and where a part's temporary file lives while it is written
-//! ([`temp_path`]). Pure path logic plus one directory listing; no Parquet.
+//! The file names of a dataset directory: the part files ehlmap writes ([`is_part_name`]), the
+//! files a reader reads ([`is_dataset_file`], [`part_files`]) and where a part's temporary file
+//! lives while it is written ([`temp_path`]). Pure path logic plus one directory listing; no
+//! Parquet.
 
 use crate::store::error::StoreError;
 use std::path::{Path, PathBuf};
@@ -21,12 +22,22 @@ pub fn temp_path(path: &Path) -> PathBuf {
     }
 }
 
-/// Is `name` a part file of a dataset (and not a temporary or foreign file)?
+/// Is `name` a part file as ehlmap writes them, `part-<shard>-<run>.parquet` (and not a temporary
+/// or foreign file)?
 pub fn is_part_name(name: &str) -> bool {
     name.starts_with("part-") && name.ends_with(".parquet")
 }
 
-/// The part files of a dataset directory, sorted by name (empty when `dir` does not exist).
+/// Is `name` a file that readers of a dataset directory read: every `*.parquet` whose name does
+/// not start with `.` or `_` (pyarrow's convention for hidden files), so a part re-saved from a
+/// notebook under another name is read (or named in an error), never silently skipped.
+pub fn is_dataset_file(name: &str) -> bool {
+    name.ends_with(".parquet") && !name.starts_with('.') && !name.starts_with('_')
+}
+
+/// The Parquet files of a dataset directory ([`is_dataset_file`]: the part files and any other
+/// visible `*.parquet`), sorted by name (empty when `dir` does not exist). Subdirectories and
+/// other files are not read.
 pub fn part_files(dir: &Path) -> Result<Vec<PathBuf>, StoreError> {
     let cannot_read = |source| StoreError::Io {
         op: "read",
@@ -42,7 +53,7 @@ pub fn part_files(dir: &Path) -> Result<Vec<PathBuf>, StoreError> {
     for ent in rd {
         let ent = ent.map_err(cannot_read)?;
         let name = ent.file_name().to_string_lossy().into_owned();
-        if is_part_name(&name) && ent.file_type().map(|t| t.is_file()).unwrap_or(false) {
+        if is_dataset_file(&name) && ent.file_type().map(|t| t.is_file()).unwrap_or(false) {
             v.push(ent.path());
         }
     }
@@ -63,5 +74,9 @@ mod tests {
         assert!(is_part_name("part-1of2-0003.parquet"));
         assert!(!is_part_name(".part-1of1-0002.parquet.tmp"));
         assert!(!is_part_name("notes.txt"));
+        assert!(is_dataset_file("part-1of2-0003.parquet") && is_dataset_file("resaved.parquet"));
+        assert!(!is_dataset_file(".part-1of1-0002.parquet.tmp"));
+        assert!(!is_dataset_file("_metadata") && !is_dataset_file("_common.parquet"));
+        assert!(!is_dataset_file("notes.txt") && !is_dataset_file(".hidden.parquet"));
     }
 }

@@ -27,7 +27,7 @@ pub mod row;
 pub mod write;
 
 pub use columns::{schema, SCHEMA_VERSION};
-pub use files::{is_part_name, part_files, temp_path};
+pub use files::{is_dataset_file, is_part_name, part_files, temp_path};
 pub use read::{read_dataset, read_part, stored_ids, Part};
 pub use row::{finite, larger_error, CaseRow, RowStatus};
 pub use write::{to_batch, write_part};

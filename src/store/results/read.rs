@@ -2,20 +2,34 @@
 //! by case id ([`read_dataset`], [`stored_ids`]), driven by the column table
 //! [`COLUMNS`].
 //!
-//! Files of every schema are read. A file whose `error_estimate` column is boolean is of schema
-//! 1: that column is today's `half_grid_estimate`, the columns introduced later (`since` > 1)
-//! keep the [`CaseRow::default`] value (`model_used = "full"`, the rest null; files before
-//! schema 3 read `converge = "tight"`, the only rule then), and `error_estimate` is derived by [`larger_error`] from `H_c_err` and `H_min_err`. A missing
-//! column of the file's schema, a column of another type, or an unknown name (status, contact
-//! ...) is an error naming the file and the column.
+//! Files of every schema are read. The schema of a file is its footer's `ehlmap_schema`; a file
+//! without it (re-saved from a notebook without the footer) is of schema 1 when its
+//! `error_estimate` column is boolean, else of the latest schema whose columns it all holds. In a
+//! file of schema 1, `error_estimate` is today's `half_grid_estimate`, the columns introduced
+//! later (`since` > 1) keep the [`CaseRow::default`] value (`model_used = "full"`, the rest
+//! null), and `error_estimate` is derived by [`larger_error`] from `H_c_err` and `H_min_err`.
+//! Files before schema 3 read `converge = "tight"`, the only stopping rule then.
+//!
+//! Files written by other tools read as long as they hold the columns: any codec the build
+//! decompresses (zstd, snappy, gzip, lz4), types taken from the Parquet schema rather than an
+//! embedded Arrow schema (so polars' large or view strings read as strings), floats stored as
+//! float32 or integers, and integers stored as int32 or as integral floats (pandas turns an
+//! integer column with nulls into floats). A missing column of the file's schema ("not an
+//! ehlmap dataset: missing column X"), a column of another type, a null in a required column or
+//! an unknown name (status, contact ...) is an error naming the file and the column.
 
 use crate::solve::params::Converge;
 use crate::store::error::StoreError;
 use crate::store::results::columns::{Access, Column, COLUMNS, SCHEMA_VERSION};
 use crate::store::results::files::part_files;
 use crate::store::results::row::{larger_error, CaseRow, RowStatus};
+use arrow_array::cast::AsArray;
+use arrow_array::types::{
+    Float32Type, Int16Type, Int32Type, Int64Type, Int8Type, UInt16Type, UInt32Type, UInt8Type,
+};
 use arrow_array::{Array, BooleanArray, Float64Array, Int64Array, RecordBatch, StringArray};
-use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
+use arrow_schema::DataType;
+use parquet::arrow::arrow_reader::{ArrowReaderOptions, ParquetRecordBatchReaderBuilder};
 use std::collections::{BTreeMap, HashSet};
 use std::fs::File;
 use std::path::{Path, PathBuf};
@@ -34,19 +48,27 @@ pub struct Part {
 /// Columns renamed since: (today's name, the last schema of the old name, the old name).
 const RENAMED: &[(&str, u32, &str)] = &[("half_grid_estimate", 1, "error_estimate")];
 
-/// The schema version of a batch: 1 when `error_estimate` is boolean, 2 without `converge`,
-/// else [`SCHEMA_VERSION`].
-fn schema_of(b: &RecordBatch) -> u32 {
+/// The schema version of a batch of a file whose footer says `footer` (module docs).
+fn schema_of(b: &RecordBatch, footer: Option<u32>) -> u32 {
+    if let Some(v) = footer {
+        return v.clamp(1, SCHEMA_VERSION);
+    }
     let v1 = b
         .column_by_name("error_estimate")
         .is_some_and(|c| c.as_any().is::<BooleanArray>());
     if v1 {
-        1
-    } else if b.column_by_name("converge").is_none() {
-        2
-    } else {
-        SCHEMA_VERSION
+        return 1;
     }
+    let holds_all = |v: u32| {
+        COLUMNS
+            .iter()
+            .filter(|c| c.since <= v)
+            .all(|c| b.column_by_name(name_in(c, v)).is_some())
+    };
+    (2..=SCHEMA_VERSION)
+        .rev()
+        .find(|&v| holds_all(v))
+        .unwrap_or(SCHEMA_VERSION)
 }
 
 /// The name of column `c` in a file of schema `schema`.
@@ -57,59 +79,146 @@ fn name_in(c: &Column, schema: u32) -> &'static str {
         .map_or(c.name, |(_, _, old)| old)
 }
 
-/// Puts the value of row `j` of one column into a row; `Err` holds why a name is not understood
-/// together with the stored value.
-type Setter<'a> = Box<dyn Fn(&mut CaseRow, usize) -> Result<(), (String, String)> + 'a>;
+/// Puts the value of row `j` of one column into a row; `Err` holds the stored value and why it
+/// is not understood.
+type Setter = Box<dyn Fn(&mut CaseRow, usize) -> Result<(), (String, String)>>;
 
-/// The setter of column `c` over the batch's array `a`, or `None` when `a` has another type.
-fn bind<'a>(c: &Column, a: &'a dyn Array) -> Option<Setter<'a>> {
-    let any = a.as_any();
-    let opt = move |j: usize| !a.is_null(j);
-    Some(match c.access {
+/// Why a column cannot be bound: its type, or a value that does not convert (value, reason).
+enum BindError {
+    Type(DataType),
+    Value(String, String),
+}
+
+/// The floats of `a` (float64, float32 or integers), or `None` for another type.
+fn floats(a: &dyn Array) -> Option<Float64Array> {
+    fn conv<T: arrow_array::ArrowPrimitiveType>(
+        a: &dyn Array,
+        f: impl Fn(T::Native) -> f64,
+    ) -> Float64Array {
+        a.as_primitive::<T>().iter().map(|v| v.map(&f)).collect()
+    }
+    Some(match a.data_type() {
+        DataType::Float64 => a.as_primitive::<arrow_array::types::Float64Type>().clone(),
+        DataType::Float32 => conv::<Float32Type>(a, f64::from),
+        DataType::Int64 => conv::<Int64Type>(a, |v| v as f64),
+        DataType::Int32 => conv::<Int32Type>(a, f64::from),
+        _ => return None,
+    })
+}
+
+/// The integers of `a` (int64, smaller integers, or floats that are all integral).
+fn integers(a: &dyn Array) -> Result<Int64Array, BindError> {
+    fn conv<T: arrow_array::ArrowPrimitiveType>(
+        a: &dyn Array,
+        f: impl Fn(T::Native) -> i64,
+    ) -> Int64Array {
+        a.as_primitive::<T>().iter().map(|v| v.map(&f)).collect()
+    }
+    Ok(match a.data_type() {
+        DataType::Int64 => a.as_primitive::<Int64Type>().clone(),
+        DataType::Int32 => conv::<Int32Type>(a, i64::from),
+        DataType::Int16 => conv::<Int16Type>(a, i64::from),
+        DataType::Int8 => conv::<Int8Type>(a, i64::from),
+        DataType::UInt32 => conv::<UInt32Type>(a, i64::from),
+        DataType::UInt16 => conv::<UInt16Type>(a, i64::from),
+        DataType::UInt8 => conv::<UInt8Type>(a, i64::from),
+        DataType::Float64 | DataType::Float32 => {
+            let f = floats(a).expect("a float column");
+            if let Some(x) = f
+                .iter()
+                .flatten()
+                .find(|x| x.fract() != 0.0 || x.abs() > 9.0e15)
+            {
+                return Err(BindError::Value(x.to_string(), "not an integer".into()));
+            }
+            f.iter().map(|v| v.map(|x| x as i64)).collect()
+        }
+        t => return Err(BindError::Type(t.clone())),
+    })
+}
+
+/// The strings of `a` (utf8, large utf8 or utf8 view).
+fn strings(a: &dyn Array) -> Option<StringArray> {
+    Some(match a.data_type() {
+        DataType::Utf8 => a.as_string::<i32>().clone(),
+        DataType::LargeUtf8 => a.as_string::<i64>().iter().collect(),
+        DataType::Utf8View => a.as_string_view().iter().collect(),
+        _ => return None,
+    })
+}
+
+/// The error of a null in a required column.
+fn null_value() -> (String, String) {
+    (
+        "null".to_string(),
+        "the column requires a value".to_string(),
+    )
+}
+
+/// The setter of column `c` over the batch's array `a` (converted to the column's type).
+fn bind(c: &Column, a: &dyn Array) -> Result<Setter, BindError> {
+    let wrong = || BindError::Type(a.data_type().clone());
+    Ok(match c.access {
         Access::Str { set, .. } => {
-            let a = any.downcast_ref::<StringArray>()?;
+            let a = strings(a).ok_or_else(wrong)?;
             Box::new(move |r, j| {
+                if a.is_null(j) {
+                    return Err(null_value());
+                }
                 set(r, a.value(j)).map_err(|e| (a.value(j).to_string(), e.to_string()))
             })
         }
         Access::OptStr { set, .. } => {
-            let a = any.downcast_ref::<StringArray>()?;
+            let a = strings(a).ok_or_else(wrong)?;
             Box::new(move |r, j| {
-                set(r, opt(j).then(|| a.value(j)));
+                set(r, (!a.is_null(j)).then(|| a.value(j)));
                 Ok(())
             })
         }
         Access::F64 { set, .. } => {
-            let a = any.downcast_ref::<Float64Array>()?;
+            let a = floats(a).ok_or_else(wrong)?;
             Box::new(move |r, j| {
+                if a.is_null(j) {
+                    return Err(null_value());
+                }
                 set(r, a.value(j));
                 Ok(())
             })
         }
         Access::OptF64 { set, .. } => {
-            let a = any.downcast_ref::<Float64Array>()?;
+            let a = floats(a).ok_or_else(wrong)?;
             Box::new(move |r, j| {
-                set(r, opt(j).then(|| a.value(j)));
+                set(r, (!a.is_null(j)).then(|| a.value(j)));
                 Ok(())
             })
         }
         Access::I64 { set, .. } => {
-            let a = any.downcast_ref::<Int64Array>()?;
+            let a = integers(a)?;
             Box::new(move |r, j| {
+                if a.is_null(j) {
+                    return Err(null_value());
+                }
                 set(r, a.value(j));
                 Ok(())
             })
         }
         Access::OptI64 { set, .. } => {
-            let a = any.downcast_ref::<Int64Array>()?;
+            let a = integers(a)?;
             Box::new(move |r, j| {
-                set(r, opt(j).then(|| a.value(j)));
+                set(r, (!a.is_null(j)).then(|| a.value(j)));
                 Ok(())
             })
         }
         Access::Bool { set, .. } => {
-            let a = any.downcast_ref::<BooleanArray>()?;
+            let a = a
+                .as_any()
+                .downcast_ref::<BooleanArray>()
+                .ok_or_else(wrong)?
+                .clone();
             Box::new(move |r, j| {
+                if a.is_null(j) {
+                    return Err(null_value());
+                }
                 set(r, a.value(j));
                 Ok(())
             })
@@ -117,9 +226,13 @@ fn bind<'a>(c: &Column, a: &'a dyn Array) -> Option<Setter<'a>> {
     })
 }
 
-/// The rows of one record batch of the file `path`.
-fn batch_rows(b: &RecordBatch, path: &Path) -> Result<Vec<CaseRow>, StoreError> {
-    let schema = schema_of(b);
+/// The rows of one record batch of the file `path`, whose footer gives the schema `footer`.
+fn batch_rows(
+    b: &RecordBatch,
+    path: &Path,
+    footer: Option<u32>,
+) -> Result<Vec<CaseRow>, StoreError> {
+    let schema = schema_of(b, footer);
     let mut setters = vec![];
     for c in COLUMNS.iter().filter(|c| c.since <= schema) {
         let name = name_in(c, schema);
@@ -127,9 +240,19 @@ fn batch_rows(b: &RecordBatch, path: &Path) -> Result<Vec<CaseRow>, StoreError> 
             path: path.to_path_buf(),
             column: name.to_string(),
         })?;
-        let set = bind(c, a.as_ref()).ok_or_else(|| StoreError::ColumnType {
-            path: path.to_path_buf(),
-            column: name.to_string(),
+        let set = bind(c, a.as_ref()).map_err(|e| match e {
+            BindError::Type(found) => StoreError::ColumnType {
+                path: path.to_path_buf(),
+                column: name.to_string(),
+                found: found.to_string(),
+                expected: c.access.data_type().to_string(),
+            },
+            BindError::Value(value, reason) => StoreError::BadValue {
+                path: path.to_path_buf(),
+                column: c.name,
+                value,
+                reason,
+            },
         })?;
         setters.push((c.name, set));
     }
@@ -159,18 +282,35 @@ fn batch_rows(b: &RecordBatch, path: &Path) -> Result<Vec<CaseRow>, StoreError> 
     Ok(rows)
 }
 
-/// Read one part file: its rows (see the module docs for older schemas) and footer.
+/// The codec of a "Disabled feature at compile time: <codec>" error of the Parquet library.
+fn disabled_codec(message: &str) -> Option<String> {
+    let rest = message.split("Disabled feature at compile time: ").nth(1)?;
+    Some(rest.split_whitespace().next().unwrap_or(rest).to_string())
+}
+
+/// Read one part file: its rows (see the module docs for older schemas and other writers) and
+/// footer.
 pub fn read_part(path: &Path) -> Result<Part, StoreError> {
-    let parquet = |source| StoreError::Parquet {
-        path: path.to_path_buf(),
-        source,
+    let parquet = |source: parquet::errors::ParquetError| match disabled_codec(&source.to_string())
+    {
+        Some(codec) => StoreError::Compression {
+            path: path.to_path_buf(),
+            codec,
+        },
+        None => StoreError::Parquet {
+            path: path.to_path_buf(),
+            source,
+        },
     };
     let file = File::open(path).map_err(|source| StoreError::Io {
         op: "open",
         path: path.to_path_buf(),
         source,
     })?;
-    let builder = ParquetRecordBatchReaderBuilder::try_new(file).map_err(parquet)?;
+    // Types from the Parquet schema, not from an Arrow schema another writer embedded.
+    let options = ArrowReaderOptions::new().with_skip_arrow_metadata(true);
+    let builder =
+        ParquetRecordBatchReaderBuilder::try_new_with_options(file, options).map_err(parquet)?;
     let meta: BTreeMap<String, String> = builder
         .metadata()
         .file_metadata()
@@ -181,13 +321,22 @@ pub fn read_part(path: &Path) -> Result<Part, StoreError> {
                 .collect()
         })
         .unwrap_or_default();
+    let footer = meta
+        .get("ehlmap_schema")
+        .and_then(|v| v.trim().parse().ok());
     let mut rows = vec![];
     for batch in builder.build().map_err(parquet)? {
-        let b = batch.map_err(|source| StoreError::Arrow {
-            path: path.to_path_buf(),
-            source,
+        let b = batch.map_err(|source| match disabled_codec(&source.to_string()) {
+            Some(codec) => StoreError::Compression {
+                path: path.to_path_buf(),
+                codec,
+            },
+            None => StoreError::Arrow {
+                path: path.to_path_buf(),
+                source,
+            },
         })?;
-        rows.extend(batch_rows(&b, path)?);
+        rows.extend(batch_rows(&b, path, footer)?);
     }
     Ok(Part {
         path: path.to_path_buf(),
@@ -281,12 +430,28 @@ mod tests {
         let mut cols = b.columns().to_vec();
         cols[i] = std::sync::Arc::new(StringArray::from(vec!["magic"]));
         let b = RecordBatch::try_new(b.schema(), cols).unwrap();
-        let e = batch_rows(&b, Path::new("d/part-1of1-0001.parquet"))
+        let e = batch_rows(&b, Path::new("d/part-1of1-0001.parquet"), Some(2))
             .unwrap_err()
             .to_string();
         for want in ["d/part-1of1-0001.parquet", "`model_used`", "\"magic\""] {
             assert!(e.contains(want), "{e}");
         }
+    }
+
+    #[test]
+    fn a_codec_the_build_lacks_is_named() {
+        let m = "Parquet error: Disabled feature at compile time: brotli";
+        assert_eq!(disabled_codec(m).as_deref(), Some("brotli"));
+        assert_eq!(disabled_codec("Parquet error: EOF"), None);
+        let e = StoreError::Compression {
+            path: "d/x.parquet".into(),
+            codec: "brotli".into(),
+        };
+        assert!(
+            e.to_string()
+                .starts_with("d/x.parquet: compressed with brotli"),
+            "{e}"
+        );
     }
 
     /// The committed datasets: schema 1 (`smoke-line`, a boolean `error_estimate`) and 2.
