@@ -17,6 +17,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Debug)]
+#[command(allow_negative_numbers = true)]
 pub struct BenchArgs {
     /// Output directory for bench.parquet, bench.md and the charts.
     #[arg(long, default_value = "outputs/bench")]
@@ -34,11 +35,12 @@ pub struct BenchArgs {
     #[arg(long, value_name = "SPEC")]
     pub selection: Option<PathBuf>,
     /// Target relative accuracy for --selection, in (0, 1) (default 0.005).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub accuracy: Option<f64>,
 }
 
 #[derive(clap::Args, Debug)]
+#[command(allow_negative_numbers = true)]
 pub struct StabilityArgs {
     /// Output directory for stability.parquet, stability.md and stability.png.
     #[arg(long, default_value = "outputs/stability")]
@@ -52,7 +54,7 @@ pub struct StabilityArgs {
     pub quick: bool,
     /// Map point contacts of this ellipticity D = Rx/Ry in (0, 1] instead of line contacts
     /// (`--grid` then counts points per direction; give e.g. 129).
-    #[arg(long = "point-D")]
+    #[arg(long = "point-D", allow_hyphen_values = true)]
     pub point_d: Option<f64>,
 }
 

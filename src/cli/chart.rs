@@ -8,6 +8,7 @@ use std::path::PathBuf;
 
 /// `ehlmap chart regimes [--out DIR] [--case FILE.toml] [--D d]`.
 #[derive(clap::Args, Debug)]
+#[command(allow_negative_numbers = true)]
 pub struct ChartArgs {
     /// Which chart (only `regimes`).
     #[arg(value_parser = ["regimes"])]
@@ -19,7 +20,7 @@ pub struct ChartArgs {
     #[arg(long)]
     pub case: Option<PathBuf>,
     /// A point contact of this ellipticity D = Rx/Ry in (0, 1] (default: line contact).
-    #[arg(long = "D")]
+    #[arg(long = "D", allow_hyphen_values = true)]
     pub d: Option<f64>,
 }
 

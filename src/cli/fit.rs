@@ -13,6 +13,7 @@ use ehlmap::report::{fit_report, FitReport};
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Debug)]
+#[command(allow_negative_numbers = true)]
 pub struct FitArgs {
     /// Sweep dataset directories (all part files inside are read).
     #[arg(required = true)]

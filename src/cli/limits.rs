@@ -86,7 +86,7 @@ pub fn check_memory(what: &str, why: &str, need: u64) -> Result<(), CliError> {
     };
     if need > have {
         return Err(input(format!(
-            "{what}: {why} needs about {}, more than the {} of {from}: give a smaller grid",
+            "{what}: {why} would need about {}, more than the {} of {from}; give a smaller grid",
             human(need),
             human(have)
         )));

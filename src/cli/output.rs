@@ -36,17 +36,18 @@ macro_rules! outln {
 
 /// Print a line to stderr like `eprintln!`, but never panic: a closed stderr is ignored.
 macro_rules! note {
-    ($($t:tt)*) => {
-        $crate::cli::output::write_stderr(format_args!("{}\n", format_args!($($t)*)))
-    };
+    ($($t:tt)*) => {{
+        let _ = $crate::cli::output::write_stderr(format_args!("{}\n", format_args!($($t)*)));
+    }};
 }
 
 pub(crate) use {note, out, outln};
 
-/// Write to stderr, ignoring failures (there is nowhere left to report them).
-pub fn write_stderr(args: std::fmt::Arguments) {
+/// Write to stderr; a failure is ignored (there is nowhere left to report it) but returned as
+/// `false`, so that a caller can stop writing progress there.
+pub fn write_stderr(args: std::fmt::Arguments) -> bool {
     let mut e = std::io::stderr().lock();
-    let _ = e.write_fmt(args).and_then(|()| e.flush());
+    e.write_fmt(args).and_then(|()| e.flush()).is_ok()
 }
 
 /// The output directory `dir` of option `flag`, created (with its parents) and checked
@@ -75,10 +76,12 @@ pub fn check_file(flag: &str, path: &Path) -> Result<(), CliError> {
         _ => PathBuf::from("."),
     };
     if !parent.is_dir() {
-        return Err(io(format!(
-            "{flag} {shown}: the directory {} does not exist",
-            parent.display()
-        )));
+        let why = if parent.exists() {
+            "is not a directory"
+        } else {
+            "does not exist"
+        };
+        return Err(io(format!("{flag} {shown}: {} {why}", parent.display())));
     }
     probe(flag, &parent, &shown.to_string())
 }

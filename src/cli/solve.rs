@@ -63,26 +63,26 @@ pub struct SolveArgs {
     #[arg(long, value_enum, default_value = "line")]
     pub contact: ContactArg,
     /// Moes load parameter M > 0.
-    #[arg(long = "M")]
+    #[arg(long = "M", allow_hyphen_values = true)]
     pub m: f64,
     /// Moes lubricant parameter L >= 0.
-    #[arg(long = "L", default_value_t = 0.0)]
+    #[arg(long = "L", default_value_t = 0.0, allow_hyphen_values = true)]
     pub l: f64,
     /// Ellipticity D = Rx/Ry in (0, 1] (point contacts).
-    #[arg(long = "D")]
+    #[arg(long = "D", allow_hyphen_values = true)]
     pub d: Option<f64>,
     #[arg(long, value_enum, default_value = "elastic")]
     pub elasticity: ElasticityArg,
     #[arg(long, value_enum, default_value = "barus")]
     pub viscosity: ViscosityArg,
     /// Roelands: ambient viscosity eta0 in Pa s (or give --z).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub eta0: Option<f64>,
     /// Roelands pressure-viscosity index z (or give --eta0).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub z: Option<f64>,
     /// Hertzian pressure p_h in Pa (Roelands and Dowson-Higginson need it; an error otherwise).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub ph: Option<f64>,
     #[arg(long, value_enum, default_value = "incompressible")]
     pub density: DensityArg,
@@ -101,7 +101,7 @@ pub struct SolveArgs {
     /// isoviscous, closed form; see --full-model) and refine the grid from 257 points until the
     /// Richardson estimate meets it (up to --max-grid); reports model_used, level,
     /// error_estimate and accuracy_met. --method multigrid only.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub accuracy: Option<f64>,
     /// With --accuracy: always solve the full model (no model selection).
     #[arg(long)]

@@ -16,7 +16,7 @@
 
 use crate::cli::error::{input, io, CliError};
 use crate::cli::limits::{check_memory, estimate, human, Solver};
-use crate::cli::output::{note, out};
+use crate::cli::output::{note, out, write_stderr};
 use clap::ValueEnum;
 use ehlmap::store::results;
 use ehlmap::sweep::executor::{self, Progress, RunOptions};
@@ -34,6 +34,7 @@ pub enum ProgressArg {
 }
 
 #[derive(clap::Args, Debug)]
+#[command(allow_negative_numbers = true)]
 pub struct SweepArgs {
     /// The sweep spec (TOML), e.g. sweeps/smoke.toml.
     pub spec: PathBuf,
@@ -144,25 +145,27 @@ pub fn run_sweep(args: &SweepArgs) -> Result<(), CliError> {
     let probe = dataset.join(format!(".ehlmap-write-probe-{}", std::process::id()));
     std::fs::File::create(&probe).map_err(|e| unusable(&format!("cannot write there: {e}")))?;
     let _ = std::fs::remove_file(&probe);
+    let stderr_open = write_stderr(format_args!(
+        "sweep {}: {} cases, shard {shard} holds {}; {} threads -> {}\n",
+        spec.name,
+        cases.len(),
+        in_shard,
+        threads,
+        dataset.display()
+    ));
     let opts = RunOptions {
         dataset: dataset.clone(),
         threads,
         shard,
+        // No progress on a stderr that is closed already (its log lines would fail).
         progress: match args.progress {
+            _ if !stderr_open => Progress::None,
             ProgressArg::Auto => Progress::Auto,
             ProgressArg::Bar => Progress::Bar,
             ProgressArg::Log => Progress::Log,
             ProgressArg::None => Progress::None,
         },
     };
-    note!(
-        "sweep {}: {} cases, shard {shard} holds {}; {} threads -> {}",
-        spec.name,
-        cases.len(),
-        in_shard,
-        threads,
-        dataset.display()
-    );
     match executor::execute(&spec, &cases, &opts) {
         Ok(r) => {
             report_run(&spec.name, &r);
@@ -182,13 +185,18 @@ fn check_sweep_memory(spec: &spec::SweepSpec, threads: usize) -> Result<(), CliE
         let g = c.numerics.grid;
         let one = estimate(c.contact, g, Solver::Multigrid);
         let need = one.saturating_mul(threads as u64);
+        let solves = if threads == 1 {
+            "one solve".to_string()
+        } else {
+            format!("{threads} simultaneous solves of about {} each", human(one))
+        };
         check_memory(
             &format!(
-                "{}: numerics.grid = {g} ({} contacts) with {threads} threads",
+                "{}: numerics.grid = {g} ({} contacts) on {threads} threads (--threads)",
                 spec.file,
                 c.contact.as_str()
             ),
-            &format!("{threads} simultaneous solves of about {} each", human(one)),
+            &solves,
             need,
         )?;
     }
