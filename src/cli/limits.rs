@@ -115,7 +115,8 @@ pub fn parse_bytes(s: &str) -> Option<u64> {
         _ => (t, 1),
     };
     let x: f64 = num.trim().parse().ok()?;
-    (x.is_finite() && x > 0.0 && x * (mult as f64) < 1.8e19).then(|| (x * mult as f64) as u64)
+    let bytes = x * mult as f64;
+    (1.0..1.8e19).contains(&bytes).then_some(bytes as u64)
 }
 
 /// `MemAvailable` of /proc/meminfo in bytes (Linux).
@@ -166,7 +167,7 @@ mod tests {
         assert_eq!(parse_bytes("512m"), Some(512 << 20));
         assert_eq!(parse_bytes("1000"), Some(1000));
         assert_eq!(parse_bytes("0.5K"), Some(512));
-        for bad in ["", "G", "-1G", "0", "abc", "1e30T", "NaN"] {
+        for bad in ["", "G", "-1G", "0", "0.1", "abc", "1e30T", "NaN"] {
             assert_eq!(parse_bytes(bad), None, "{bad}");
         }
     }
