@@ -142,9 +142,20 @@ pub fn run_sweep(args: &SweepArgs) -> Result<(), CliError> {
         return Err(unusable(&"it is a file, not a directory"));
     }
     std::fs::create_dir_all(&dataset).map_err(|e| unusable(&format!("cannot create it: {e}")))?;
-    let probe = dataset.join(format!(".ehlmap-write-probe-{}", std::process::id()));
-    std::fs::File::create(&probe).map_err(|e| unusable(&format!("cannot write there: {e}")))?;
+    // Part files are written beside the dataset directory and renamed into it: try writing
+    // there (never inside the dataset, which holds only complete part files).
+    let beside = dataset.parent().unwrap_or(std::path::Path::new("."));
+    let probe = beside.join(format!(".ehlmap-write-probe-{}.tmp", std::process::id()));
+    std::fs::File::create(&probe).map_err(|e| {
+        unusable(&format!(
+            "cannot write beside it in {}: {e}",
+            beside.display()
+        ))
+    })?;
     let _ = std::fs::remove_file(&probe);
+    if std::fs::metadata(&dataset).is_ok_and(|m| m.permissions().readonly()) {
+        return Err(unusable(&"it is read-only"));
+    }
     let stderr_open = write_stderr(format_args!(
         "sweep {}: {} cases, shard {shard} holds {}; {} threads -> {}\n",
         spec.name,
