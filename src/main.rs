@@ -2,8 +2,6 @@
 
 mod cli;
 
-use clap::Parser;
-
 fn main() {
-    std::process::exit(cli::run(&cli::Cli::parse()));
+    std::process::exit(cli::main());
 }

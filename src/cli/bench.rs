@@ -1,25 +1,32 @@
 //! `ehlmap bench` and `ehlmap stability`: tables (Parquet), summaries (Markdown) and charts.
+//! Options are checked and the output directory created before the first solve: bad input
+//! exits 2, an output that cannot be written 1.
 
-use crate::cli::error::InputError;
+use crate::cli::error::{input, io, CliError};
+use crate::cli::limits::{check_memory, estimate, Solver};
+use crate::cli::output::{note, out, outln, prepare_dir};
 use ehlmap::bench::selection;
 use ehlmap::bench::speed::{self, BenchCase, BenchRow};
 use ehlmap::bench::stability::{self, Cell};
+use ehlmap::model::case::Contact;
 use ehlmap::model::case::{LineCase, PointCase};
+use ehlmap::model::error::num;
 use ehlmap::render::bench_charts::{self, MapCell, Outcome, Series};
 use ehlmap::store::table::{write_table, Column};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Debug)]
+#[command(allow_negative_numbers = true)]
 pub struct BenchArgs {
     /// Output directory for bench.parquet, bench.md and the charts.
     #[arg(long, default_value = "outputs/bench")]
     pub out: PathBuf,
-    /// Timed repeats per point (median).
-    #[arg(long, default_value_t = 3)]
-    pub repeats: usize,
+    /// Timed repeats per point (median), 1 to 1000 (default 3); the speed ladder only.
+    #[arg(long)]
+    pub repeats: Option<usize>,
     /// Smaller ladder (line 257..2049 points, reference from 4097; point 33^2..129^2, reference
-    /// from 257^2).
+    /// from 257^2); the speed ladder only.
     #[arg(long)]
     pub quick: bool,
     /// Instead of the speed ladder: solve every case of this sweep spec with the accuracy target
@@ -27,17 +34,19 @@ pub struct BenchArgs {
     /// report the time saved (selection.md, selection.parquet).
     #[arg(long, value_name = "SPEC")]
     pub selection: Option<PathBuf>,
-    /// Target relative accuracy for --selection.
-    #[arg(long, default_value_t = 0.005)]
-    pub accuracy: f64,
+    /// Target relative accuracy for --selection, in (0, 1) (default 0.005).
+    #[arg(long, allow_hyphen_values = true)]
+    pub accuracy: Option<f64>,
 }
 
 #[derive(clap::Args, Debug)]
+#[command(allow_negative_numbers = true)]
 pub struct StabilityArgs {
     /// Output directory for stability.parquet, stability.md and stability.png.
     #[arg(long, default_value = "outputs/stability")]
     pub out: PathBuf,
-    /// Finest grid of the multigrid runs.
+    /// Finest grid of the multigrid runs: line 33 to 1048577 points; with --point-D 17 to
+    /// 1025 per direction.
     #[arg(long, default_value_t = 1025)]
     pub grid: usize,
     /// A 5 x 3 map (M x L) instead of 8 x 5.
@@ -45,17 +54,38 @@ pub struct StabilityArgs {
     pub quick: bool,
     /// Map point contacts of this ellipticity D = Rx/Ry in (0, 1] instead of line contacts
     /// (`--grid` then counts points per direction; give e.g. 129).
-    #[arg(long = "point-D")]
+    #[arg(long = "point-D", allow_hyphen_values = true)]
     pub point_d: Option<f64>,
 }
 
+/// Most timed repeats `--repeats` takes.
+const MAX_REPEATS: usize = 1000;
+
 /// Run `ehlmap bench`.
-pub fn run_bench(a: &BenchArgs) -> Result<i32, InputError> {
-    std::fs::create_dir_all(&a.out)
-        .map_err(|x| InputError(format!("--out {}: {x}", a.out.display())))?;
+pub fn run_bench(a: &BenchArgs) -> Result<(), CliError> {
     if let Some(spec) = &a.selection {
+        for (given, flag) in [(a.quick, "--quick"), (a.repeats.is_some(), "--repeats")] {
+            if given {
+                return Err(input(format!(
+                    "{flag} applies to the speed ladder only, not to --selection"
+                )));
+            }
+        }
         return run_selection(a, spec);
     }
+    if let Some(t) = a.accuracy {
+        return Err(input(format!(
+            "--accuracy {} applies to --selection only (the speed ladder measures every accuracy)",
+            num(t)
+        )));
+    }
+    let repeats = a.repeats.unwrap_or(3);
+    if !(1..=MAX_REPEATS).contains(&repeats) {
+        return Err(input(format!(
+            "--repeats {repeats} is invalid: give 1 to {MAX_REPEATS}"
+        )));
+    }
+    prepare_dir("--out", &a.out)?;
     let line = |m: f64| BenchCase::Line(LineCase::new(m, 10.0).expect("valid"));
     let point = |m: f64, d: f64| BenchCase::Point(PointCase::new(m, 10.0, d).expect("valid"));
     let line_cases = [
@@ -77,9 +107,9 @@ pub fn run_bench(a: &BenchArgs) -> Result<i32, InputError> {
             513,
         )
     };
-    let mut log = |s: &str| eprintln!("{s}");
-    let (mut refs, mut rows) = speed::run(&line_cases, &grids, a.repeats, ref_grid, &mut log);
-    let (prefs, prows) = speed::run(&point_cases, &pgrids, a.repeats, pref, &mut log);
+    let mut log = |s: &str| note!("{s}");
+    let (mut refs, mut rows) = speed::run(&line_cases, &grids, repeats, ref_grid, &mut log);
+    let (prefs, prows) = speed::run(&point_cases, &pgrids, repeats, pref, &mut log);
     refs.extend(prefs);
     rows.extend(prows);
     write_table(
@@ -101,7 +131,7 @@ pub fn run_bench(a: &BenchArgs) -> Result<i32, InputError> {
             serde_json::to_string(&refs).expect("serialise"),
         )],
     )
-    .map_err(|e| InputError(e.to_string()))?;
+    .map_err(|e| out_err(&a.out, &e))?;
     let panels: Vec<(String, Vec<Series>)> = refs
         .iter()
         .map(|r| {
@@ -112,7 +142,7 @@ pub fn run_bench(a: &BenchArgs) -> Result<i32, InputError> {
         })
         .collect();
     bench_charts::err_vs_time(&a.out.join("error_vs_time.png"), &panels)
-        .map_err(|e| InputError(e.to_string()))?;
+        .map_err(|e| out_err(&a.out, &e))?;
     let mut md = String::from("# ehlmap bench (line and point contacts, one thread)\n\n");
     for r in &refs {
         let slopes = bench_charts::time_vs_n(
@@ -123,7 +153,7 @@ pub fn run_bench(a: &BenchArgs) -> Result<i32, InputError> {
             &r.case,
             &method_series(&rows, &r.case, |x| (x.grid as f64, x.wall_s)),
         )
-        .map_err(|e| InputError(e.to_string()))?;
+        .map_err(|e| out_err(&a.out, &e))?;
         let _ = writeln!(
             md,
             "{}: reference H_c {:.6}, H_min {:.6}; time ~ N^slope: {}\n",
@@ -155,28 +185,46 @@ pub fn run_bench(a: &BenchArgs) -> Result<i32, InputError> {
             }
         }
     }
-    std::fs::write(a.out.join("bench.md"), &md).map_err(|x| InputError(x.to_string()))?;
-    println!("{md}");
-    Ok(0)
+    std::fs::write(a.out.join("bench.md"), &md).map_err(|e| out_err(&a.out, &e))?;
+    outln!("{md}")
+}
+
+/// An output of `--out DIR` that could not be written: an I/O error naming the option.
+fn out_err(dir: &Path, e: &dyn std::fmt::Display) -> CliError {
+    io(format!("--out {}: {e}", dir.display()))
 }
 
 /// `ehlmap bench --selection SPEC`: the saving of model selection on a sweep spec.
-fn run_selection(a: &BenchArgs, spec_path: &Path) -> Result<i32, InputError> {
-    if !(a.accuracy > 0.0 && a.accuracy < 1.0) {
-        return Err(InputError(format!(
+fn run_selection(a: &BenchArgs, spec_path: &Path) -> Result<(), CliError> {
+    let accuracy = a.accuracy.unwrap_or(0.005);
+    if !(accuracy > 0.0 && accuracy < 1.0) {
+        return Err(input(format!(
             "--accuracy {} is invalid: a relative accuracy in (0, 1), e.g. 0.005",
-            a.accuracy
+            num(accuracy)
         )));
     }
-    let spec = ehlmap::sweep::spec::load(spec_path).map_err(|x| InputError(x.to_string()))?;
-    let cases = ehlmap::sweep::plan::plan(&spec).map_err(|x| InputError(x.to_string()))?;
-    eprintln!(
+    let spec =
+        ehlmap::sweep::spec::load(spec_path).map_err(|x| input(format!("--selection: {x}")))?;
+    let cases = ehlmap::sweep::plan::plan(&spec).map_err(|x| input(format!("--selection: {x}")))?;
+    for c in &spec.contacts {
+        check_memory(
+            &format!(
+                "--selection {}: numerics.grid = {}",
+                spec_path.display(),
+                c.numerics.grid
+            ),
+            &format!("a {} solve on this grid", c.contact.as_str()),
+            estimate(c.contact, c.numerics.grid, Solver::Multigrid),
+        )?;
+    }
+    prepare_dir("--out", &a.out)?;
+    note!(
         "bench --selection: {} cases of {}, each solved with target {} and with the full model",
         cases.len(),
         spec_path.display(),
-        a.accuracy
+        accuracy
     );
-    let pairs = selection::run(&cases, &spec.name, a.accuracy);
+    let pairs = selection::run(&cases, &spec.name, accuracy);
     let col_f = |f: &dyn Fn(&selection::Pair) -> Option<f64>| -> Vec<f64> {
         pairs.iter().map(|p| f(p).unwrap_or(f64::NAN)).collect()
     };
@@ -226,21 +274,46 @@ fn run_selection(a: &BenchArgs, spec_path: &Path) -> Result<i32, InputError> {
         ],
         &[
             ("spec", spec.text.clone()),
-            ("accuracy", a.accuracy.to_string()),
+            ("accuracy", accuracy.to_string()),
         ],
     )
-    .map_err(|e| InputError(e.to_string()))?;
-    let md = selection::summary(&pairs, a.accuracy, &spec_path.display().to_string());
-    std::fs::write(a.out.join("selection.md"), &md)
-        .map_err(|x| InputError(format!("--out {}: {x}", a.out.display())))?;
-    print!("{md}");
-    Ok(0)
+    .map_err(|e| out_err(&a.out, &e))?;
+    let md = selection::summary(&pairs, accuracy, &spec_path.display().to_string());
+    std::fs::write(a.out.join("selection.md"), &md).map_err(|e| out_err(&a.out, &e))?;
+    out!("{md}")
 }
 
 /// Run `ehlmap stability`.
-pub fn run_stability(a: &StabilityArgs) -> Result<i32, InputError> {
-    std::fs::create_dir_all(&a.out)
-        .map_err(|x| InputError(format!("--out {}: {x}", a.out.display())))?;
+pub fn run_stability(a: &StabilityArgs) -> Result<(), CliError> {
+    let (contact, (lo, hi)) = match a.point_d {
+        Some(d) if !(d > 0.0 && d <= 1.0) => {
+            return Err(input(format!(
+                "--point-D {} is invalid: the ellipticity must be in (0, 1]",
+                num(d)
+            )))
+        }
+        Some(_) => (Contact::Point, (17, 1025)),
+        None => (Contact::Line, Contact::Line.grid_range()),
+    };
+    if !(lo..=hi).contains(&a.grid) {
+        return Err(input(match a.point_d {
+            Some(d) => format!(
+                "--grid {} with --point-D {}: give {lo} to {hi} points per direction",
+                a.grid,
+                num(d)
+            ),
+            None => format!(
+                "--grid {} is invalid: give {lo} to {hi} points (line contacts)",
+                a.grid
+            ),
+        }));
+    }
+    check_memory(
+        &format!("--grid {}", a.grid),
+        &format!("a {contact} solve on this grid"),
+        estimate(contact, a.grid, Solver::Multigrid),
+    )?;
+    prepare_dir("--out", &a.out)?;
     let (ms, ls): (Vec<f64>, Vec<f64>) = if a.quick {
         (vec![1.0, 10.0, 100.0, 500.0, 2000.0], vec![0.0, 10.0, 20.0])
     } else {
@@ -249,19 +322,8 @@ pub fn run_stability(a: &StabilityArgs) -> Result<i32, InputError> {
             vec![0.0, 5.0, 10.0, 15.0, 20.0],
         )
     };
-    let mut log = |s: &str| eprintln!("{s}");
+    let mut log = |s: &str| note!("{s}");
     let cells = match a.point_d {
-        Some(d) if !(d > 0.0 && d <= 1.0) => {
-            return Err(InputError(format!(
-                "--point-D {d} is invalid: the ellipticity must be in (0, 1]"
-            )))
-        }
-        Some(d) if !(17..=1025).contains(&a.grid) => {
-            return Err(InputError(format!(
-                "--grid {} with --point-D {d}: give 17 to 1025 points per direction",
-                a.grid
-            )))
-        }
         Some(d) => stability::run_point(&ms, &ls, d, a.grid, &mut log),
         None => stability::run(&ms, &ls, a.grid, &mut log),
     };
@@ -279,21 +341,20 @@ pub fn run_stability(a: &StabilityArgs) -> Result<i32, InputError> {
         ],
         &[],
     )
-    .map_err(|e| InputError(e.to_string()))?;
+    .map_err(|e| out_err(&a.out, &e))?;
     let names: Vec<String> = stability::map_methods(1025)
         .iter()
         .map(|m| m.0.to_string())
         .collect();
     let map: Vec<MapCell> = cells.iter().map(map_cell).collect();
     bench_charts::stability_chart(&a.out.join("stability.png"), &names, &map, &ms, &ls)
-        .map_err(|e| InputError(e.to_string()))?;
+        .map_err(|e| out_err(&a.out, &e))?;
     let mut md = String::from("| method | converged | of |\n|---|---|---|\n");
     for (n, ok, all) in stability::summary(&cells) {
         let _ = writeln!(md, "| {n} | {ok} | {all} |");
     }
-    std::fs::write(a.out.join("stability.md"), &md).map_err(|x| InputError(x.to_string()))?;
-    println!("{md}");
-    Ok(0)
+    std::fs::write(a.out.join("stability.md"), &md).map_err(|e| out_err(&a.out, &e))?;
+    outln!("{md}")
 }
 
 /// One series per method of the converged rows of `case`, points from `xy`.

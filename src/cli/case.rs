@@ -1,9 +1,10 @@
 //! `ehlmap case FILE.toml`: a dimensional case, its groups, the numerical solve and the published
-//! formulas, as a readable report or JSON; `--plot` draws the solution.
+//! formulas, as a readable report or JSON; `--plot` draws the solution. The case file is checked
+//! (values, grid, the solve's memory) and the `--plot` directory created before the solve.
 
-use crate::cli::error::InputError;
-use crate::cli::output::report_plot;
-use ehlmap::render::style::RenderError;
+use crate::cli::error::{input, CliError};
+use crate::cli::limits::{check_memory, estimate, Solver};
+use crate::cli::output::{note, out, outln, prepare_dir, report_plot};
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
@@ -22,40 +23,57 @@ pub struct CaseArgs {
 }
 
 /// Run `ehlmap case`.
-pub fn run_case(a: &CaseArgs) -> Result<i32, InputError> {
+pub fn run_case(a: &CaseArgs) -> Result<(), CliError> {
     let path = a.file.display();
-    let spec = ehlmap::cases::read_case(&a.file).map_err(|e| InputError(e.to_string()))?;
+    let spec = ehlmap::cases::read_case(&a.file).map_err(|e| input(e.to_string()))?;
     if a.plot.is_some() && a.no_solve {
-        return Err(InputError("--plot needs a solve: drop --no-solve".into()));
+        return Err(input("--plot needs a solve: drop --no-solve"));
+    }
+    let derived = spec.derive().map_err(|e| input(format!("{path}: {e}")))?;
+    if !a.no_solve {
+        let contact = derived.case.contact();
+        check_memory(
+            &format!("{path}: grid = {}", derived.grid),
+            &format!("a {contact} solve on this grid"),
+            estimate(contact, derived.grid, Solver::Multigrid),
+        )?;
+    }
+    if let Some(dir) = &a.plot {
+        prepare_dir("--plot", dir)?;
     }
     let (r, fields) = ehlmap::cases::run(&spec, !a.no_solve, a.plot.is_some())
-        .map_err(|e| InputError(format!("{path}: {e}")))?;
-    if let (Some(dir), Some(o)) = (&a.plot, &r.numerical) {
-        let stem = a
-            .file
-            .file_stem()
-            .map_or("case".into(), |s| s.to_string_lossy());
-        let files = match &fields {
-            Some(ehlmap::cases::CaseFields::Line(p)) => {
-                ehlmap::render::pictures::draw_line(dir, &stem, p, o)
+        .map_err(|e| input(format!("{path}: {e}")))?;
+    let plotted = match (&a.plot, &r.numerical) {
+        (Some(dir), Some(o)) => {
+            let stem = a
+                .file
+                .file_stem()
+                .map_or("case".into(), |s| s.to_string_lossy());
+            match &fields {
+                Some(ehlmap::cases::CaseFields::Line(p)) => {
+                    report_plot(dir, ehlmap::render::pictures::draw_line(dir, &stem, p, o))
+                }
+                Some(ehlmap::cases::CaseFields::Point(f)) => {
+                    report_plot(dir, ehlmap::render::pictures::draw_point(dir, &stem, f, o))
+                }
+                None => {
+                    note!(
+                        "ehlmap: --plot: the solve returned no fields ({}), no pictures",
+                        o.status
+                    );
+                    Ok(())
+                }
             }
-            Some(ehlmap::cases::CaseFields::Point(f)) => {
-                ehlmap::render::pictures::draw_point(dir, &stem, f, o)
-            }
-            None => Err(RenderError(format!(
-                "the solve returned no fields ({})",
-                o.status
-            ))),
-        };
-        report_plot(files);
-    }
-    if a.json {
-        println!(
+        }
+        _ => Ok(()),
+    };
+    let printed = if a.json {
+        outln!(
             "{}",
             serde_json::to_string_pretty(&r).expect("report serialises")
-        );
+        )
     } else {
-        print!("{}", ehlmap::cases::summary(&r));
-    }
-    Ok(0)
+        out!("{}", ehlmap::cases::summary(&r))
+    };
+    plotted.and(printed)
 }

@@ -1,8 +1,10 @@
 //! `ehlmap fit DATASET... [--out DIR] [--json]`: fit, report, charts. A mixed dataset is fitted
 //! per contact (line charts `parity.png` ..., point charts `point_parity.png` ...); a contact with
-//! too few cases is reported as skipped; exit 2 only when nothing could be fitted.
+//! too few cases is reported as skipped; exit 2 only when nothing could be fitted (or a dataset
+//! cannot be read: the datasets are the input), exit 1 when the report cannot be written.
 
-use crate::cli::error::InputError;
+use crate::cli::error::{input, io, CliError};
+use crate::cli::output::{note, outln, prepare_dir};
 use ehlmap::fit::dataset::load_fit_input;
 use ehlmap::fit::dataset::FitInput;
 use ehlmap::render::charts::write_charts;
@@ -11,6 +13,7 @@ use ehlmap::report::{fit_report, FitReport};
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Debug)]
+#[command(allow_negative_numbers = true)]
 pub struct FitArgs {
     /// Sweep dataset directories (all part files inside are read).
     #[arg(required = true)]
@@ -28,8 +31,8 @@ pub struct FitArgs {
     pub no_limit_solves: bool,
 }
 
-/// Run `ehlmap fit`; returns the exit code.
-pub fn run_fit(a: &FitArgs) -> Result<i32, InputError> {
+/// Run `ehlmap fit`.
+pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
     fit_datasets(&a.datasets, a.out.clone(), a.json, !a.no_limit_solves)
 }
 
@@ -41,21 +44,28 @@ pub fn fit_datasets(
     out: Option<PathBuf>,
     json: bool,
     limit_solves: bool,
-) -> Result<i32, InputError> {
-    let input = load_fit_input(datasets).map_err(|e| InputError(e.to_string()))?;
-    if limit_solves && !input.point.is_empty() {
-        eprintln!(
+) -> Result<(), CliError> {
+    let out = out.unwrap_or_else(|| default_out(&datasets[0]));
+    if let Some(d) = datasets.iter().find(|d| same_dir(d, &out)) {
+        return Err(input(format!(
+            "--out {}: is the dataset {} (a dataset folder holds only Parquet parts)",
+            out.display(),
+            d.display()
+        )));
+    }
+    let data = load_fit_input(datasets).map_err(|e| input(e.to_string()))?;
+    // The report's directory before the fit (its limit solves can take minutes).
+    prepare_dir("--out", &out)?;
+    if limit_solves && !data.point.is_empty() {
+        note!(
             "fitting; the point asymptote checks solve the limit cases on the data's grid \
              (minutes for fine grids; --no-limit-solves skips them)"
         );
     }
-    let report = fit_report(&input, limit_solves).map_err(|e| InputError(e.to_string()))?;
-    let out = out.unwrap_or_else(|| default_out(&datasets[0]));
-    std::fs::create_dir_all(&out)
-        .map_err(|e| InputError(format!("--out {}: {e}", out.display())))?;
+    let report = fit_report(&data, limit_solves).map_err(|e| input(e.to_string()))?;
     let text = serde_json::to_string_pretty(&report).expect("report serialises");
     let mut md = to_markdown(&report);
-    let charts = charts(&out, &input, &report)?;
+    let charts = charts(&out, &data, &report)?;
     if !charts.is_empty() {
         md.push_str("\n## Charts\n\n");
         for c in &charts {
@@ -64,21 +74,29 @@ pub fn fit_datasets(
     }
     let write = |name: &str, text: &str| {
         std::fs::write(out.join(name), text)
-            .map_err(|e| InputError(format!("{}: {e}", out.join(name).display())))
+            .map_err(|e| io(format!("--out {}: {e}", out.join(name).display())))
     };
     write("report.md", &md)?;
     write("fit.json", &text)?;
     if json {
-        println!("{text}");
+        outln!("{text}")
     } else {
-        println!("{md}");
-        eprintln!(
+        outln!("{md}")?;
+        note!(
             "wrote {}/report.md, fit.json and {} charts (PNG, SVG)",
             out.display(),
             charts.len()
         );
+        Ok(())
     }
-    Ok(0)
+}
+
+/// Whether two paths name the same existing directory.
+fn same_dir(a: &Path, b: &Path) -> bool {
+    match (a.canonicalize(), b.canonicalize()) {
+        (Ok(x), Ok(y)) => x == y,
+        _ => false,
+    }
 }
 
 /// DATASET-report beside the dataset, outside it: the dataset folder holds only Parquet parts
@@ -91,7 +109,7 @@ fn default_out(dataset: &Path) -> PathBuf {
 }
 
 /// The charts of each fitted contact (point ones prefixed `point_`); returns their stems.
-fn charts(out: &Path, input: &FitInput, report: &FitReport) -> Result<Vec<String>, InputError> {
+fn charts(out: &Path, input: &FitInput, report: &FitReport) -> Result<Vec<String>, CliError> {
     let mut charts = vec![];
     for (prefix, pts, c) in [
         ("", &input.line, &report.line),
@@ -100,7 +118,7 @@ fn charts(out: &Path, input: &FitInput, report: &FitReport) -> Result<Vec<String
         if let Some(q) = &c.h_c {
             charts.extend(
                 write_charts(out, prefix, pts, &q.model)
-                    .map_err(|e| InputError(format!("charts: {e}")))?,
+                    .map_err(|e| io(format!("--out {}: charts: {e}", out.display())))?,
             );
         }
     }

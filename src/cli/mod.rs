@@ -1,19 +1,24 @@
-//! The command line: a thin layer over the library, one file per subcommand. Bad input exits
-//! with code 2 and a one-line message naming the bad value ([`error::InputError`]); a solve that
-//! fails numerically still prints its outputs with its status (exit code 0: a failure is a
-//! result), so scripts read `status`. This is the only module that parses arguments, prints or
-//! chooses exit codes.
+//! The command line: a thin layer over the library, one file per subcommand. Every failure is
+//! a [`CliError`] printed as one line `ehlmap: message` naming the input, with the exit code of
+//! the table in [`error`] and docs/cli.md (2 bad input, 1 I/O error); a solve that fails
+//! numerically still prints its outputs with its status (exit code 0: a failure is a result),
+//! so scripts read `status`. Stdout is written through [`output::write_stdout`]: a reader that
+//! closes it early stops the command quietly (exit code 0), never a panic. This is the only
+//! module that parses arguments, prints or chooses exit codes.
 
 pub mod bench;
 pub mod case;
 pub mod chart;
 pub mod error;
 pub mod fit;
+pub mod limits;
 pub mod output;
 pub mod solve;
 pub mod sweep;
 
 use clap::{Parser, Subcommand};
+use error::CliError;
+use output::note;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -44,7 +49,58 @@ pub enum Command {
     Chart(chart::ChartArgs),
 }
 
-/// Run a parsed command line; returns the process exit code (bad input: printed, code 2).
+/// Parse the process's arguments and run the command; returns the exit code. A command-line
+/// error of the parser is one line `ehlmap: message` with exit code 2, like every bad input;
+/// `--help` and `--version` print to stdout (a closed stdout is ignored) and exit 0.
+pub fn main() -> i32 {
+    match Cli::try_parse() {
+        Ok(cli) => run(&cli),
+        Err(e) => parse_error(&e),
+    }
+}
+
+/// The parser's error as the exit code and one line on stderr (help and version: their text).
+fn parse_error(e: &clap::Error) -> i32 {
+    use clap::error::ErrorKind;
+    match e.kind() {
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
+            let _ = e.print();
+            error::EXIT_OK
+        }
+        ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            let _ = e.print();
+            error::EXIT_INPUT
+        }
+        _ => {
+            note!("ehlmap: {}", one_line(&e.render().to_string()));
+            error::EXIT_INPUT
+        }
+    }
+}
+
+/// The parser's message on one line: without the `error:` prefix, the usage and the `--help`
+/// hint; its other lines (possible values, the missing arguments) joined.
+fn one_line(text: &str) -> String {
+    let mut parts = vec![];
+    for line in text.lines().map(str::trim) {
+        if line.is_empty() || line.starts_with("For more information") {
+            continue;
+        }
+        if line.starts_with("Usage:") {
+            break;
+        }
+        parts.push(
+            line.strip_prefix("error:")
+                .unwrap_or(line)
+                .trim()
+                .to_string(),
+        );
+    }
+    parts.join(" ")
+}
+
+/// Run a parsed command line; returns the process exit code (an error is printed as one line
+/// on stderr; a closed stdout ends the command quietly).
 pub fn run(cli: &Cli) -> i32 {
     let result = match &cli.command {
         Command::Solve(a) => solve::run_solve(a),
@@ -56,10 +112,11 @@ pub fn run(cli: &Cli) -> i32 {
         Command::Chart(a) => chart::run_chart(a),
     };
     match result {
-        Ok(code) => code,
+        Ok(()) => error::EXIT_OK,
+        Err(CliError::Closed) => error::EXIT_CLOSED,
         Err(e) => {
-            eprintln!("ehlmap: {e}");
-            error::InputError::EXIT_CODE
+            note!("ehlmap: {e}");
+            e.exit_code()
         }
     }
 }

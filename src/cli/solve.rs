@@ -1,19 +1,23 @@
 //! `ehlmap solve`: one line or point case in Moes' parameters, solved by [`ehlmap::strategy::solve_case::solve`];
 //! prints the readable summary or one JSON object (the [`Outputs`] fields), and writes the
-//! profile, fields or pictures when asked. Bad input is an [`InputError`] (exit code 2) naming
-//! the value; a solve that fails numerically is still printed with its status (exit code 0).
+//! profile, fields or pictures when asked. Every option is checked before the solve: a value out
+//! of range, or an option the chosen contact or method would ignore, is bad input (exit code 2)
+//! naming the option; an output that cannot be written is an I/O error (exit code 1), found
+//! before the solve where it can be. A solve that fails numerically is still printed with its
+//! status (exit code 0).
 
-use crate::cli::error::InputError;
-use crate::cli::output::report_plot;
+use crate::cli::error::{input, io, CliError};
+use crate::cli::limits::{check_memory, estimate, Solver};
+use crate::cli::output::{check_file, note, out, outln, prepare_dir};
 use clap::ValueEnum;
-use ehlmap::model::case::{Case, Elasticity, LineCase, Models, ParamError, PointCase};
+use ehlmap::model::case::{Case, Contact, Elasticity, LineCase, Models, ParamError, PointCase};
+use ehlmap::model::error::num;
 use ehlmap::model::lubricant::{Density, Viscosity};
-use ehlmap::render::style::RenderError;
 use ehlmap::solve::params::Method;
 use ehlmap::solve::params::{Converge, CycleType};
 use ehlmap::solve::solution::{ModelUsed, Outputs, Solution};
 use ehlmap::solve::{CycleEvent, Observer};
-use ehlmap::strategy::solve_case::{solve, SolveParams};
+use ehlmap::strategy::solve_case::{default_max_grid, solve, SolveParams};
 use std::path::PathBuf;
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
@@ -67,66 +71,70 @@ pub struct SolveArgs {
     #[arg(long, value_enum, default_value = "line")]
     pub contact: ContactArg,
     /// Moes load parameter M > 0.
-    #[arg(long = "M")]
+    #[arg(long = "M", allow_hyphen_values = true)]
     pub m: f64,
     /// Moes lubricant parameter L >= 0.
-    #[arg(long = "L", default_value_t = 0.0)]
+    #[arg(long = "L", default_value_t = 0.0, allow_hyphen_values = true)]
     pub l: f64,
     /// Ellipticity D = Rx/Ry in (0, 1] (point contacts).
-    #[arg(long = "D")]
+    #[arg(long = "D", allow_hyphen_values = true)]
     pub d: Option<f64>,
     #[arg(long, value_enum, default_value = "elastic")]
     pub elasticity: ElasticityArg,
     #[arg(long, value_enum, default_value = "barus")]
     pub viscosity: ViscosityArg,
     /// Roelands: ambient viscosity eta0 in Pa s (or give --z).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub eta0: Option<f64>,
     /// Roelands pressure-viscosity index z (or give --eta0).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub z: Option<f64>,
-    /// Hertzian pressure p_h in Pa (Roelands and Dowson-Higginson need it).
-    #[arg(long)]
+    /// Hertzian pressure p_h in Pa (Roelands and Dowson-Higginson need it; an error otherwise).
+    #[arg(long, allow_hyphen_values = true)]
     pub ph: Option<f64>,
     #[arg(long, value_enum, default_value = "incompressible")]
     pub density: DensityArg,
     /// Solver: full multigrid, or the baselines (dense Newton, single-grid relaxation).
     #[arg(long, value_enum, default_value = "multigrid")]
     pub method: MethodArg,
-    /// Points of the finest grid (rounded up to 2^k n0 + 1): default 2049 for line contacts;
-    /// per direction for point contacts, default 129, 17 to 2049.
+    /// Points of the finest grid (rounded up to 2^k n0 + 1): default 2049 for line contacts,
+    /// 33 to 1048577; per direction for point contacts, default 129, 17 to 2049. Not with
+    /// --accuracy (the ladder picks the grid up to --max-grid).
     #[arg(long)]
     pub grid: Option<usize>,
-    #[arg(long, value_enum, default_value = "v")]
-    pub cycle: CycleArg,
-    /// Stopping rule: at the discretisation error (fast) or at the tolerances (tight).
-    #[arg(long, value_enum, default_value = "fast")]
-    pub converge: ConvergeArg,
+    /// Multigrid cycle (default v); --method multigrid only.
+    #[arg(long, value_enum)]
+    pub cycle: Option<CycleArg>,
+    /// Stopping rule (default fast): at a tenth of the discretisation error (fast) or at the
+    /// load and H_c tolerances (tight); --method multigrid only.
+    #[arg(long, value_enum)]
+    pub converge: Option<ConvergeArg>,
     /// Target relative accuracy of H_c and H_min: pick the cheapest adequate model (rigid,
     /// isoviscous, closed form; see --full-model) and refine the grid from 257 points until the
     /// Richardson estimate meets it (up to --max-grid); reports model_used, level,
-    /// error_estimate and accuracy_met.
-    #[arg(long)]
+    /// error_estimate and accuracy_met. --method multigrid only.
+    #[arg(long, allow_hyphen_values = true)]
     pub accuracy: Option<f64>,
     /// With --accuracy: always solve the full model (no model selection).
     #[arg(long)]
     pub full_model: bool,
-    /// Largest grid the accuracy target may use.
-    #[arg(long, default_value_t = 16385)]
-    pub max_grid: usize,
-    /// Cycles allowed on the finest level (default: the contact's, 60 for line contacts, 40 for
-    /// point contacts).
+    /// With --accuracy: the largest grid the ladder may use (default 16385 line points, 513
+    /// point nodes per direction; line 513 to 1048577, point 65 to 513).
+    #[arg(long)]
+    pub max_grid: Option<usize>,
+    /// Cycles allowed on the finest level, 1 to 100000 (default: the contact's, 60 for line
+    /// contacts, 40 for point contacts); --method multigrid only.
     #[arg(long)]
     pub max_cycles: Option<usize>,
-    /// Do not retry a failed solve with conservative settings.
+    /// Do not retry a failed solve with conservative settings; --method multigrid only.
     #[arg(long)]
     pub no_fallback: bool,
-    /// Point contacts: relax the grid rows in parallel (zebra order) on this many threads
-    /// (default: one thread, Gauss-Seidel row order).
+    /// Point contacts: relax the grid rows in parallel (zebra order) on this many threads, 1 to
+    /// 4096 (default: one thread, Gauss-Seidel row order); not with --method newton.
     #[arg(long)]
     pub threads: Option<usize>,
     /// Print every multigrid cycle (level, cycle, residual, load error, H_c, work units) to
-    /// stderr.
+    /// stderr; --method multigrid only.
     #[arg(long)]
     pub trace: bool,
     /// Print one JSON object instead of the summary.
@@ -147,58 +155,148 @@ pub struct SolveArgs {
 const LINE_GRID: (usize, usize, usize) = (2049, 33, (1 << 20) + 1);
 /// The same for point contacts, points per direction.
 const POINT_GRID: (usize, usize, usize) = (129, 17, 2049);
-/// Point grids of the accuracy ladder are at most this per direction, whatever `--max-grid`.
-const POINT_MAX_GRID: usize = 513;
+/// `--max-grid` range: two grids of the ladder (257 then 513 line points, 33 then 65 point
+/// nodes) up to the finest a line solve takes, or 513 per direction for point contacts.
+const LINE_MAX_GRID: (usize, usize) = (513, (1 << 20) + 1);
+/// The same for point contacts.
+const POINT_MAX_GRID: (usize, usize) = (65, 513);
+/// Most cycles `--max-cycles` takes (as a sweep spec's `max_cycles`).
+const MAX_CYCLES: usize = 100_000;
+/// Most threads `--threads` takes (as `ehlmap sweep --threads`).
+const MAX_THREADS: usize = 4096;
 
 /// `--grid` checked against `(default, min, max)`; `what` names the unit in messages.
 fn grid_arg(
     a: &SolveArgs,
     (default, min, max): (usize, usize, usize),
     what: &str,
-) -> Result<usize, InputError> {
+) -> Result<usize, CliError> {
     let g = a.grid.unwrap_or(default);
     if g < min {
-        return Err(InputError(format!(
+        return Err(input(format!(
             "--grid {g} is too small: at least {min} {what}"
         )));
     }
     if g > max {
-        return Err(InputError(format!(
+        return Err(input(format!(
             "--grid {g} is too large: at most {max} {what}"
         )));
     }
     Ok(g)
 }
 
+/// The options that only some methods, contacts or models use, checked before anything else:
+/// an option the solve would ignore, or a count out of range, is bad input naming it.
+fn check_flags(a: &SolveArgs) -> Result<(), CliError> {
+    let method = match a.method {
+        MethodArg::Multigrid => None,
+        MethodArg::Newton => Some("newton"),
+        MethodArg::Relax => Some("relax"),
+    };
+    if let Some(m) = method {
+        for (given, flag) in [
+            (a.cycle.is_some(), "--cycle"),
+            (a.converge.is_some(), "--converge"),
+            (a.max_cycles.is_some(), "--max-cycles"),
+            (a.no_fallback, "--no-fallback"),
+            (a.accuracy.is_some(), "--accuracy"),
+            (a.trace, "--trace"),
+        ] {
+            if given {
+                return Err(input(format!(
+                    "{flag} applies to --method multigrid only (--method {m} ignores it)"
+                )));
+            }
+        }
+        if m == "newton" && a.threads.is_some() {
+            return Err(input(
+                "--threads applies to --method multigrid and relax only (the dense Newton solve runs on one thread)",
+            ));
+        }
+    }
+    if a.accuracy.is_none() {
+        for (given, flag) in [
+            (a.full_model, "--full-model"),
+            (a.max_grid.is_some(), "--max-grid"),
+        ] {
+            if given {
+                return Err(input(format!(
+                    "{flag} applies with --accuracy only (without a target the solve uses --grid)"
+                )));
+            }
+        }
+    } else if let Some(g) = a.grid {
+        return Err(input(format!(
+            "--grid {g} with --accuracy: the accuracy ladder picks the grid; give --max-grid instead"
+        )));
+    }
+    if let Some(n) = a.max_cycles {
+        if !(1..=MAX_CYCLES).contains(&n) {
+            return Err(input(format!(
+                "--max-cycles {n} is invalid: give 1 to {MAX_CYCLES}"
+            )));
+        }
+    }
+    if let Some(n) = a.threads {
+        if !(1..=MAX_THREADS).contains(&n) {
+            return Err(input(format!(
+                "--threads {n} is invalid: give 1 to {MAX_THREADS}"
+            )));
+        }
+        if a.contact == ContactArg::Line {
+            return Err(input(format!(
+                "--threads {n} applies to point contacts only (a line solve runs on one thread)"
+            )));
+        }
+    }
+    if a.ph.is_some()
+        && a.viscosity == ViscosityArg::Barus
+        && a.density == DensityArg::Incompressible
+    {
+        return Err(input(
+            "--ph applies to --viscosity roelands and --density dowson-higginson only (Barus and incompressible do not use it)",
+        ));
+    }
+    Ok(())
+}
+
 /// The models of the command line; `alpha_bar` of the case converts Roelands' eta0 into z.
-fn build_models(a: &SolveArgs, alpha_bar: f64) -> Result<Models, InputError> {
-    let bad = |e: ParamError| InputError(e.to_string());
-    let need_ph = |what: &str| -> Result<f64, InputError> {
-        a.ph.ok_or_else(|| InputError(format!("{what} needs the Hertzian pressure --ph (Pa)")))
+fn build_models(a: &SolveArgs, alpha_bar: f64) -> Result<Models, CliError> {
+    let bad = |e: ParamError| input(e.to_string());
+    let need_ph = |what: &str| -> Result<f64, CliError> {
+        a.ph.ok_or_else(|| input(format!("{what} needs the Hertzian pressure --ph (Pa)")))
     };
     let viscosity = match a.viscosity {
         ViscosityArg::Barus => {
             if a.eta0.is_some() || a.z.is_some() {
-                return Err(InputError(
-                    "--eta0 and --z apply to --viscosity roelands only".into(),
-                ));
+                return Err(input("--eta0 and --z apply to --viscosity roelands only"));
             }
             Viscosity::Barus
         }
         ViscosityArg::Roelands => {
             let ph = need_ph("--viscosity roelands")?;
             match (a.eta0, a.z) {
-                (Some(eta0), None) => {
-                    Viscosity::roelands_from_eta0(eta0, ph, alpha_bar).map_err(bad)?
-                }
+                (Some(eta0), None) => match Viscosity::roelands_from_eta0(eta0, ph, alpha_bar) {
+                    Ok(v) => v,
+                    // eta0 and ph are valid, the z derived from them is not: with L = 0
+                    // (alpha = 0) name L, the input that makes it zero.
+                    Err(ParamError::Input(_)) if a.l == 0.0 => {
+                        return Err(input(format!(
+                            "--eta0 {} with L = 0: Roelands' z = alpha p0/(ln eta0 + 9.67) is 0 \
+                             when alpha = 0; give L > 0, or --z",
+                            num(eta0)
+                        )))
+                    }
+                    Err(e) => return Err(bad(e)),
+                },
                 (None, Some(z)) => {
                     let v = Viscosity::Roelands { z, ph_pa: ph };
                     v.validate().map_err(bad)?;
                     v
                 }
                 _ => {
-                    return Err(InputError(
-                        "--viscosity roelands needs exactly one of --eta0 (Pa s) or --z".into(),
+                    return Err(input(
+                        "--viscosity roelands needs exactly one of --eta0 (Pa s) or --z",
                     ))
                 }
             }
@@ -221,19 +319,19 @@ fn build_models(a: &SolveArgs, alpha_bar: f64) -> Result<Models, InputError> {
     })
 }
 
-fn line_case(a: &SolveArgs) -> Result<LineCase, InputError> {
-    let bad = |e: ParamError| InputError(e.to_string());
+fn line_case(a: &SolveArgs) -> Result<LineCase, CliError> {
+    let bad = |e: ParamError| input(e.to_string());
     if a.d.is_some() {
-        return Err(InputError("--D applies to point contacts only".into()));
+        return Err(input("--D applies to point contacts only"));
     }
     if a.fields.is_some() {
-        return Err(InputError(
-            "--fields applies to point contacts only (use --profile for line contacts)".into(),
+        return Err(input(
+            "--fields applies to point contacts only (use --profile for line contacts)",
         ));
     }
     let grid = grid_arg(a, LINE_GRID, "points")?;
     if a.method == MethodArg::Newton && grid > 4097 {
-        return Err(InputError(format!(
+        return Err(input(format!(
             "--method newton with --grid {grid}: the dense Jacobian needs O(N^2) memory and O(N^3) time; use at most 4097"
         )));
     }
@@ -243,22 +341,21 @@ fn line_case(a: &SolveArgs) -> Result<LineCase, InputError> {
     LineCase::with_models(a.m, a.l, models).map_err(bad)
 }
 
-fn point_case(a: &SolveArgs) -> Result<PointCase, InputError> {
-    let bad = |e: ParamError| InputError(e.to_string());
+fn point_case(a: &SolveArgs) -> Result<PointCase, CliError> {
+    let bad = |e: ParamError| input(e.to_string());
     if a.method == MethodArg::Newton && a.grid.unwrap_or(POINT_GRID.0) > 33 {
-        return Err(InputError(format!(
+        return Err(input(format!(
             "--method newton with a point contact on --grid {}: the dense 2D Jacobian costs O(N^3); use --grid 33 or less",
             a.grid.unwrap_or(POINT_GRID.0)
         )));
     }
     if a.profile.is_some() {
-        return Err(InputError(
-            "--profile applies to line contacts only (use --fields for point contacts)".into(),
+        return Err(input(
+            "--profile applies to line contacts only (use --fields for point contacts)",
         ));
     }
-    let d = a.d.ok_or_else(|| {
-        InputError("--contact point needs --D, the ellipticity Rx/Ry in (0, 1]".into())
-    })?;
+    let d =
+        a.d.ok_or_else(|| input("--contact point needs --D, the ellipticity Rx/Ry in (0, 1]"))?;
     grid_arg(a, POINT_GRID, "points per direction")?;
     // M, L and D before the models, so that a bad value is named first.
     let venner = PointCase::new(a.m, a.l, d).map_err(bad)?.venner();
@@ -267,7 +364,7 @@ fn point_case(a: &SolveArgs) -> Result<PointCase, InputError> {
 }
 
 /// The case of the command line: a line contact, or a point contact with `--D`.
-fn case_arg(a: &SolveArgs) -> Result<Case, InputError> {
+fn case_arg(a: &SolveArgs) -> Result<Case, CliError> {
     match a.contact {
         ContactArg::Line => line_case(a).map(Case::Line),
         ContactArg::Point => point_case(a).map(Case::Point),
@@ -275,18 +372,38 @@ fn case_arg(a: &SolveArgs) -> Result<Case, InputError> {
 }
 
 /// A valid --accuracy target.
-fn accuracy_arg(t: f64) -> Result<f64, InputError> {
+fn accuracy_arg(t: f64) -> Result<f64, CliError> {
     if t.is_finite() && t > 0.0 && t < 1.0 {
         Ok(t)
     } else {
-        Err(InputError(format!(
-            "--accuracy {t} is invalid: give a relative accuracy in (0, 1), e.g. 0.005"
+        Err(input(format!(
+            "--accuracy {} is invalid: give a relative accuracy in (0, 1), e.g. 0.005",
+            num(t)
         )))
     }
 }
 
+/// A valid --max-grid for the contact (with --accuracy).
+fn max_grid_arg(g: usize, contact: Contact) -> Result<usize, CliError> {
+    let ((lo, hi), what) = match contact {
+        Contact::Line => (LINE_MAX_GRID, "points for line contacts"),
+        Contact::Point => (POINT_MAX_GRID, "points per direction for point contacts"),
+    };
+    if g < lo {
+        return Err(input(format!(
+            "--max-grid {g} is too small: the accuracy ladder needs two grids, at least {lo} {what}"
+        )));
+    }
+    if g > hi {
+        return Err(input(format!(
+            "--max-grid {g} is too large: at most {hi} {what}"
+        )));
+    }
+    Ok(g)
+}
+
 /// The solve's parameters from the command line.
-fn params_arg(a: &SolveArgs, case: &Case) -> Result<SolveParams, InputError> {
+fn params_arg(a: &SolveArgs, case: &Case) -> Result<SolveParams, CliError> {
     let point = matches!(case, Case::Point(_));
     Ok(SolveParams {
         method: match a.method {
@@ -296,21 +413,20 @@ fn params_arg(a: &SolveArgs, case: &Case) -> Result<SolveParams, InputError> {
         },
         grid: a.grid,
         cycle: match a.cycle {
-            CycleArg::V => CycleType::V,
-            CycleArg::W => CycleType::W,
+            Some(CycleArg::W) => CycleType::W,
+            Some(CycleArg::V) | None => CycleType::V,
         },
         converge: match a.converge {
-            ConvergeArg::Fast => Converge::Fast,
-            ConvergeArg::Tight => Converge::Tight,
+            Some(ConvergeArg::Tight) => Converge::Tight,
+            Some(ConvergeArg::Fast) | None => Converge::Fast,
         },
         max_cycles: a.max_cycles,
         fallback: !a.no_fallback,
         accuracy: a.accuracy.map(accuracy_arg).transpose()?,
-        max_grid: Some(if point {
-            a.max_grid.min(POINT_MAX_GRID)
-        } else {
-            a.max_grid
-        }),
+        max_grid: a
+            .max_grid
+            .map(|g| max_grid_arg(g, case.contact()))
+            .transpose()?,
         full_model: a.full_model,
         keep_fields: a.profile.is_some() || a.fields.is_some() || a.plot.is_some(),
         parallel: point && a.threads.is_some(),
@@ -319,23 +435,64 @@ fn params_arg(a: &SolveArgs, case: &Case) -> Result<SolveParams, InputError> {
     })
 }
 
+/// The solve's estimated memory against the memory there is (exit 2 naming the grid).
+fn check_solve_memory(a: &SolveArgs, case: &Case, p: &SolveParams) -> Result<(), CliError> {
+    let contact = case.contact();
+    let (grid, flag) = match (p.accuracy, p.grid) {
+        (Some(_), _) => {
+            let g = p.max_grid.unwrap_or(default_max_grid(contact));
+            (g, format!("--max-grid {g}"))
+        }
+        (None, Some(g)) => (g, format!("--grid {g}")),
+        (None, None) => {
+            let g = match contact {
+                Contact::Line => LINE_GRID.0,
+                Contact::Point => POINT_GRID.0,
+            };
+            (g, format!("the default grid {g}"))
+        }
+    };
+    let solver = match a.method {
+        MethodArg::Newton => Solver::Newton,
+        _ => Solver::Multigrid,
+    };
+    check_memory(
+        &flag,
+        &format!("a {contact} solve on this grid"),
+        estimate(contact, grid, solver),
+    )
+}
+
+/// The output files and directory, checked (the directory created) before the solve.
+fn check_outputs(a: &SolveArgs) -> Result<(), CliError> {
+    if let Some(p) = &a.profile {
+        check_file("--profile", p)?;
+    }
+    if let Some(p) = &a.fields {
+        check_file("--fields", p)?;
+    }
+    if let Some(d) = &a.plot {
+        prepare_dir("--plot", d)?;
+    }
+    Ok(())
+}
+
 /// Print one multigrid cycle (`--trace`).
 fn print_cycle(e: &CycleEvent) {
-    eprintln!("{e}");
+    note!("{e}");
 }
 
 /// Solve on `--threads` threads when given (point contacts: parallel rows), else on this one.
-fn solve_arg(a: &SolveArgs, case: &Case, p: &SolveParams) -> Result<Solution, InputError> {
+fn solve_arg(a: &SolveArgs, case: &Case, p: &SolveParams) -> Result<Solution, CliError> {
     match a.threads {
-        Some(0) => Err(InputError("--threads 0 is invalid: give 1 or more".into())),
-        Some(n) if matches!(case, Case::Point(_)) => {
+        Some(n) => {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(n)
                 .build()
-                .map_err(|e| InputError(format!("--threads {n}: {e}")))?;
+                .map_err(|e| io(format!("--threads {n}: cannot start the threads: {e}")))?;
             Ok(pool.install(|| solve(case, p)))
         }
-        _ => Ok(solve(case, p)),
+        None => Ok(solve(case, p)),
     }
 }
 
@@ -354,17 +511,17 @@ fn file_meta(case: &Case, o: &Outputs) -> Vec<(&'static str, String)> {
     meta
 }
 
-/// `--profile` (line) or `--fields` (point): write the file, or say why there is none.
-fn write_fields_arg(a: &SolveArgs, case: &Case, s: &Solution) -> Result<(), InputError> {
+/// `--profile` (line) or `--fields` (point): write the file (an I/O error when it cannot be),
+/// or say why there is none (a failed solve is a result).
+fn write_fields_arg(a: &SolveArgs, case: &Case, s: &Solution) -> Result<(), CliError> {
     let meta = file_meta(case, &s.outputs);
     match (&a.profile, &a.fields, &s.profile, &s.fields) {
         (Some(path), _, Some(prof), _) => ehlmap::store::profile::write_profile(path, prof, &meta)
-            .map_err(|e| InputError(format!("--profile: {e}"))),
+            .map_err(|e| io(format!("--profile {}: {e}", path.display()))),
         (_, Some(path), _, Some(f)) => ehlmap::store::fields::write_fields(path, f, &meta)
-            .map_err(|e| InputError(format!("--fields: {e}"))),
+            .map_err(|e| io(format!("--fields {}: {e}", path.display()))),
         (Some(path), ..) | (_, Some(path), ..) => {
-            // A failed solve is a result (exit 0), but say why the file is missing.
-            eprintln!(
+            note!(
                 "ehlmap: the solve returned no profile or fields ({}), {} not written",
                 s.outputs.status,
                 path.display()
@@ -375,52 +532,63 @@ fn write_fields_arg(a: &SolveArgs, case: &Case, s: &Solution) -> Result<(), Inpu
     }
 }
 
-/// `--plot DIR`: the pictures of the solution.
-fn plot_arg(dir: &std::path::Path, case: &Case, s: &Solution) {
+/// `--plot DIR`: the pictures of the solution (an I/O error when they cannot be written; a
+/// solve that returned no fields is a result, said on stderr).
+fn plot_arg(dir: &std::path::Path, case: &Case, s: &Solution) -> Result<(), CliError> {
     let stem = match case {
-        Case::Line(c) => format!("line-M{}-L{}", c.m, c.l),
-        Case::Point(c) => format!("point-M{}-L{}-D{}", c.m, c.l, c.d),
+        Case::Line(c) => format!("line-M{}-L{}", num(c.m), num(c.l)),
+        Case::Point(c) => format!("point-M{}-L{}-D{}", num(c.m), num(c.l), num(c.d)),
     };
-    report_plot(match (&s.profile, &s.fields) {
+    let files = match (&s.profile, &s.fields) {
         (Some(prof), _) => ehlmap::render::pictures::draw_line(dir, &stem, prof, &s.outputs),
         (_, Some(f)) => ehlmap::render::pictures::draw_point(dir, &stem, f, &s.outputs),
-        _ => Err(RenderError(format!(
-            "the solve returned no profile or fields ({})",
-            s.outputs.status
-        ))),
-    });
+        _ => {
+            note!(
+                "ehlmap: --plot: the solve returned no profile or fields ({}), no pictures",
+                s.outputs.status
+            );
+            return Ok(());
+        }
+    };
+    crate::cli::output::report_plot(dir, files)
 }
 
-/// Run `ehlmap solve`; returns the process exit code.
-pub fn run_solve(a: &SolveArgs) -> Result<i32, InputError> {
+/// Run `ehlmap solve`.
+pub fn run_solve(a: &SolveArgs) -> Result<(), CliError> {
+    check_flags(a)?;
     let case = case_arg(a)?;
     let params = params_arg(a, &case)?;
+    check_solve_memory(a, &case, &params)?;
+    check_outputs(a)?;
     let s = solve_arg(a, &case, &params)?;
-    write_fields_arg(a, &case, &s)?;
-    if let Some(dir) = &a.plot {
-        plot_arg(dir, &case, &s);
-    }
-    if a.json {
-        println!(
+    let written = write_fields_arg(a, &case, &s);
+    let plotted = match &a.plot {
+        Some(dir) => plot_arg(dir, &case, &s),
+        None => Ok(()),
+    };
+    let printed = if a.json {
+        outln!(
             "{}",
             serde_json::to_string(&s.outputs).expect("outputs serialise")
-        );
+        )
     } else {
-        print!("{}", summary(&case, &s.outputs));
-    }
-    Ok(0)
+        out!("{}", summary(&case, &s.outputs))
+    };
+    // The results are printed even when a file could not be written; the first error decides
+    // the exit code.
+    written.and(plotted).and(printed)
 }
 
 /// The readable summary of a solve, line or point contact.
 fn summary(case: &Case, o: &Outputs) -> String {
     let m = case.models();
     let head = match case {
-        Case::Line(c) => format!("line contact  M = {}  L = {}", c.m, c.l),
+        Case::Line(c) => format!("line contact  M = {}  L = {}", num(c.m), num(c.l)),
         Case::Point(c) => format!(
             "point contact  M = {}  L = {}  D = {}  (k = {:.6})",
-            c.m,
-            c.l,
-            c.d,
+            num(c.m),
+            num(c.l),
+            num(c.d),
             c.ellipse().k
         ),
     };

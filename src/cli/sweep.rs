@@ -9,11 +9,17 @@
 //! * `--resume`: continue an earlier run; refuses to start when the dataset directory holds no
 //!   part file (a plain rerun skips stored cases too, and may start a new dataset).
 //! * `--dry-run`: print the planned cases of the shard (id, M, L, D for point contacts, estimated
-//!   cost, stored or not) and exit.
+//!   cost, stored or not) and exit; it takes every option of a real run and runs nothing.
 //! * `--new-dataset`: when the dataset holds rows of other settings than the spec, move those
 //!   part files to `<out>/<name>.old-<hash>/` instead of refusing.
+//!
+//! Exit codes: 2 for a bad spec or option, or a dataset of other settings (nothing runs), 1 when
+//! the dataset directory cannot be created, read or written (checked before the first solve, and
+//! while running) or another run holds the shard's lock.
 
-use crate::cli::error::InputError;
+use crate::cli::error::{input, io, CliError};
+use crate::cli::limits::{check_memory, estimate, human, Solver};
+use crate::cli::output::{note, out, write_stderr};
 use clap::ValueEnum;
 use ehlmap::store::results;
 use ehlmap::sweep::executor::{self, Progress, RunOptions};
@@ -31,6 +37,7 @@ pub enum ProgressArg {
 }
 
 #[derive(clap::Args, Debug)]
+#[command(allow_negative_numbers = true)]
 pub struct SweepArgs {
     /// The sweep spec (TOML), e.g. sweeps/smoke.toml.
     pub spec: PathBuf,
@@ -60,7 +67,7 @@ pub struct SweepArgs {
     pub fit: bool,
 }
 
-fn env_usize(name: &str) -> Result<Option<usize>, InputError> {
+fn env_usize(name: &str) -> Result<Option<usize>, CliError> {
     match std::env::var(name) {
         Err(_) => Ok(None),
         Ok(v) if v.trim().is_empty() => Ok(None),
@@ -68,25 +75,24 @@ fn env_usize(name: &str) -> Result<Option<usize>, InputError> {
             .trim()
             .parse::<usize>()
             .map(Some)
-            .map_err(|_| InputError(format!("{name}={v} is not a non-negative integer"))),
+            .map_err(|_| input(format!("{name}={v} is not a non-negative integer"))),
     }
 }
 
 /// The shard from `--shard`, else from the Slurm array variables, else the whole sweep.
-pub fn resolve_shard(arg: Option<&str>) -> Result<Shard, InputError> {
+pub fn resolve_shard(arg: Option<&str>) -> Result<Shard, CliError> {
     if let Some(s) = arg {
-        return Shard::parse(s).map_err(|e| InputError(e.to_string()));
+        return Shard::parse(s).map_err(|e| input(e.to_string()));
     }
     let Some(id) = env_usize("SLURM_ARRAY_TASK_ID")? else {
         return Ok(Shard::WHOLE);
     };
-    let count = env_usize("SLURM_ARRAY_TASK_COUNT")?.ok_or_else(|| {
-        InputError("SLURM_ARRAY_TASK_ID is set but SLURM_ARRAY_TASK_COUNT is not".into())
-    })?;
+    let count = env_usize("SLURM_ARRAY_TASK_COUNT")?
+        .ok_or_else(|| input("SLURM_ARRAY_TASK_ID is set but SLURM_ARRAY_TASK_COUNT is not"))?;
     let min = env_usize("SLURM_ARRAY_TASK_MIN")?.unwrap_or(0);
     let step = env_usize("SLURM_ARRAY_TASK_STEP")?.unwrap_or(1).max(1);
     if id < min || (id - min) % step != 0 || (id - min) / step >= count {
-        return Err(InputError(format!(
+        return Err(input(format!(
             "SLURM_ARRAY_TASK_ID={id} does not fit SLURM_ARRAY_TASK_MIN={min}, \
              SLURM_ARRAY_TASK_STEP={step}, SLURM_ARRAY_TASK_COUNT={count}"
         )));
@@ -98,40 +104,80 @@ pub fn resolve_shard(arg: Option<&str>) -> Result<Shard, InputError> {
 }
 
 /// `--threads`, else `SLURM_CPUS_PER_TASK`, else the available cores.
-pub fn resolve_threads(arg: Option<u32>) -> Result<usize, InputError> {
+pub fn resolve_threads(arg: Option<u32>) -> Result<usize, CliError> {
     if let Some(n) = arg {
         return Ok(n as usize);
     }
     match env_usize("SLURM_CPUS_PER_TASK")? {
-        Some(0) => Err(InputError("SLURM_CPUS_PER_TASK=0: need at least 1".into())),
+        Some(0) => Err(input("SLURM_CPUS_PER_TASK=0: need at least 1")),
         Some(n) => Ok(n),
         None => Ok(std::thread::available_parallelism().map_or(1, |n| n.get())),
     }
 }
 
-/// Run `ehlmap sweep`; returns the exit code (0 done, 1 I/O failure while running).
-pub fn run_sweep(args: &SweepArgs) -> Result<i32, InputError> {
-    let spec = spec::load(&args.spec).map_err(|e| InputError(e.to_string()))?;
-    let cases = plan::plan(&spec).map_err(|e| InputError(e.to_string()))?;
+/// Run `ehlmap sweep` (exit code 1 on an I/O failure of the dataset, before or while running).
+pub fn run_sweep(args: &SweepArgs) -> Result<(), CliError> {
+    let spec = spec::load(&args.spec).map_err(|e| input(e.to_string()))?;
+    let cases = plan::plan(&spec).map_err(|e| input(e.to_string()))?;
     let shard = resolve_shard(args.shard.as_deref())?;
     let threads = resolve_threads(args.threads)?;
-    let base = args.out.clone().unwrap_or_else(|| spec.output.dir.clone());
+    let (base, flag) = match &args.out {
+        Some(o) => (o.clone(), "--out"),
+        None => (spec.output.dir.clone(), "the spec's output.dir"),
+    };
     let dataset = base.join(&spec.name);
-    let parts = results::part_files(&dataset).map_err(|e| InputError(e.to_string()))?;
+    let unusable = |e: &dyn std::fmt::Display| {
+        io(format!(
+            "{flag} {}: the dataset directory {} cannot be used: {e}",
+            base.display(),
+            dataset.display()
+        ))
+    };
+    let parts = results::part_files(&dataset).map_err(|e| unusable(&e))?;
     if args.resume && parts.is_empty() {
-        return Err(InputError(format!(
+        return Err(input(format!(
             "--resume: {} holds no dataset to resume (run without --resume to start one)",
             dataset.display()
         )));
     }
+    let in_shard = cases.iter().filter(|c| shard.contains(c.id)).count();
     if args.dry_run {
         return dry_run(&spec, &cases, shard, &dataset);
     }
+    check_sweep_memory(&spec, threads.min(in_shard.max(1)))?;
+    if dataset.exists() && !dataset.is_dir() {
+        return Err(unusable(&"it is a file, not a directory"));
+    }
+    std::fs::create_dir_all(&dataset).map_err(|e| unusable(&format!("cannot create it: {e}")))?;
+    // Part files are written beside the dataset directory and renamed into it: try writing
+    // there (never inside the dataset, which holds only complete part files).
+    let beside = dataset.parent().unwrap_or(std::path::Path::new("."));
+    let probe = beside.join(format!(".ehlmap-write-probe-{}.tmp", std::process::id()));
+    std::fs::File::create(&probe).map_err(|e| {
+        unusable(&format!(
+            "cannot write beside it in {}: {e}",
+            beside.display()
+        ))
+    })?;
+    let _ = std::fs::remove_file(&probe);
+    if std::fs::metadata(&dataset).is_ok_and(|m| m.permissions().readonly()) {
+        return Err(unusable(&"it is read-only"));
+    }
+    let stderr_open = write_stderr(format_args!(
+        "sweep {}: {} cases, shard {shard} holds {}; {} threads -> {}\n",
+        spec.name,
+        cases.len(),
+        in_shard,
+        threads,
+        dataset.display()
+    ));
     let opts = RunOptions {
         dataset: dataset.clone(),
         threads,
         shard,
+        // No progress on a stderr that is closed already (its log lines would fail).
         progress: match args.progress {
+            _ if !stderr_open => Progress::None,
             ProgressArg::Auto => Progress::Auto,
             ProgressArg::Bar => Progress::Bar,
             ProgressArg::Log => Progress::Log,
@@ -139,27 +185,48 @@ pub fn run_sweep(args: &SweepArgs) -> Result<i32, InputError> {
         },
         new_dataset: args.new_dataset,
     };
-    eprintln!(
-        "sweep {}: {} cases, shard {shard} holds {}; {} threads -> {}",
-        spec.name,
-        cases.len(),
-        cases.iter().filter(|c| shard.contains(c.id)).count(),
-        threads,
-        dataset.display()
-    );
     match executor::execute(&spec, &cases, &opts) {
         Ok(r) => {
             report_run(&spec.name, &r);
             if args.fit {
                 return crate::cli::fit::fit_datasets(&[dataset], None, false, true);
             }
-            Ok(0)
+            Ok(())
         }
         Err(e) => {
-            eprintln!("ehlmap: sweep {}: {e}", spec.name);
-            Ok(e.exit_code())
+            let message = format!("sweep {}: {e}", spec.name);
+            Err(if e.exit_code() == 2 {
+                input(message)
+            } else {
+                io(message)
+            })
         }
     }
+}
+
+/// The memory of `threads` simultaneous solves on the spec's finest grid of each contact,
+/// against the memory there is (exit 2 naming the grid and the threads).
+fn check_sweep_memory(spec: &spec::SweepSpec, threads: usize) -> Result<(), CliError> {
+    for c in &spec.contacts {
+        let g = c.numerics.grid;
+        let one = estimate(c.contact, g, Solver::Multigrid);
+        let need = one.saturating_mul(threads as u64);
+        let solves = if threads == 1 {
+            "one solve".to_string()
+        } else {
+            format!("{threads} simultaneous solves of about {} each", human(one))
+        };
+        check_memory(
+            &format!(
+                "{}: numerics.grid = {g} ({} contacts) on {threads} threads (--threads)",
+                spec.file,
+                c.contact.as_str()
+            ),
+            &solves,
+            need,
+        )?;
+    }
+    Ok(())
 }
 
 /// `--dry-run`: the shard's cases, one a line, with whether each is stored already.
@@ -168,30 +235,30 @@ fn dry_run(
     cases: &[plan::Case],
     shard: Shard,
     dataset: &std::path::Path,
-) -> Result<i32, InputError> {
-    let stored = results::stored_ids(dataset).map_err(|e| InputError(e.to_string()))?;
+) -> Result<(), CliError> {
+    let stored = results::stored_ids(dataset)
+        .map_err(|e| io(format!("the dataset {}: {e}", dataset.display())))?;
     let mine: Vec<_> = cases.iter().filter(|c| shard.contains(c.id)).collect();
-    println!(
-        "# sweep {}: {} cases, shard {shard}: {}, dataset {}",
+    let mut text = format!(
+        "# sweep {}: {} cases, shard {shard}: {}, dataset {}\n# case_id contact M L D cost stored\n",
         spec.name,
         cases.len(),
         mine.len(),
         dataset.display()
     );
-    println!("# case_id contact M L D cost stored");
     for c in mine {
         let d = c.d.map_or("-".to_string(), |d| d.to_string());
-        println!(
-            "{} {} {} {} {d} {:.0} {}",
+        text.push_str(&format!(
+            "{} {} {} {} {d} {:.0} {}\n",
             c.id_hex(),
             c.contact.as_str(),
             c.m,
             c.l,
             c.cost,
             stored.contains(&c.id_hex())
-        );
+        ));
     }
-    Ok(0)
+    out!("{text}")
 }
 
 /// What a finished run did (stderr): cases stored, solved, failed, the file, the models used.
@@ -201,11 +268,15 @@ fn report_run(name: &str, r: &executor::RunReport) {
         .as_ref()
         .map_or("no file written".to_string(), |p| p.display().to_string());
     for (from, to) in &r.moved {
-        eprintln!("sweep {name}: moved {} to {}", from.display(), to.display());
+        note!("sweep {name}: moved {} to {}", from.display(), to.display());
     }
-    eprintln!(
+    note!(
         "sweep {name}: {} already stored, {} solved ({} failed) in {:.1} s; {}",
-        r.already_stored, r.solved, r.failed, r.wall_s, file
+        r.already_stored,
+        r.solved,
+        r.failed,
+        r.wall_s,
+        file
     );
     if r.models.keys().any(|m| m != "full") {
         let counts: Vec<String> = r
@@ -216,7 +287,7 @@ fn report_run(name: &str, r: &executor::RunReport) {
                 format!("{m} {n} ({t:.1} s)")
             })
             .collect();
-        eprintln!(
+        note!(
             "sweep {name}: models used: {} (ehlmap bench --selection SPEC measures the saving)",
             counts.join(", ")
         );

@@ -7,6 +7,7 @@
 //! Common definitions: `2/E' = (1-nu1^2)/E1 + (1-nu2^2)/E2`, `sigma = sqrt(Rq1^2 + Rq2^2)`.
 
 use crate::model::case::{Contact, Models};
+use crate::model::error::num;
 use crate::model::error::ParamError;
 use crate::model::lubricant::{Density, Viscosity};
 use crate::model::oils::{LubricantSpec, Resolved};
@@ -104,7 +105,8 @@ pub(crate) fn check(name: &str, v: f64, ok: bool, why: &str) -> Result<(), CaseE
         Ok(())
     } else {
         Err(CaseError::invalid(format!(
-            "{name} = {v} is invalid: {why}"
+            "{name} = {} is invalid: {why}",
+            num(v)
         )))
     }
 }
@@ -213,8 +215,16 @@ impl CaseSpec {
                 )?;
                 Viscosity::Roelands { z, ph_pa: p_h }
             }
-            (None, true) => Viscosity::roelands_from_eta0(eta0, p_h, alpha * p_h)
-                .map_err(|e| CaseError::invalid(format!("roelands (z from eta0): {e}")))?,
+            (None, true) => Viscosity::roelands_from_eta0(eta0, p_h, alpha * p_h).map_err(|e| {
+                // eta0 from a [lubricant] table comes from its temperature: name that too.
+                let from = self.lubricant.as_ref().map_or(String::new(), |l| {
+                    format!(
+                        " (eta0 from [lubricant] at lubricant.temperature = {} C)",
+                        l.temperature
+                    )
+                });
+                CaseError::invalid(format!("roelands = true (z from eta0): {e}{from}"))
+            })?,
             (None, false) => Viscosity::Barus,
         };
         let density = if self.dowson_higginson {
@@ -245,9 +255,26 @@ pub fn read_case(path: &std::path::Path) -> Result<CaseSpec, CaseError> {
     let text =
         std::fs::read_to_string(path).map_err(|e| CaseError::invalid(format!("{name}: {e}")))?;
     toml::from_str(&text).map_err(|e| {
-        CaseError::invalid(format!(
-            "{name}: {}",
-            e.to_string().lines().collect::<Vec<_>>().join(" ")
-        ))
+        // `FILE:LINE: message` on one line, as sweep specs report theirs.
+        // (a span from the file's start is the whole document: no line to name)
+        // and the line's text, which names the key (`load = "3 kN"`, `[body1]`)
+        let line = match e.span() {
+            Some(s) if s.start > 0 => {
+                let start = s.start.min(text.len());
+                let n = text[..start].matches('\n').count();
+                let src: String = text
+                    .lines()
+                    .nth(n)
+                    .unwrap_or("")
+                    .trim()
+                    .chars()
+                    .take(60)
+                    .collect();
+                format!(":{}: {src}", n + 1)
+            }
+            _ => String::new(),
+        };
+        let msg = e.message().lines().next().unwrap_or("invalid TOML").trim();
+        CaseError::invalid(format!("{name}{line}: {msg}"))
     })
 }

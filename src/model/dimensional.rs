@@ -123,6 +123,23 @@ impl CaseSpec {
     }
 }
 
+/// The case's finest grid, default or given, within the range every solve takes
+/// ([`Contact::grid_range`], as `ehlmap solve --grid` and a sweep's `numerics.grid`).
+fn case_grid(spec: &CaseSpec, contact: Contact) -> Result<usize, CaseError> {
+    let (default, unit) = match contact {
+        Contact::Line => (LINE_CASE_GRID, "points"),
+        Contact::Point => (POINT_CASE_GRID, "points per direction"),
+    };
+    let grid = spec.grid.unwrap_or(default);
+    let (lo, hi) = contact.grid_range();
+    if !(lo..=hi).contains(&grid) {
+        return Err(CaseError::invalid(format!(
+            "grid = {grid} is invalid: {lo} to {hi} {unit} for {contact} contacts"
+        )));
+    }
+    Ok(grid)
+}
+
 /// `radius_y`: a line contact's bodies are cylinders (omitted or infinite); a point contact's
 /// must be nonzero (infinite or omitted: a cylinder axis).
 fn check_radius_y(spec: &CaseSpec, contact: Contact) -> Result<(), CaseError> {
@@ -213,12 +230,7 @@ fn line_films(
 fn line_groups(spec: &CaseSpec) -> Result<Derived, CaseError> {
     let (r, length) = line_geometry(spec)?;
     let (eta0, alpha, lub) = spec.lubricant()?;
-    let grid = spec.grid.unwrap_or(LINE_CASE_GRID);
-    if grid < 33 {
-        return Err(CaseError::invalid(format!(
-            "grid = {grid} is too small: at least 33 points"
-        )));
-    }
+    let grid = case_grid(spec, Contact::Line)?;
     let e_red = e_reduced(&spec.body1, &spec.body2);
     let w_prime = spec.load / length / (e_red * r);
     let u_m = eta0 * 0.5 * (spec.u1 + spec.u2) / (e_red * r);
@@ -314,12 +326,7 @@ fn point_films(
 fn point_groups(spec: &CaseSpec) -> Result<Derived, CaseError> {
     let (rx, ry, d) = point_geometry(spec)?;
     let (eta0, alpha, lub) = spec.lubricant()?;
-    let grid = spec.grid.unwrap_or(POINT_CASE_GRID);
-    if !(17..=2049).contains(&grid) {
-        return Err(CaseError::invalid(format!(
-            "grid = {grid} is invalid: 17 to 2049 points per direction"
-        )));
-    }
+    let grid = case_grid(spec, Contact::Point)?;
     let el = ellipse_from_d(d).map_err(|e| CaseError::invalid(format!("D: {e}")))?;
     let e_red = e_reduced(&spec.body1, &spec.body2);
     let w = spec.load / (e_red * rx * rx);

@@ -4,7 +4,7 @@
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ParamError {
     /// A numeric input that is not finite or outside its domain.
-    #[error("{name} = {value} is invalid: {why}")]
+    #[error("{name} = {} is invalid: {why}", num(*value))]
     Invalid {
         /// The input's name as the user knows it (`M`, `L`, `D`, `z`, `ph` ...).
         name: &'static str,
@@ -26,6 +26,17 @@ pub enum ParamError {
         /// The accepted names, as a phrase for the message (`line or point`).
         expected: &'static str,
     },
+}
+
+/// A number as a message or a file name shows it: as Rust prints it when that is short, else
+/// in exponent form (`1e-300`, not 300 digits).
+pub fn num(x: f64) -> String {
+    let s = format!("{x}");
+    if s.len() <= 16 {
+        s
+    } else {
+        format!("{x:e}")
+    }
 }
 
 pub(crate) fn check(

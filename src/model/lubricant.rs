@@ -10,6 +10,7 @@
 //! The exponent is capped at 700 so that eta stays finite (eps = rho H^3/(eta lambda) then simply
 //! underflows to zero); negative P (never stored, but possible in a trial step) is treated as 0.
 
+use crate::model::error::num;
 use crate::model::error::{check, ParamError};
 use serde::{Deserialize, Serialize};
 
@@ -57,6 +58,16 @@ impl Viscosity {
             "Roelands needs ln(eta0) + 9.67 > 0",
         )?;
         let z = (alpha_bar / ph_pa) * ROELANDS_P0 / denom;
+        if !(z.is_finite() && z > 0.0) {
+            // z is derived, never given: name the inputs it comes from.
+            return Err(ParamError::Input(format!(
+                "eta0 = {} gives the Roelands index z = alpha p0/(ln eta0 + 9.67) = {z:.3e} \
+                 (alpha = {:.3e} 1/Pa), which must be positive and finite: Roelands from eta0 \
+                 needs alpha > 0 (L > 0)",
+                num(eta0),
+                alpha_bar / ph_pa
+            )));
+        }
         let v = Viscosity::Roelands { z, ph_pa };
         v.validate()?;
         Ok(v)
@@ -226,6 +237,20 @@ mod tests {
             let fd = (d.rho(p + e).ln() - d.rho(p - e).ln()) / (2.0 * e);
             assert!((d.dln_rho(p) / fd - 1.0).abs() < 1e-6);
         }
+    }
+
+    #[test]
+    fn roelands_from_eta0_names_eta0_not_z() {
+        // alpha = 0 gives z = 0: the message names eta0 and alpha, the inputs z comes from.
+        let e = Viscosity::roelands_from_eta0(1e300, 1e9, 0.0)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("eta0 = 1e300 gives"), "{e}");
+        assert!(e.contains("alpha > 0"), "{e}");
+        let e = Viscosity::roelands_from_eta0(1e-5, 1e9, 20.0)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("eta0 = 0.00001"), "{e}");
     }
 
     #[test]

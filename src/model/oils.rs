@@ -14,7 +14,7 @@
 //! (nu40 = the grade, nu100 from the usual VI-100 tables, density at 15 C, alpha about 2e-8 1/Pa);
 //! they are "typical values", not a supplier's data sheet.
 
-use crate::model::error::ParamError;
+use crate::model::error::{num, ParamError};
 use serde::{Deserialize, Serialize};
 
 /// `(name, nu40 mm^2/s, nu100 mm^2/s, rho15 kg/m^3, alpha 1/Pa)`: typical values.
@@ -112,7 +112,8 @@ impl LubricantSpec {
         let t = self.temperature;
         if !(t.is_finite() && t > -K0) {
             return Err(ParamError::Input(format!(
-                "lubricant.temperature = {t} is invalid: give the operating temperature in C"
+                "lubricant.temperature = {} is invalid: give the operating temperature in C",
+                num(t)
             )));
         }
         let (name, nu40, nu100, rho15, alpha) = match (&self.oil, self.nu40, self.nu100) {
@@ -162,12 +163,38 @@ impl LubricantSpec {
         }
         let nu = walther.nu(t);
         let rho = rho15 * (1.0 - 6.5e-4 * (t - 15.0));
+        // The viscosity and density at the temperature: a temperature beyond where the
+        // Walther line or the linear density law give a positive finite value is named as
+        // such, not as the eta0 it would produce.
+        if !(nu.is_finite() && nu > 0.0) {
+            return Err(ParamError::Input(format!(
+                "lubricant.temperature = {} is invalid: the Walther line gives nu = {nu:.3e} \
+                 mm^2/s there (give the operating temperature in C)",
+                num(t)
+            )));
+        }
+        if !(rho.is_finite() && rho > 0.0) {
+            return Err(ParamError::Input(format!(
+                "lubricant.temperature = {} is invalid: the density rho15 (1 - 6.5e-4 (T - 15 C)) \
+                 is {rho:.3e} kg/m^3 there, not positive (T below {:.0} C; give the operating \
+                 temperature in C)",
+                num(t),
+                15.0 + 1.0 / 6.5e-4
+            )));
+        }
+        let eta0 = rho * nu * 1e-6;
+        if !(eta0.is_finite() && eta0 > 0.0) {
+            return Err(ParamError::Input(format!(
+                "lubricant.temperature = {} is invalid: eta0 = rho nu = {eta0:.3e} Pa s there",
+                num(t)
+            )));
+        }
         Ok(Resolved {
             name,
             temperature: t,
             nu,
             rho,
-            eta0: rho * nu * 1e-6,
+            eta0,
             alpha,
             walther,
         })
@@ -216,6 +243,19 @@ mod tests {
             let v = w.nu(t as f64);
             assert!(v < prev, "not decreasing at {t} C");
             prev = v;
+        }
+    }
+
+    #[test]
+    fn a_temperature_out_of_the_laws_range_is_named() {
+        for t in [1e6, 2000.0, -273.0, -273.15, f64::NAN, f64::INFINITY] {
+            let s = LubricantSpec {
+                oil: Some("ISO VG 68".into()),
+                temperature: t,
+                ..Default::default()
+            };
+            let e = s.resolve().unwrap_err().to_string();
+            assert!(e.starts_with("lubricant.temperature = "), "{t}: {e}");
         }
     }
 

@@ -25,7 +25,13 @@ use crate::sweep::settings::Settings;
 use crate::sweep::spec::SweepSpec;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::collections::HashSet;
-use std::io::IsTerminal;
+use std::io::{IsTerminal, Write};
+
+/// One line on stderr; a closed stderr is ignored (a sweep does not stop because nobody reads its
+/// progress).
+fn note(line: &str) {
+    let _ = writeln!(std::io::stderr(), "{line}");
+}
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::mpsc;
@@ -302,10 +308,10 @@ impl Reporter {
                 } else {
                     f64::NAN
                 };
-                eprintln!(
+                note(&format!(
                     "{}: {done}/{} done, {failed} failures, {el:.1} s elapsed, ETA {eta:.1} s",
                     self.prefix, self.total
-                );
+                ));
             }
         }
     }
@@ -332,7 +338,7 @@ pub fn execute(
     let settings = Settings::of_spec(spec);
     let (mut lock, warnings) = lock::acquire(dir, &opts.shard, &settings, &created)?;
     for w in warnings {
-        eprintln!("ehlmap: warning: {w}");
+        note(&format!("ehlmap: warning: {w}"));
     }
     let parts = dataset::scan(dir)?;
     let conflicts = dataset::conflicts(&parts, &settings);
@@ -546,7 +552,7 @@ fn collect(
     let mut last_flush = Instant::now();
     loop {
         if let Some(w) = lock.heartbeat() {
-            eprintln!("ehlmap: warning: {w}");
+            note(&format!("ehlmap: warning: {w}"));
         }
         let wait = flush_every
             .saturating_sub(last_flush.elapsed())
