@@ -14,15 +14,12 @@
 
 use crate::solve::load_balance::LoadBalance;
 use crate::solve::newton::NewtonOutcome;
-use crate::solve::params::Converge;
 use crate::solve::{CycleRecord, SolveInfo, Status};
 use std::time::Instant;
 
 /// The driver's tolerances and limits.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FmgControl {
-    /// Which stopping rule (fast: at the discretisation error; tight: at the tolerances).
-    pub converge: Converge,
     /// Cycles on each FMG level before moving to the next finer one (4x this at most).
     pub fmg_cycles: usize,
     /// Cycles allowed on the finest level.

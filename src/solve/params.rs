@@ -212,7 +212,6 @@ impl<D> MgParams<D> {
     /// `coarse_budget_growth` per level below the finest.
     pub fn control(&self, coarse_budget_growth: usize) -> FmgControl {
         FmgControl {
-            converge: self.converge,
             fmg_cycles: self.fmg_cycles,
             max_cycles: self.max_cycles,
             tol_load: self.tol_load,
