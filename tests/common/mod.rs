@@ -6,6 +6,17 @@ use ehlmap::solve::Status;
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
+/// The Slurm variables a sweep reads (cleared by tests that run sweeps, so a test run inside a
+/// Slurm job does not become one shard of it).
+#[allow(dead_code)]
+pub const SLURM_VARS: [&str; 5] = [
+    "SLURM_ARRAY_TASK_ID",
+    "SLURM_ARRAY_TASK_COUNT",
+    "SLURM_ARRAY_TASK_MIN",
+    "SLURM_ARRAY_TASK_STEP",
+    "SLURM_CPUS_PER_TASK",
+];
+
 /// Write `spec` (TOML) to `<name>.toml` in a fresh temporary directory tagged `tag` and run
 /// `ehlmap sweep` on it into that directory without progress output: (directory, spec file,
 /// output). The dataset is `directory/<name>`.
