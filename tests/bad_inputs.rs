@@ -331,7 +331,8 @@ fn table() -> Vec<Bad> {
             "solve --contact point --D 0.5 --M 20 --grid 4097",
         ),
         input("--grid 9", "solve --contact point --D 0.5 --M 20 --grid 9"),
-        input("--D", "solve --contact point --M 20"),
+        // (--contact point without --D is a circular contact, not an error)
+        input("D = inf", "solve --contact point --D inf --M 20"),
         input("D = 0", "solve --contact point --D 0 --M 20"),
         input("D = 1.5", "solve --contact point --D 1.5 --M 20"),
         input("D = NaN", "solve --contact point --D NaN --M 20"),

@@ -132,7 +132,6 @@ fn committed_point_specs_are_valid() {
 fn bad_point_input_exits_2_naming_the_value() {
     let base = ["solve", "--contact", "point", "--M", "100", "--L", "10"];
     for (extra, needle) in [
-        (vec![], "needs --D"),
         (vec!["--D", "0"], "D = 0"),
         (vec!["--D", "1.5"], "D = 1.5"),
         (vec!["--D", "-0.2"], "D = -0.2"),
@@ -156,6 +155,22 @@ fn bad_point_input_exits_2_naming_the_value() {
         assert!(stderr(&o).contains(needle), "{args:?}: {}", stderr(&o));
         assert_eq!(stderr(&o).lines().count(), 1, "{args:?}");
     }
+    // Without --D a point contact is circular.
+    let o = ehlmap(&[
+        "solve",
+        "--contact",
+        "point",
+        "--M",
+        "20",
+        "--L",
+        "10",
+        "--grid",
+        "33",
+        "--json",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!((v["D"].as_f64(), v["k"].as_f64()), (Some(1.0), Some(1.0)));
     let o = ehlmap(&["solve", "--M", "20", "--D", "0.5"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("--D applies to point contacts only"));

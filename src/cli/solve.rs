@@ -76,7 +76,7 @@ pub struct SolveArgs {
     /// Moes lubricant parameter L >= 0.
     #[arg(long = "L", default_value_t = 0.0, allow_hyphen_values = true)]
     pub l: f64,
-    /// Ellipticity D = Rx/Ry in (0, 1] (point contacts).
+    /// Ellipticity D = Rx/Ry in (0, 1] (point contacts; default 1, a circular contact).
     #[arg(long = "D", allow_hyphen_values = true)]
     pub d: Option<f64>,
     #[arg(long, value_enum, default_value = "elastic")]
@@ -354,8 +354,8 @@ fn point_case(a: &SolveArgs) -> Result<PointCase, CliError> {
             "--profile applies to line contacts only (use --fields for point contacts)",
         ));
     }
-    let d =
-        a.d.ok_or_else(|| input("--contact point needs --D, the ellipticity Rx/Ry in (0, 1]"))?;
+    // A point contact is a circular one unless --D says otherwise.
+    let d = a.d.unwrap_or(1.0);
     grid_arg(a, POINT_GRID, "points per direction")?;
     // M, L and D before the models, so that a bad value is named first.
     let venner = PointCase::new(a.m, a.l, d).map_err(bad)?.venner();
