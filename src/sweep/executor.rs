@@ -19,19 +19,13 @@ use crate::store::results::{self, CaseRow};
 use crate::sweep::dataset;
 use crate::sweep::lock::{self, DatasetLock, LockError, HEARTBEAT};
 use crate::sweep::plan::{Case, Shard};
+pub use crate::sweep::progress::Progress;
+use crate::sweep::progress::{note, Reporter};
 use crate::sweep::row::solve_guarded;
 pub use crate::sweep::row::{input_row, solve_case};
 use crate::sweep::settings::Settings;
 use crate::sweep::spec::SweepSpec;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::collections::HashSet;
-use std::io::{IsTerminal, Write};
-
-/// One line on stderr; a closed stderr is ignored (a sweep does not stop because nobody reads its
-/// progress).
-fn note(line: &str) {
-    let _ = writeln!(std::io::stderr(), "{line}");
-}
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::mpsc;
@@ -82,20 +76,6 @@ impl From<String> for SweepError {
     fn from(msg: String) -> Self {
         SweepError::Io(msg)
     }
-}
-
-/// How progress is shown on stderr.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Progress {
-    /// A bar when stderr is a terminal, else log lines.
-    Auto,
-    /// A progress bar with the failure count and ETA.
-    Bar,
-    /// Log lines: when another tenth of the cases is done, when a case finishes 30 s or more
-    /// after the previous line, and at the end.
-    Log,
-    /// Nothing.
-    None,
 }
 
 /// Where and how to run.
@@ -245,81 +225,6 @@ fn claim_part(dir: &Path, shard: &Shard) -> Result<PathBuf, SweepError> {
 fn remove_stale_temps(dir: &Path, shard: &Shard) {
     for (p, _) in shard_temps(dir, shard) {
         let _ = std::fs::remove_file(p);
-    }
-}
-
-struct Reporter {
-    bar: Option<ProgressBar>,
-    log: bool,
-    prefix: String,
-    total: usize,
-    start: Instant,
-    last_log: Instant,
-    last_logged_decile: usize,
-}
-
-impl Reporter {
-    fn new(mode: Progress, prefix: String, total: usize) -> Self {
-        let tty = std::io::stderr().is_terminal();
-        let (bar, log) = match mode {
-            Progress::None => (false, false),
-            Progress::Bar => (true, false),
-            Progress::Log => (false, true),
-            Progress::Auto => (tty, !tty),
-        };
-        let bar = bar.then(|| {
-            let pb =
-                ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr());
-            let style = ProgressStyle::with_template(
-                "{prefix} [{bar:30}] {pos}/{len} {msg} elapsed {elapsed} ETA {eta}",
-            )
-            .map(|s| s.progress_chars("=> "))
-            .unwrap_or_else(|_| ProgressStyle::default_bar());
-            pb.set_style(style);
-            pb.set_prefix(prefix.clone());
-            pb.set_message("failures 0");
-            pb
-        });
-        Reporter {
-            bar,
-            log,
-            prefix,
-            total,
-            start: Instant::now(),
-            last_log: Instant::now(),
-            last_logged_decile: 0,
-        }
-    }
-
-    fn update(&mut self, done: usize, failed: usize) {
-        if let Some(pb) = &self.bar {
-            pb.set_position(done as u64);
-            pb.set_message(format!("failures {failed}"));
-        }
-        if self.log {
-            let decile = done * 10 / self.total.max(1);
-            let due = self.last_log.elapsed() >= Duration::from_secs(30);
-            if decile > self.last_logged_decile || due || done == self.total {
-                self.last_logged_decile = decile;
-                self.last_log = Instant::now();
-                let el = self.start.elapsed().as_secs_f64();
-                let eta = if done > 0 {
-                    el / done as f64 * (self.total - done) as f64
-                } else {
-                    f64::NAN
-                };
-                note(&format!(
-                    "{}: {done}/{} done, {failed} failures, {el:.1} s elapsed, ETA {eta:.1} s",
-                    self.prefix, self.total
-                ));
-            }
-        }
-    }
-
-    fn finish(&self) {
-        if let Some(pb) = &self.bar {
-            pb.finish();
-        }
     }
 }
 

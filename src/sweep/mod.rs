@@ -41,6 +41,7 @@ pub mod dataset;
 pub mod executor;
 pub mod lock;
 pub mod plan;
+pub mod progress;
 pub mod row;
 pub mod settings;
 pub mod spec;

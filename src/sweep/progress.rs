@@ -1,0 +1,104 @@
+//! How a sweep shows its progress on stderr ([`Progress`]): a bar, log lines or nothing. Every
+//! write ignores a closed stderr: a sweep does not stop because nobody reads its progress.
+
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use std::io::{IsTerminal, Write};
+use std::time::{Duration, Instant};
+
+/// One line on stderr; a closed stderr is ignored.
+pub(crate) fn note(line: &str) {
+    let _ = writeln!(std::io::stderr(), "{line}");
+}
+
+/// How progress is shown on stderr.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Progress {
+    /// A bar when stderr is a terminal, else log lines.
+    Auto,
+    /// A progress bar with the failure count and ETA.
+    Bar,
+    /// Log lines: when another tenth of the cases is done, when a case finishes 30 s or more
+    /// after the previous line, and at the end.
+    Log,
+    /// Nothing.
+    None,
+}
+
+/// The progress of one run on stderr: a bar, log lines or nothing ([`Progress`]).
+pub(crate) struct Reporter {
+    bar: Option<ProgressBar>,
+    log: bool,
+    prefix: String,
+    total: usize,
+    start: Instant,
+    last_log: Instant,
+    last_logged_decile: usize,
+}
+
+impl Reporter {
+    /// A reporter of `total` cases, its lines prefixed by `prefix`.
+    pub(crate) fn new(mode: Progress, prefix: String, total: usize) -> Self {
+        let tty = std::io::stderr().is_terminal();
+        let (bar, log) = match mode {
+            Progress::None => (false, false),
+            Progress::Bar => (true, false),
+            Progress::Log => (false, true),
+            Progress::Auto => (tty, !tty),
+        };
+        let bar = bar.then(|| {
+            let pb =
+                ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr());
+            let style = ProgressStyle::with_template(
+                "{prefix} [{bar:30}] {pos}/{len} {msg} elapsed {elapsed} ETA {eta}",
+            )
+            .map(|s| s.progress_chars("=> "))
+            .unwrap_or_else(|_| ProgressStyle::default_bar());
+            pb.set_style(style);
+            pb.set_prefix(prefix.clone());
+            pb.set_message("failures 0");
+            pb
+        });
+        Reporter {
+            bar,
+            log,
+            prefix,
+            total,
+            start: Instant::now(),
+            last_log: Instant::now(),
+            last_logged_decile: 0,
+        }
+    }
+
+    /// `done` cases finished, `failed` of them failures.
+    pub(crate) fn update(&mut self, done: usize, failed: usize) {
+        if let Some(pb) = &self.bar {
+            pb.set_position(done as u64);
+            pb.set_message(format!("failures {failed}"));
+        }
+        if self.log {
+            let decile = done * 10 / self.total.max(1);
+            let due = self.last_log.elapsed() >= Duration::from_secs(30);
+            if decile > self.last_logged_decile || due || done == self.total {
+                self.last_logged_decile = decile;
+                self.last_log = Instant::now();
+                let el = self.start.elapsed().as_secs_f64();
+                let eta = if done > 0 {
+                    el / done as f64 * (self.total - done) as f64
+                } else {
+                    f64::NAN
+                };
+                note(&format!(
+                    "{}: {done}/{} done, {failed} failures, {el:.1} s elapsed, ETA {eta:.1} s",
+                    self.prefix, self.total
+                ));
+            }
+        }
+    }
+
+    /// The run is over.
+    pub(crate) fn finish(&self) {
+        if let Some(pb) = &self.bar {
+            pb.finish();
+        }
+    }
+}
