@@ -14,6 +14,7 @@ pub mod fit;
 pub mod limits;
 pub mod output;
 pub mod solve;
+pub mod summary;
 pub mod sweep;
 
 use clap::{Parser, Subcommand};
