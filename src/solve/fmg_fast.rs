@@ -150,10 +150,7 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
             let diverged = check_divergence(s, l, final_level, &rec, &mut min_res)
                 .and_then(|()| no_contraction(l, k, &rec, &mut level_min_res));
             if let Err(why) = diverged {
-                let mut info = s.finish(start, Status::Diverged, why, history);
-                info.algebraic_error = e_a;
-                info.discretisation_error = e_d;
-                return info;
+                return with_errors(s.finish(start, Status::Diverged, why, history), e_a, e_d);
             }
             let delta = changes(&last, &rec);
             let res_ratio = (k > 0).then(|| rec.residual / last.residual.max(1e-300));
@@ -194,10 +191,16 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
         coarser = Some(last);
         h0_end.push(s.h0());
     }
-    let mut info = s.finish(start, status, reason, history);
-    info.algebraic_error = e_a;
-    info.discretisation_error = e_d;
-    info
+    with_errors(s.finish(start, status, reason, history), e_a, e_d)
+}
+
+/// `info` with the finest level's algebraic and discretisation error estimates.
+fn with_errors(info: SolveInfo, e_a: Option<f64>, e_d: Option<f64>) -> SolveInfo {
+    SolveInfo {
+        algebraic_error: e_a,
+        discretisation_error: e_d,
+        ..info
+    }
 }
 
 #[cfg(test)]

@@ -150,6 +150,9 @@ pub struct Multigrid<C: Contact> {
     /// A coarsest-level solve with the load equation failed: from then on the coarsest level
     /// is solved at fixed H0 and the driver moves H0.
     pub(crate) coarse_load_failed: bool,
+    /// The coarsest level's pressure before its Newton solve, restored when Newton fails (kept
+    /// here so that the cycles do not allocate).
+    coarse_backup: Vec<f64>,
     /// The contact's own state.
     pub(crate) extra: C::Extra,
 }
@@ -164,6 +167,7 @@ impl<C: Contact> Multigrid<C> {
         extra: C::Extra,
     ) -> Self {
         let p_hat = levels.iter().map(|l| vec![0.0; l.p().len()]).collect();
+        let coarse_backup = vec![0.0; levels[0].p().len()];
         Multigrid {
             phys,
             domain,
@@ -174,6 +178,7 @@ impl<C: Contact> Multigrid<C> {
             work_units: 0.0,
             load_slope: -1.0,
             coarse_load_failed: false,
+            coarse_backup,
             extra,
         }
     }
@@ -191,7 +196,7 @@ impl<C: Contact> Multigrid<C> {
     /// driver). If Newton fails at fixed H0 too, the pressure before it is restored and relaxed
     /// `coarse_sweeps` times. A failed solve with the load equation is not tried again.
     fn coarse_solve(&mut self) {
-        let before = self.levels[0].p().to_vec();
+        self.coarse_backup.copy_from_slice(self.levels[0].p());
         let free = self.params.converge == Converge::Fast && !self.coarse_load_failed;
         for fix_h0 in if free {
             &[false, true][..]
@@ -211,7 +216,7 @@ impl<C: Contact> Multigrid<C> {
             }
             self.coarse_load_failed |= free;
             let lv = &mut self.levels[0];
-            lv.pressure().copy_from_slice(&before);
+            lv.pressure().copy_from_slice(&self.coarse_backup);
             lv.refresh(&self.phys, self.h0);
         }
         for _ in 0..self.params.coarse_sweeps {
