@@ -335,3 +335,40 @@ fn accuracy_target_counts_the_domain_truncation() {
     let case = PointCase::new(30.0, 5.0, 1.0).unwrap();
     assert!(PointDomain::of_case(&case, &Default::default()).truncation_error() < 1e-3);
 }
+
+#[test]
+fn an_oscillating_high_l_case_converges_at_the_first_attempt() {
+    // M = 7.2, L = 20, D = 1 on 257^2: the pressure spike makes the undamped cycles oscillate
+    // with period two (H_c alternating by 0.2 %, the residual stalled at 2e-3); the fast rule
+    // damps the cycles once it sees that, and converges without the fallback ladder, to the
+    // tight solution (the ladder's tight attempt) within the algebraic error it reports.
+    let case = PointCase::new(7.2, 20.0, 1.0).unwrap();
+    let fast = solve_point(
+        &case,
+        &PointSolveParams {
+            mg: PointMgParams {
+                grid: 257,
+                ..Default::default()
+            },
+            fallback: false,
+            ..Default::default()
+        },
+    )
+    .outputs;
+    assert_eq!(fast.status, Status::Converged, "{}", fast.reason);
+    let tight = solve_with(7.2, 20.0, 1.0, 257, Converge::Tight).outputs;
+    assert_eq!(tight.status, Status::Converged, "{}", tight.reason);
+    let alg = fast.algebraic_error.expect("an algebraic error estimate");
+    for (f, t) in [(fast.h_c, tight.h_c), (fast.h_min, tight.h_min)] {
+        let d = (f / t - 1.0).abs();
+        assert!(
+            d < 1e-3 && d <= alg,
+            "fast {f} tight {t}: {d:.1e} (estimate {alg:.1e})"
+        );
+    }
+    assert!(
+        fast.load_error.abs() < 1e-4,
+        "load error {}",
+        fast.load_error
+    );
+}

@@ -53,8 +53,13 @@ pub trait Fas {
     fn load_slope(&self) -> f64;
     /// Start level l from level l-1's solution.
     fn fmg_interpolate(&mut self, l: usize);
-    /// One FAS cycle with level l as the finest, at fixed H0.
+    /// One FAS cycle with level l as the finest, at fixed H0. With a cycle damping beta < 1
+    /// ([`Fas::damp_cycles`]) the cycle's change of P and H0 is scaled by beta.
     fn cycle(&mut self, l: usize);
+    /// Scale the change of every later cycle by `beta` in (0, 1] (1: undamped). A fixed point
+    /// of the cycle is one of the damped cycle; an oscillation of period two (an eigenvalue of
+    /// the cycle near -1) is removed by beta = 1/2.
+    fn damp_cycles(&mut self, _beta: f64) {}
     /// One relaxation sweep of level l (counted in work units).
     fn relax(&mut self, l: usize);
     /// Convergence measures of level `l` after a cycle.

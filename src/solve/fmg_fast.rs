@@ -22,6 +22,11 @@
 //!   most `max_cycles` cycles (status max-iterations then); a coarser level when
 //!   e_a <= max(e_d, tol_h) ([`COARSE_FRACTION`]), after at most 2 `fmg_cycles` cycles.
 //!
+//! A level whose cycles oscillate with period two ([`Swing`]: H_c alternating while the
+//! residual stalls, as where a pressure spike is under-resolved on the coarser grids) has the
+//! change of each later cycle halved ([`Fas::damp_cycles`], again at each new detection, down
+//! to 1/8; it holds on the finer levels), and its contraction check starts again.
+//!
 //! The finest level's e_a and e_d are returned in [`SolveInfo::algebraic_error`] and
 //! [`SolveInfo::discretisation_error`]. Divergence (non-finite values, residual growth) is
 //! reported as by [`crate::solve::fmg::fmg_solve`], and so is a level whose residual grows by
@@ -44,6 +49,47 @@ pub const FINEST_FRACTION: f64 = 0.1;
 /// discretisation error estimate: the next level's interpolated start needs no more (classic
 /// FMG), and the finest level's cycles remove what is left.
 pub const COARSE_FRACTION: f64 = 1.0;
+
+/// The factor on the cycle damping ([`Fas::damp_cycles`]) each time the cycles of a level are
+/// found oscillating ([`Swing`]), down to [`MIN_CYCLE_DAMPING`].
+pub const OSCILLATION_DAMPING: f64 = 0.5;
+
+/// The smallest cycle damping.
+pub const MIN_CYCLE_DAMPING: f64 = 0.125;
+
+/// Detects an oscillation of period two: the change of H_c alternates in sign over three
+/// consecutive cycles while the residual contracts by less than 1/4 over two cycles.
+#[derive(Default)]
+struct Swing {
+    /// Whether H_c rose over the last cycle, the residuals of the last two cycles, and how many
+    /// consecutive cycles flipped the sign of the change.
+    rose: Option<bool>,
+    residuals: [f64; 2],
+    alternations: usize,
+}
+
+impl Swing {
+    /// Observe the cycle from `prev` to `rec`; true when the oscillation is established.
+    fn observe(&mut self, prev: &CycleRecord, rec: &CycleRecord) -> bool {
+        let rose = rec.h_c > prev.h_c;
+        let slow = rec.residual > 0.25 * self.residuals[0];
+        let flipped = self.rose.is_some_and(|r| r != rose);
+        self.alternations = if flipped && slow {
+            self.alternations + 1
+        } else {
+            0
+        };
+        self.rose = Some(rose);
+        self.residuals = [self.residuals[1], rec.residual];
+        if self.alternations >= 2 {
+            // A new oscillation has to establish itself before the next detection.
+            self.alternations = 0;
+            self.rose = None;
+            return true;
+        }
+        false
+    }
+}
 
 /// Relative change from `a` to `b` (a floor for the dry limit, where films vanish).
 fn rel(a: f64, b: f64) -> f64 {
@@ -128,6 +174,8 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
         format!("no convergence in {} cycles", c.max_cycles),
     );
     let (mut e_a, mut e_d) = (None, None);
+    // The cycle damping: once the cycles oscillate, it holds on the finer levels too.
+    let mut beta = 1.0;
     for l in (if warm { top } else { 1 })..=top {
         if !warm {
             start_level(s, l, &h0_end);
@@ -142,15 +190,23 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
         let mut prev_delta = None;
         lb.reset();
         let mut level_min_res = f64::INFINITY;
+        let mut swing = Swing::default();
+        // The cycle of the level's last damping: the contraction check starts again there.
+        let mut damped_at = 0;
         for k in 0..max {
             let rec = cycle_once(s, l, k);
             if final_level {
                 history.push(rec);
             }
             let diverged = check_divergence(s, l, final_level, &rec, &mut min_res)
-                .and_then(|()| no_contraction(l, k, &rec, &mut level_min_res));
+                .and_then(|()| no_contraction(l, k - damped_at, &rec, &mut level_min_res));
             if let Err(why) = diverged {
                 return with_errors(s.finish(start, Status::Diverged, why, history), e_a, e_d);
+            }
+            if swing.observe(&last, &rec) {
+                beta = (beta * OSCILLATION_DAMPING).max(MIN_CYCLE_DAMPING);
+                s.damp_cycles(beta);
+                damped_at = k + 1;
             }
             let delta = changes(&last, &rec);
             let res_ratio = (k > 0).then(|| rec.residual / last.residual.max(1e-300));
@@ -225,5 +281,56 @@ mod tests {
         assert!((e - 2.2e-3).abs() < 1e-15);
         let e = algebraic_error([1e-5, 1e-4], Some([1e-3, 2e-4]), Some(0.1), 0.0);
         assert!((e - 2e-4).abs() < 1e-15);
+    }
+
+    fn record(residual: f64, h_c: f64) -> CycleRecord {
+        CycleRecord {
+            residual,
+            load_error: 0.0,
+            h_c,
+            h_min: 1.0,
+            work_units: 0.0,
+        }
+    }
+
+    /// Feed (residual, H_c) after each cycle; which cycles report an oscillation.
+    fn swings(cycles: &[(f64, f64)]) -> Vec<usize> {
+        let mut sw = Swing::default();
+        let mut last = record(1.0, 1.0);
+        let mut out = vec![];
+        for (k, &(r, h)) in cycles.iter().enumerate() {
+            let rec = record(r, h);
+            if sw.observe(&last, &rec) {
+                out.push(k);
+            }
+            last = rec;
+        }
+        out
+    }
+
+    #[test]
+    fn oscillations_of_period_two_are_detected_and_contracting_cycles_are_not() {
+        // H_c up, down, up with a stalled residual: found at the third cycle, and again only
+        // after three more alternating cycles.
+        let osc = [
+            (1e-3, 1.01),
+            (1.1e-3, 1.0),
+            (0.9e-3, 1.01),
+            (1e-3, 1.0),
+            (1e-3, 1.01),
+        ];
+        assert_eq!(swings(&osc), vec![2]);
+        let long: Vec<_> = (0..9)
+            .map(|k| (1e-3, if k % 2 == 0 { 1.01 } else { 1.0 }))
+            .collect();
+        assert_eq!(swings(&long), vec![2, 5, 8]);
+        // The same alternation while the residual falls by 10 per cycle: normal convergence.
+        let fast: Vec<_> = (0..9)
+            .map(|k| (0.1f64.powi(k), if k % 2 == 0 { 1.01 } else { 1.0 }))
+            .collect();
+        assert!(swings(&fast).is_empty());
+        // A stalled residual with H_c moving one way: not an oscillation.
+        let creep: Vec<_> = (0..9).map(|k| (1e-3, 1.0 + 1e-3 * k as f64)).collect();
+        assert!(swings(&creep).is_empty());
     }
 }

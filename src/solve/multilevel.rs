@@ -153,6 +153,10 @@ pub struct Multigrid<C: Contact> {
     /// The coarsest level's pressure before its Newton solve, restored when Newton fails (kept
     /// here so that the cycles do not allocate).
     coarse_backup: Vec<f64>,
+    /// The scale of each finest-level cycle's change ([`Fas::damp_cycles`]), and the pressure
+    /// before the cycle (allocated when damping starts).
+    cycle_damping: f64,
+    cycle_backup: Vec<f64>,
     /// The contact's own state.
     pub(crate) extra: C::Extra,
 }
@@ -179,6 +183,8 @@ impl<C: Contact> Multigrid<C> {
             load_slope: -1.0,
             coarse_load_failed: false,
             coarse_backup,
+            cycle_damping: 1.0,
+            cycle_backup: vec![],
             extra,
         }
     }
@@ -321,7 +327,23 @@ impl<C: Contact> Fas for Multigrid<C> {
         self.relax_level(l)
     }
     fn cycle(&mut self, l: usize) {
-        self.fas_cycle(l)
+        if self.cycle_damping == 1.0 {
+            return self.fas_cycle(l);
+        }
+        let beta = self.cycle_damping;
+        let h0 = self.h0;
+        self.cycle_backup.clear();
+        self.cycle_backup.extend_from_slice(self.levels[l].p());
+        self.fas_cycle(l);
+        self.h0 = h0 + beta * (self.h0 - h0);
+        let lv = &mut self.levels[l];
+        for (p, &old) in lv.pressure().iter_mut().zip(&self.cycle_backup) {
+            *p = old + beta * (*p - old);
+        }
+        lv.refresh(&self.phys, self.h0);
+    }
+    fn damp_cycles(&mut self, beta: f64) {
+        self.cycle_damping = beta;
     }
     fn record(&mut self, l: usize) -> CycleRecord {
         Multigrid::record(self, l)
