@@ -90,13 +90,13 @@ impl Viscosity {
     /// eta/eta0 at dimensionless pressure `p`, for alpha_bar = alpha p_h.
     #[inline]
     pub fn eta(&self, p: f64, alpha_bar: f64) -> f64 {
-        let p = p.max(0.0);
+        if p <= 0.0 {
+            // Both laws give exp(0) = 1 exactly at P <= 0 (the cavitated zone): no exp call.
+            return 1.0;
+        }
         let e = match *self {
             Viscosity::Barus => alpha_bar * p,
-            Viscosity::Roelands { z, ph_pa } => {
-                let a = alpha_bar / ph_pa * ROELANDS_P0 / z;
-                a * ((1.0 + p * ph_pa / ROELANDS_P0).powf(z) - 1.0)
-            }
+            Viscosity::Roelands { z, ph_pa } => roelands_exponent(p, alpha_bar, z, ph_pa),
         };
         e.min(EXP_CAP).exp()
     }
@@ -113,15 +113,7 @@ impl Viscosity {
                     0.0
                 }
             }
-            Viscosity::Roelands { z, ph_pa } => {
-                let a = alpha_bar / ph_pa * ROELANDS_P0 / z;
-                let s = 1.0 + p * ph_pa / ROELANDS_P0;
-                if a * (s.powf(z) - 1.0) < EXP_CAP {
-                    a * z * s.powf(z - 1.0) * ph_pa / ROELANDS_P0
-                } else {
-                    0.0
-                }
-            }
+            Viscosity::Roelands { z, ph_pa } => roelands_dln_eta(p, alpha_bar, z, ph_pa),
         }
     }
 
@@ -179,11 +171,7 @@ impl Density {
     pub fn dln_rho(&self, p: f64) -> f64 {
         match *self {
             Density::Incompressible => 0.0,
-            Density::DowsonHigginson { ph_pa } => {
-                let pp = p.max(0.0) * ph_pa;
-                let drho = 0.34 * 0.59e9 / ((0.59e9 + pp) * (0.59e9 + pp)) * ph_pa;
-                drho / self.rho(p)
-            }
+            Density::DowsonHigginson { ph_pa } => dowson_higginson_dln_rho(p, ph_pa),
         }
     }
 
@@ -194,6 +182,36 @@ impl Density {
             Density::DowsonHigginson { .. } => "dowson-higginson",
         }
     }
+}
+
+// The laws' arithmetic beside Barus and incompressible is kept out of line: inlined, the
+// compiler evaluates its divisions on every call, whichever law the match selects.
+
+/// The Roelands exponent ln(eta/eta0) at dimensionless pressure p > 0.
+#[inline(never)]
+fn roelands_exponent(p: f64, alpha_bar: f64, z: f64, ph_pa: f64) -> f64 {
+    let a = alpha_bar / ph_pa * ROELANDS_P0 / z;
+    a * ((1.0 + p * ph_pa / ROELANDS_P0).powf(z) - 1.0)
+}
+
+/// Roelands' d ln(eta)/dP at dimensionless pressure p >= 0 (zero where the exponent is capped).
+#[inline(never)]
+fn roelands_dln_eta(p: f64, alpha_bar: f64, z: f64, ph_pa: f64) -> f64 {
+    let a = alpha_bar / ph_pa * ROELANDS_P0 / z;
+    let s = 1.0 + p * ph_pa / ROELANDS_P0;
+    if a * (s.powf(z) - 1.0) < EXP_CAP {
+        a * z * s.powf(z - 1.0) * ph_pa / ROELANDS_P0
+    } else {
+        0.0
+    }
+}
+
+/// Dowson-Higginson's d ln(rho)/dP at dimensionless pressure p.
+#[inline(never)]
+fn dowson_higginson_dln_rho(p: f64, ph_pa: f64) -> f64 {
+    let pp = p.max(0.0) * ph_pa;
+    let drho = 0.34 * 0.59e9 / ((0.59e9 + pp) * (0.59e9 + pp)) * ph_pa;
+    drho / Density::DowsonHigginson { ph_pa }.rho(p)
 }
 
 #[cfg(test)]

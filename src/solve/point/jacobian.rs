@@ -85,6 +85,19 @@ impl PointJacRow {
         }
     }
 
+    /// A zero row for the node (i, j) whose equation is not relaxed (frozen or cavitated).
+    pub fn pinned(i: usize, j: usize) -> Self {
+        PointJacRow {
+            i,
+            j,
+            g_h: [0.0; 4],
+            g_y: [0.0; 2],
+            local: [0.0; 5],
+            local_y: [0.0; 2],
+            coef: 0.0,
+        }
+    }
+
     /// dL_ij/dP at node (k, l); `kernel` and `nx` of the level.
     #[inline]
     pub fn entry(&self, kernel: &[f64], nx: usize, k: usize, l: usize) -> f64 {
@@ -121,24 +134,26 @@ impl PointJacRow {
         v
     }
 
-    /// dL_ij/dP at the nodes (k, j) of the row itself for k in lo..=hi, into `out[k]`: the
-    /// values of [`PointJacRow::entry`], computed together (the zero weights that `entry` skips
-    /// add exact zeros here, so the values are the same to the bit).
-    pub fn row_entries(&self, kernel: &[f64], nx: usize, lo: usize, hi: usize, out: &mut [f64]) {
+    /// dL_ij/dP at the nodes (k, j) of the row itself for k in lo..=hi (within
+    /// [`KernelWindow::reach`] of i), into `out[k]`: the values of [`PointJacRow::entry`],
+    /// computed together (the zero weights that `entry` skips add exact zeros here, so the values
+    /// are the same to the bit).
+    pub fn row_entries(&self, win: &KernelWindow, lo: usize, hi: usize, out: &mut [f64]) {
         let i = self.i;
+        let r = win.reach;
+        debug_assert!(i - lo <= r - 2 && hi - i <= r - 2);
         let out = &mut out[lo..=hi];
         if self.coef != 0.0 {
-            let (k0, k1) = (&kernel[..nx], &kernel[nx..2 * nx]);
             let [g0, g1, g2, g3] = self.g_h;
             let [gy0, gy1] = self.g_y;
-            for (o, k) in out.iter_mut().zip(lo..) {
-                let s = 0.0
-                    + g0 * k0[i.abs_diff(k + 2)]
-                    + g1 * k0[(i + 1).abs_diff(k + 2)]
-                    + g2 * k0[i.abs_diff(k)]
-                    + g3 * k0[(i + 1).abs_diff(k)];
-                let dx = i.abs_diff(k);
-                *o = self.coef * (s + gy0 * k1[dx] + gy1 * k1[dx]);
+            // Node k reads the mirrored row 0 at c - 2..=c + 1 and row 1 at c, c = r + i - k:
+            // windows from k = lo (c largest) on.
+            let (c_lo, c_hi) = (r + i - hi, r + i - lo);
+            let w0 = win.row0[c_lo - 2..=c_hi + 1].windows(4).rev();
+            let w1 = win.row1[c_lo..=c_hi].iter().rev();
+            for ((o, w), &k1) in out.iter_mut().zip(w0).zip(w1) {
+                let s = 0.0 + g0 * w[0] + g1 * w[1] + g2 * w[2] + g3 * w[3];
+                *o = self.coef * (s + gy0 * k1 + gy1 * k1);
             }
         } else {
             out.fill(0.0);
@@ -153,6 +168,29 @@ impl PointJacRow {
     /// dL_ij/dH0.
     pub fn d_h0(&self) -> f64 {
         self.g_h.iter().sum::<f64>() + self.g_y.iter().sum::<f64>()
+    }
+}
+
+/// The kernel values of a level's rows dy = 0 and 1 at the offsets -reach..=reach along x
+/// (index reach + offset), mirrored from the stored |offset| so that a window of a Jacobian row
+/// is read in order ([`PointJacRow::row_entries`]).
+#[derive(Default)]
+pub struct KernelWindow {
+    /// The largest |offset| held.
+    pub reach: usize,
+    row0: Vec<f64>,
+    row1: Vec<f64>,
+}
+
+impl KernelWindow {
+    /// Fill from `kernel` (rows of length `nx`) for offsets up to `reach` (< nx).
+    pub fn fill(&mut self, kernel: &[f64], nx: usize, reach: usize) {
+        assert!(reach < nx);
+        self.reach = reach;
+        for (row, dy) in [(&mut self.row0, 0), (&mut self.row1, 1)] {
+            row.clear();
+            row.extend((0..=2 * reach).map(|q| kernel[dy * nx + q.abs_diff(reach)]));
+        }
     }
 }
 
@@ -234,10 +272,12 @@ mod tests {
         }
         // The row's entries computed together are entry() to the bit.
         let mut out = vec![f64::NAN; lv.nx];
+        let mut win = KernelWindow::default();
+        win.fill(&lv.kernel, lv.nx, 7);
         for (i, j) in [(1usize, 1usize), (2, 5), (7, 6), (14, 10)] {
             let row = PointJacRow::new(&lv, &phys, i, j);
             let (lo, hi) = (i.saturating_sub(5).max(1), (i + 5).min(lv.nx - 2));
-            row.row_entries(&lv.kernel, lv.nx, lo, hi, &mut out);
+            row.row_entries(&win, lo, hi, &mut out);
             for (k, &o) in out.iter().enumerate().take(hi + 1).skip(lo) {
                 assert_eq!(o.to_bits(), row.entry(&lv.kernel, lv.nx, k, j).to_bits());
             }

@@ -17,7 +17,7 @@
 
 use crate::discrete::point::operator::{PointLevel, PointPhysics};
 use crate::solve::banded::solve_banded;
-use crate::solve::point::jacobian::PointJacRow;
+use crate::solve::point::jacobian::{KernelWindow, PointJacRow};
 use crate::solve::relax::{
     distributed, distributed_row, node_kind, pinned_row, relaxed, undistributed,
     viscosity_step_limit, xi, Kind, RelaxParams,
@@ -34,6 +34,8 @@ pub struct PointScratch {
     rhs: Vec<f64>,
     /// Entries of one Jacobian row over the window, and the applied changes of the row.
     ent: Vec<f64>,
+    /// The kernel near the diagonal, in order.
+    window: KernelWindow,
     change: Vec<f64>,
     /// The changes of one colour in zebra order.
     zebra: Vec<f64>,
@@ -119,10 +121,11 @@ fn row_changes(
         rhs,
         ent,
         change,
+        window,
         ..
     } = s;
+    window.fill(&lv.kernel, nx, (bw + 3).min(nx - 1));
     rows.clear();
-    rows.extend((1..nx - 1).map(|i| PointJacRow::new(lv, phys, i, j)));
     kind.clear();
     kind.resize(nx, Kind::Frozen);
     rhs.clear();
@@ -131,8 +134,21 @@ fn row_changes(
         let c = lv.at(i, j);
         let r = lv.f[c] - lv.reynolds(phys, i, j);
         rhs[i - 1] = r;
-        let d = rows[i - 1].entry(&lv.kernel, nx, i, j);
-        kind[i] = node_kind(lv.frozen[c], lv.p[c], r, d);
+        // A frozen node, or one at P = 0 with r >= 0 (cavitated whatever its diagonal, see
+        // node_kind), needs no Jacobian row.
+        if lv.frozen[c] || (lv.p[c] <= 0.0 && r >= 0.0) {
+            kind[i] = if lv.frozen[c] {
+                Kind::Frozen
+            } else {
+                Kind::Cavitated
+            };
+            rows.push(PointJacRow::pinned(i, j));
+        } else {
+            let row = PointJacRow::new(lv, phys, i, j);
+            let d = row.entry(&lv.kernel, nx, i, j);
+            kind[i] = node_kind(false, lv.p[c], r, d);
+            rows.push(row);
+        }
     }
     jset.clear();
     jset.extend((0..nx).map(|i| {
@@ -153,7 +169,7 @@ fn row_changes(
         }
         let lo = i.saturating_sub(bw + 1).max(1);
         let hi = (i + bw + 1).min(nx - 2);
-        rows[row].row_entries(&lv.kernel, nx, lo, hi, ent);
+        rows[row].row_entries(window, lo, hi, ent);
         let ent = &*ent;
         distributed_row(a_row, i, bw, nx - 2, jset, |k| {
             if k >= lo && k <= hi {
