@@ -91,6 +91,9 @@ impl Swing {
     }
 }
 
+/// Bracket ends of the load balance older than this many cycles are dropped.
+pub const BRACKET_MEMORY: usize = 4;
+
 /// Relative change from `a` to `b` (a floor for the dry limit, where films vanish).
 fn rel(a: f64, b: f64) -> f64 {
     (b - a).abs() / b.abs().max(1e-6)
@@ -163,7 +166,9 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
     if top == 0 {
         return single_level(s, start, &coarse);
     }
-    let mut lb = LoadBalance::new(s.load_slope());
+    // H0 moves by the load balance only where the coarsest solve with the load equation fails,
+    // then once per cycle, before P has settled: old bracket ends are dropped.
+    let mut lb = LoadBalance::new(s.load_slope()).with_memory(BRACKET_MEMORY);
     let mut history = vec![];
     let mut min_res = f64::INFINITY;
     let mut h0_end = vec![s.h0()];

@@ -14,6 +14,12 @@ pub struct LoadBalance {
     lo: Option<(f64, f64)>,
     hi: Option<(f64, f64)>,
     last: Option<(f64, f64)>,
+    /// Evaluations made, and the one that set each bracket end.
+    count: usize,
+    lo_at: usize,
+    hi_at: usize,
+    /// Bracket ends older than this many evaluations are dropped (None: kept).
+    memory: Option<usize>,
 }
 
 impl LoadBalance {
@@ -28,7 +34,19 @@ impl LoadBalance {
             lo: None,
             hi: None,
             last: None,
+            count: 0,
+            lo_at: 0,
+            hi_at: 0,
+            memory: None,
         }
+    }
+
+    /// Drop bracket ends older than `evaluations` evaluations: for evaluations whose P has not
+    /// settled at its H0 (one multigrid cycle each), where an old end may bracket a root that
+    /// the settled G does not have, and the iteration would stall at that end.
+    pub fn with_memory(mut self, evaluations: usize) -> Self {
+        self.memory = Some(evaluations);
+        self
     }
 
     /// Forget the bracket and the last point (a new grid level has a slightly different G).
@@ -55,10 +73,21 @@ impl LoadBalance {
             }
         }
         self.last = Some((h0, g));
+        self.count += 1;
         if g > 0.0 {
             self.lo = Some((h0, g));
+            self.lo_at = self.count;
         } else {
             self.hi = Some((h0, g));
+            self.hi_at = self.count;
+        }
+        if let Some(mem) = self.memory {
+            if self.count - self.lo_at >= mem {
+                self.lo = None;
+            }
+            if self.count - self.hi_at >= mem {
+                self.hi = None;
+            }
         }
         let mut cand = h0 - g / self.slope;
         match (self.lo, self.hi) {
@@ -90,6 +119,24 @@ mod tests {
         for _ in 0..30 {
             h = lb.next(h, g(h), 0.1);
         }
+        assert!((h - 0.5).abs() < 1e-10, "{h}");
+    }
+
+    #[test]
+    fn a_stale_bracket_end_stalls_the_iteration_unless_it_is_forgotten() {
+        // The first evaluation, at 0.6, comes from an unsettled P and has the wrong sign (G > 0
+        // where the settled G(0.6) = -1/3 < 0): the bracket [0.6, ...] excludes the root 0.5.
+        let g = |h: f64| 1.0 / h - 2.0;
+        let run = |lb: &mut LoadBalance| {
+            let mut h = lb.next(0.6, 0.1, 0.1);
+            for _ in 0..40 {
+                h = lb.next(h, g(h), 0.1);
+            }
+            h
+        };
+        let stalled = run(&mut LoadBalance::new(-1.0));
+        assert!((stalled - 0.6).abs() < 1e-6, "{stalled}");
+        let h = run(&mut LoadBalance::new(-1.0).with_memory(4));
         assert!((h - 0.5).abs() < 1e-10, "{h}");
     }
 }
