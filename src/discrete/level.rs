@@ -15,6 +15,8 @@ pub struct NodeFields {
     pub eps: Vec<f64>,
     /// The density rho (1 at ambient pressure).
     pub rho: Vec<f64>,
+    /// eta(P) lambda, the divisor of eps, as last computed from P (for a film update at fixed P).
+    pub divisor: Vec<f64>,
     /// FAS right-hand side of the Reynolds equation (zero on the finest level).
     pub f: Vec<f64>,
     /// Right-hand side of the load equation.
@@ -37,6 +39,7 @@ impl NodeFields {
             film: vec![0.0; n],
             eps: vec![0.0; n],
             rho: vec![1.0; n],
+            divisor: vec![1.0; n],
             f: vec![0.0; n],
             g,
             frozen: vec![false; n],
@@ -47,7 +50,13 @@ impl NodeFields {
 
     /// Recompute rho and eps from P and the current H by the coefficient law `law`.
     pub fn update_coefficients(&mut self, law: Coefficients) {
-        law.update(&self.p, &self.film, &mut self.rho, &mut self.eps);
+        law.update(
+            &self.p,
+            &self.film,
+            &mut self.rho,
+            &mut self.eps,
+            &mut self.divisor,
+        );
     }
 }
 

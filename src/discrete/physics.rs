@@ -66,28 +66,43 @@ impl Coefficients {
         Coefficients { fluid, lambda, dry }
     }
 
-    /// eps = rho H^3/(eta(P) lambda) at one node, H clipped at 0; 0 when dry.
+    /// eta(P) lambda, the divisor of eps at one node.
     #[inline]
-    pub fn eps(&self, p: f64, film: f64, rho: f64) -> f64 {
+    pub fn divisor(&self, p: f64) -> f64 {
+        self.fluid.viscosity.eta(p, self.fluid.alpha_bar) * self.lambda
+    }
+
+    /// eps = rho H^3/divisor at one node, H clipped at 0, with the node's [`Coefficients::divisor`]
+    /// (for a film change at fixed P: no viscosity to evaluate); 0 when dry.
+    #[inline]
+    pub fn eps_with(&self, rho: f64, film: f64, divisor: f64) -> f64 {
         if self.dry {
             0.0
         } else {
             let hh = film.max(0.0);
-            rho * hh * hh * hh / (self.fluid.viscosity.eta(p, self.fluid.alpha_bar) * self.lambda)
+            rho * hh * hh * hh / divisor
         }
     }
 
-    /// (rho, eps) at one node from its pressure and film.
+    /// (rho, eps, divisor) at one node from its pressure and film.
     #[inline]
-    pub fn at(&self, p: f64, film: f64) -> (f64, f64) {
+    pub fn at(&self, p: f64, film: f64) -> (f64, f64, f64) {
         let rho = self.fluid.density.rho(p);
-        (rho, self.eps(p, film, rho))
+        let divisor = self.divisor(p);
+        (rho, self.eps_with(rho, film, divisor), divisor)
     }
 
-    /// rho and eps at every node from P and H (all four slices of one length).
-    pub fn update(&self, p: &[f64], film: &[f64], rho: &mut [f64], eps: &mut [f64]) {
-        for (((&pc, &hc), r), e) in p.iter().zip(film).zip(rho).zip(eps) {
-            (*r, *e) = self.at(pc, hc);
+    /// rho, eps and the divisor of eps at every node from P and H (all slices of one length).
+    pub fn update(
+        &self,
+        p: &[f64],
+        film: &[f64],
+        rho: &mut [f64],
+        eps: &mut [f64],
+        divisor: &mut [f64],
+    ) {
+        for ((((&pc, &hc), r), e), d) in p.iter().zip(film).zip(rho).zip(eps).zip(divisor) {
+            (*r, *e, *d) = self.at(pc, hc);
         }
     }
 }

@@ -190,6 +190,20 @@ impl PointLevel {
         self.update_coefficients(phys);
     }
 
+    /// Recompute H (by the fast product) and eps from P and H0, keeping rho and eta lambda
+    /// (`divisor`): for a P whose rho and divisor are up to date (the smoother's rows have set
+    /// them as they changed P); the result equals [`PointLevel::update_film`]'s.
+    pub fn update_film_fixed_coefficients(&mut self, phys: &PointPhysics, h0: f64) {
+        self.deformation(phys);
+        let law = phys.coefficients();
+        let n = self.len();
+        let nodes = &mut self.nodes;
+        for c in 0..n {
+            nodes.film[c] = h0 + self.gap[c] + nodes.work[c];
+            nodes.eps[c] = law.eps_with(nodes.rho[c], nodes.film[c], nodes.divisor[c]);
+        }
+    }
+
     /// Recompute rho and eps from P and the current H.
     pub fn update_coefficients(&mut self, phys: &PointPhysics) {
         self.nodes.update_coefficients(phys.coefficients());

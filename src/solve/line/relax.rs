@@ -106,7 +106,7 @@ pub fn line_sweep(
     jset.extend(
         (0..n).map(|i| distributed(kind, i, || phys.dry || xi(&lv.eps, i, h2) < rp.xi_threshold)),
     );
-    a.clear();
+    // Every row writes all its band entries (pinned_row, distributed_row): no clearing.
     a.resize(m * w, 0.0);
     ent.clear();
     ent.resize(2 * bw + 3, 0.0);

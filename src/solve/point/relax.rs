@@ -10,7 +10,9 @@
 //! point value P + r/J_ii <= 0) get dP = -P, frozen coarse nodes dP = 0. Then
 //! P += omega dP (each change limited to min(1, 2/alpha_bar)), projected on P >= 0. The film of rows j to
 //! j+2 (all that the next row's equations see) is corrected at once for the kernel within 2 band
-//! cells along x; after the sweep H is recomputed exactly by the FFT product.
+//! cells along x, with rho, eps and eta lambda of row j from its new P and eps of rows j+1, j+2
+//! from their stored eta lambda (their P did not change); after the sweep H is recomputed exactly
+//! by the FFT product.
 //!
 //! The contact-independent steps of the banded row solve are the line smoother's
 //! ([`crate::solve::line::relax`]: node kinds, distributed rows, the change of a node).
@@ -94,7 +96,8 @@ pub fn point_line_sweep(
         }
         local_film_update(lv, phys, j, reach, &s.change);
     }
-    lv.update_film(phys, h0);
+    // Every changed row has set its rho and eta lambda: only H and eps are left to refresh.
+    lv.update_film_fixed_coefficients(phys, h0);
 }
 
 /// The relaxation changes of row j (into `s.change`, indexed by i) from the current state.
@@ -156,7 +159,7 @@ fn row_changes(
             phys.dry || xi(&lv.eps, lv.at(i, j), hx2) < rp.xi_threshold
         })
     }));
-    a.clear();
+    // Every row writes all its band entries (pinned_row, distributed_row): no clearing.
     a.resize(m * w, 0.0);
     ent.clear();
     ent.resize(nx, 0.0);
@@ -234,9 +237,18 @@ fn local_film_update(
                 }
             }
         }
-        for i in 1..nx - 1 {
-            let c = lv.at(i, jj);
-            (lv.rho[c], lv.eps[c]) = law.at(lv.p[c], lv.film[c]);
+        if dy == 0 {
+            // The relaxed row: P changed.
+            for i in 1..nx - 1 {
+                let c = lv.at(i, jj);
+                (lv.rho[c], lv.eps[c], lv.divisor[c]) = law.at(lv.p[c], lv.film[c]);
+            }
+        } else {
+            // The rows after it: only H changed.
+            for i in 1..nx - 1 {
+                let c = lv.at(i, jj);
+                lv.eps[c] = law.eps_with(lv.rho[c], lv.film[c], lv.divisor[c]);
+            }
         }
     }
     lv.kernel = kernel;
