@@ -20,6 +20,10 @@ use crate::solve::newton::{newton_solve, NewtonLevel, NewtonOutcome, NewtonParam
 use crate::solve::params::{Converge, FinerCoarsest, MgParams};
 use crate::solve::{CycleRecord, Observer, SolveInfo};
 
+/// Newton iterations allowed to a coarsest-level solve with the load equation after one has
+/// failed (see [`Multigrid::coarse_solve`]).
+pub const RETRY_NEWTON_ITERATIONS: usize = 8;
+
 /// What the shared multigrid steps need from a grid level, beyond Newton's view of it.
 pub trait GridLevel: NewtonLevel {
     /// Points per direction (the grid size a solve reports).
@@ -147,8 +151,8 @@ pub struct Multigrid<C: Contact> {
     pub work_units: f64,
     /// Estimate of d(load)/dH0 from the coarsest level.
     pub(crate) load_slope: f64,
-    /// A coarsest-level solve with the load equation failed: from then on the coarsest level
-    /// is solved at fixed H0 and the driver moves H0.
+    /// The last coarsest-level solve with the load equation failed: the coarsest level was
+    /// solved at fixed H0, and the driver moves H0 until a retry succeeds.
     pub(crate) coarse_load_failed: bool,
     /// The coarsest level's pressure before its Newton solve, restored when Newton fails (kept
     /// here so that the cycles do not allocate).
@@ -200,10 +204,13 @@ impl<C: Contact> Multigrid<C> {
     /// H0 converges with the cycles), for P at fixed H0 under tight convergence (the driver's
     /// secant step moves H0) or when that fails (then `coarse_load_failed` is set for the
     /// driver). If Newton fails at fixed H0 too, the pressure before it is restored and relaxed
-    /// `coarse_sweeps` times. A failed solve with the load equation is not tried again.
+    /// `coarse_sweeps` times. After a failed solve with the load equation each later one tries
+    /// it again with at most [`RETRY_NEWTON_ITERATIONS`] iterations (Newton converges
+    /// quadratically once the cycles have brought the level close); a success hands H0 back to
+    /// the cycle.
     fn coarse_solve(&mut self) {
         self.coarse_backup.copy_from_slice(self.levels[0].p());
-        let free = self.params.converge == Converge::Fast && !self.coarse_load_failed;
+        let free = self.params.converge == Converge::Fast;
         for fix_h0 in if free {
             &[false, true][..]
         } else {
@@ -211,6 +218,11 @@ impl<C: Contact> Multigrid<C> {
         } {
             let np = NewtonParams {
                 fix_h0: *fix_h0,
+                max_iter: if !*fix_h0 && self.coarse_load_failed {
+                    RETRY_NEWTON_ITERATIONS
+                } else {
+                    NewtonParams::default().max_iter
+                },
                 ..NewtonParams::default()
             };
             let mut h0 = self.h0;
@@ -218,6 +230,9 @@ impl<C: Contact> Multigrid<C> {
             self.work_units += C::newton_cost(self, out.iterations);
             if (out.converged || (!out.singular && out.residual < 1e-6)) && h0.is_finite() {
                 self.h0 = h0;
+                if !*fix_h0 {
+                    self.coarse_load_failed = false;
+                }
                 return;
             }
             self.coarse_load_failed |= free;
