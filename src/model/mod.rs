@@ -3,10 +3,12 @@
 //! published film formulas ([`formulas`]), oils by their Walther line ([`oils`]) and the
 //! textbook regime classification ([`regimes`]).
 
+pub mod asperity;
 pub mod case;
 pub mod case_file;
 pub mod dimensional;
 pub mod error;
+pub mod flow_factors;
 pub mod formulas;
 pub mod hertz;
 pub mod lubricant;
