@@ -16,7 +16,9 @@
 
 use crate::solve::fmg::{fmg_solve, Fas, FmgControl};
 use crate::solve::fmg_fast::fmg_fast_solve;
-use crate::solve::newton::{newton_solve, NewtonLevel, NewtonOutcome, NewtonParams};
+use crate::solve::newton::{
+    newton_solve, NewtonLevel, NewtonOutcome, NewtonParams, MULTIGRID_STALL_WINDOW,
+};
 use crate::solve::params::{Converge, FinerCoarsest, MgParams};
 use crate::solve::{CycleRecord, Observer, SolveInfo};
 
@@ -223,6 +225,7 @@ impl<C: Contact> Multigrid<C> {
                 } else {
                     NewtonParams::default().max_iter
                 },
+                stall_window: MULTIGRID_STALL_WINDOW,
                 ..NewtonParams::default()
             };
             let mut h0 = self.h0;

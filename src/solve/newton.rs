@@ -15,6 +15,9 @@
 
 use nalgebra::{DMatrix, DVector};
 
+/// The [`NewtonParams::stall_window`] of a multigrid's coarsest-level solves.
+pub const MULTIGRID_STALL_WINDOW: usize = 8;
+
 /// Newton settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct NewtonParams {
@@ -24,6 +27,10 @@ pub struct NewtonParams {
     pub tol: f64,
     /// Hold H0 fixed and drop the load equation.
     pub fix_h0: bool,
+    /// Give up when the residual norm has not halved over this many iterations (0: never). A
+    /// multigrid's coarsest-level solves have a fallback for a failed solve, and a damped
+    /// semi-smooth Newton that crawls rarely converges within its iteration budget.
+    pub stall_window: usize,
 }
 
 impl Default for NewtonParams {
@@ -32,6 +39,7 @@ impl Default for NewtonParams {
             max_iter: 40,
             tol: 1e-10,
             fix_h0: false,
+            stall_window: 0,
         }
     }
 }
@@ -145,6 +153,7 @@ pub fn load_slope<T: NewtonLevel>(
     let mut h1 = h0 + dh;
     let np = NewtonParams {
         fix_h0: true,
+        stall_window: MULTIGRID_STALL_WINDOW,
         ..NewtonParams::default()
     };
     let out = newton_solve(lv, phys, &mut h1, &np);
@@ -226,9 +235,17 @@ pub fn newton_solve<T: NewtonLevel>(
         singular: false,
     };
     let mut p_old = vec![0.0; m];
+    let mut merits = Vec::with_capacity(np.max_iter);
     for it in 0..np.max_iter {
         if lin.merit < np.tol {
             out.converged = true;
+            break;
+        }
+        merits.push(lin.merit);
+        if np.stall_window > 0
+            && it >= np.stall_window
+            && lin.merit > 0.5 * merits[it - np.stall_window]
+        {
             break;
         }
         out.iterations = it + 1;

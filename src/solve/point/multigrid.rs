@@ -16,7 +16,9 @@ use crate::discrete::point::domain::PointDomainParams;
 use crate::discrete::point::operator::{PointLevel, PointPhysics};
 use crate::model::case::{Elasticity, PointCase};
 use crate::solve::multilevel::{grid_level, Contact, DomainRule, Multigrid};
-use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
+use crate::solve::newton::{
+    load_slope, newton_solve, NewtonOutcome, NewtonParams, MULTIGRID_STALL_WINDOW,
+};
 use crate::solve::params::{FinerCoarsest, MgParams};
 use crate::solve::point::relax::{point_line_sweep, PointScratch};
 
@@ -258,11 +260,14 @@ impl Contact for PointContact {
         lv.update_film(&mg.phys, mg.h0);
     }
     fn start_coarse(mg: &mut PointMultigrid, with_slope: bool) -> NewtonOutcome {
+        let multigrid = mg.levels.len() > 1;
         let lv = &mut mg.levels[0];
         lv.f.fill(0.0);
         lv.g = mg.phys.load;
         let np = NewtonParams {
             max_iter: mg.params.newton_max_iter,
+            // The Newton baseline (one level) has no fallback: it runs its budget.
+            stall_window: if multigrid { MULTIGRID_STALL_WINDOW } else { 0 },
             ..NewtonParams::default()
         };
         let out = newton_solve(lv, &mg.phys, &mut mg.h0, &np);
