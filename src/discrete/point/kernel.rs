@@ -60,18 +60,22 @@ fn corner(x: f64, y: f64) -> f64 {
 
 /// K(dx, dy) for node offsets dx = 0..nx, dy = 0..ny on a grid of spacings hx, hy, stored at
 /// dy * nx + dx. K is even in each offset, so these cover every pair of nodes.
+///
+/// Each cell's integral is [`rect_integral`]'s combination of its four corners; neighbouring
+/// cells share corners, so the corner function is evaluated once per corner of the grid of cell
+/// edges (x = (a - 1/2) hx, y = (b - 1/2) hy): a quarter of the `asinh` calls.
 pub fn kernel2d(nx: usize, ny: usize, hx: f64, hy: f64) -> Vec<f64> {
+    let w = nx + 1;
+    let mut corners = Vec::with_capacity(w * (ny + 1));
+    for b in 0..=ny {
+        let y = (b as f64 - 0.5) * hy;
+        corners.extend((0..=nx).map(|a| corner((a as f64 - 0.5) * hx, y)));
+    }
     let mut k = Vec::with_capacity(nx * ny);
     for dy in 0..ny {
-        let yc = dy as f64 * hy;
+        let (lo, hi) = (&corners[dy * w..][..w], &corners[(dy + 1) * w..][..w]);
         for dx in 0..nx {
-            let xc = dx as f64 * hx;
-            k.push(rect_integral(
-                xc - 0.5 * hx,
-                xc + 0.5 * hx,
-                yc - 0.5 * hy,
-                yc + 0.5 * hy,
-            ));
+            k.push(hi[dx + 1] - hi[dx] - lo[dx + 1] + lo[dx]);
         }
     }
     k
