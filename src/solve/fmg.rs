@@ -59,7 +59,7 @@ pub trait Fas {
     /// Scale the change of every later cycle by `beta` in (0, 1] (1: undamped). A fixed point
     /// of the cycle is one of the damped cycle; an oscillation of period two (an eigenvalue of
     /// the cycle near -1) is removed by beta = 1/2.
-    fn damp_cycles(&mut self, _beta: f64) {}
+    fn damp_cycles(&mut self, beta: f64);
     /// One relaxation sweep of level l (counted in work units).
     fn relax(&mut self, l: usize);
     /// Convergence measures of level `l` after a cycle.

@@ -163,3 +163,11 @@ pub fn viscosity_step_limit(alpha_bar: f64) -> f64 {
         f64::INFINITY
     }
 }
+
+/// The kernel row `row` (values at offsets |d| = 0, 1, ...) mirrored into `out` for offsets
+/// d = -reach..=reach, at index reach + d (0 beyond the row), so that a Jacobian row's window
+/// reads it in order.
+pub fn mirror_kernel(row: &[f64], reach: usize, out: &mut Vec<f64>) {
+    out.clear();
+    out.extend((0..=2 * reach).map(|q| row.get(q.abs_diff(reach)).copied().unwrap_or(0.0)));
+}

@@ -183,24 +183,32 @@ impl PointLevel {
 
     /// Recompute H (by the fast product), rho and eps from P and H0.
     pub fn update_film(&mut self, phys: &PointPhysics, h0: f64) {
+        self.film_only(phys, h0);
+        self.update_coefficients(phys);
+    }
+
+    /// Recompute H (by the fast product) from P and H0, nothing else.
+    fn film_only(&mut self, phys: &PointPhysics, h0: f64) {
         self.deformation(phys);
         for c in 0..self.len() {
             self.film[c] = h0 + self.gap[c] + self.work[c];
         }
-        self.update_coefficients(phys);
     }
 
     /// Recompute H (by the fast product) and eps from P and H0, keeping rho and eta lambda
     /// (`divisor`): for a P whose rho and divisor are up to date (the smoother's rows have set
     /// them as they changed P); the result equals [`PointLevel::update_film`]'s.
     pub fn update_film_fixed_coefficients(&mut self, phys: &PointPhysics, h0: f64) {
-        self.deformation(phys);
+        self.film_only(phys, h0);
         let law = phys.coefficients();
-        let n = self.len();
         let nodes = &mut self.nodes;
-        for c in 0..n {
-            nodes.film[c] = h0 + self.gap[c] + nodes.work[c];
-            nodes.eps[c] = law.eps_with(nodes.rho[c], nodes.film[c], nodes.divisor[c]);
+        for ((e, &r), (&h, &d)) in nodes
+            .eps
+            .iter_mut()
+            .zip(&nodes.rho)
+            .zip(nodes.film.iter().zip(&nodes.divisor))
+        {
+            *e = law.eps_with(r, h, d);
         }
     }
 

@@ -22,7 +22,7 @@ use crate::discrete::stencil::upwind;
 use crate::solve::banded::solve_banded;
 use crate::solve::line::jacobian::JacRow;
 use crate::solve::relax::{
-    distributed, distributed_row, node_kind, pinned_row, relaxed, undistributed,
+    distributed, distributed_row, mirror_kernel, node_kind, pinned_row, relaxed, undistributed,
     viscosity_step_limit, xi, Kind, RelaxParams, Smoother,
 };
 use std::f64::consts::PI;
@@ -110,11 +110,7 @@ pub fn line_sweep(
     a.resize(m * w, 0.0);
     ent.clear();
     ent.resize(2 * bw + 3, 0.0);
-    ksym.clear();
-    ksym.extend((0..2 * bw + 7).map(|q| {
-        let d = (q as isize - bw as isize - 3).unsigned_abs();
-        lv.kernel.get(d).copied().unwrap_or(0.0)
-    }));
+    mirror_kernel(&lv.kernel, bw + 3, ksym);
     for i in 1..n - 1 {
         let row = i - 1;
         let a_row = &mut a[row * w..][..w];

@@ -14,6 +14,7 @@
 use crate::discrete::point::operator::{PointLevel, PointPhysics};
 use crate::discrete::stencil::{deps_dh, deps_dp, face, jacobian_x, upwind, Fields};
 use crate::solve::newton::{dense_jacobian, newton_level_common, NewtonLevel};
+use crate::solve::relax::mirror_kernel;
 use nalgebra::DMatrix;
 
 /// Row (i, j) of the Jacobian of L with respect to (P, H0).
@@ -187,10 +188,8 @@ impl KernelWindow {
     pub fn fill(&mut self, kernel: &[f64], nx: usize, reach: usize) {
         assert!(reach < nx);
         self.reach = reach;
-        for (row, dy) in [(&mut self.row0, 0), (&mut self.row1, 1)] {
-            row.clear();
-            row.extend((0..=2 * reach).map(|q| kernel[dy * nx + q.abs_diff(reach)]));
-        }
+        mirror_kernel(&kernel[..nx], reach, &mut self.row0);
+        mirror_kernel(&kernel[nx..2 * nx], reach, &mut self.row1);
     }
 }
 
