@@ -160,6 +160,29 @@ fn moes_formula_within_8_percent() {
 }
 
 #[test]
+fn a_diverged_hierarchy_is_never_reported_converged() {
+    // M = 10^4, L = 10: the first attempt's coarse levels have H_c < 0 and the next level's
+    // residual jumps to 1e13; on 4097 points the cycles once "converged" with H_c = 10766 and a
+    // load error of 6 %, because the discretisation error estimate (1600 %) excused any
+    // algebraic error. The guards send it to the fallback ladder, whose answer agrees with Moes
+    // once the grid resolves the contact (16385 points: 2.4 % below it; 4097 points are 20 %
+    // low, 2049 points 67 % low).
+    let moes = moes_line_hc(1e4, 10.0);
+    for (grid, within) in [(4097, 0.25), (16385, 0.05)] {
+        let s = solve(1e4, 10.0, Models::default(), grid);
+        let o = &s.outputs;
+        assert_eq!(o.status, Status::Converged, "{grid}: {}", o.reason);
+        assert!(
+            o.load_error.abs() < 1e-4,
+            "{grid}: load error {}",
+            o.load_error
+        );
+        let dev = o.h_c / moes - 1.0;
+        assert!(dev.abs() < within, "{grid}: H_c {} vs Moes {moes}", o.h_c);
+    }
+}
+
+#[test]
 fn second_order_upwinding_matters() {
     // First-order upwinding of the wedge term is off by more than the second-order scheme's
     // whole discretisation error, even on 4097 points.

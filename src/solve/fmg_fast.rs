@@ -18,7 +18,8 @@
 //!   rigid-isoviscous limit, weaker elsewhere);
 //! * the discretisation error of level l is estimated by Richardson for second order from level
 //!   l-1's final values, e_d = max |Q_l - Q_(l-1)| / (3 |Q_l|);
-//! * the finest level stops when e_a <= max(e_d / 10, tol_h) ([`FINEST_FRACTION`]), after at
+//! * the finest level stops when e_a <= max(min(e_d / 10, 1e-2), tol_h) ([`FINEST_FRACTION`],
+//!   [`MAX_ALGEBRAIC_ERROR`]), after at
 //!   most `max_cycles` cycles (status max-iterations then); a coarser level when
 //!   e_a <= max(e_d, tol_h) ([`COARSE_FRACTION`]), after at most 2 `fmg_cycles` cycles.
 //!
@@ -30,8 +31,9 @@
 //! The finest level's e_a and e_d are returned in [`SolveInfo::algebraic_error`] and
 //! [`SolveInfo::discretisation_error`]. Divergence (non-finite values, residual growth) is
 //! reported as by [`crate::solve::fmg::fmg_solve`], and so is a level whose residual grows by
-//! 100 over its smallest or has not fallen below the first cycle's after 8 cycles. Reference: Brandt's FMG with the global
-//! constraint on the coarsest grid; Venner & Lubrecht, Multilevel Methods in Lubrication (2000),
+//! 100 over its smallest, has not fallen below the first cycle's after 8 cycles, or exceeds
+//! [`LEVEL_RESIDUAL_GROWTH`] times the coarser levels' largest. Reference: Brandt's FMG with the
+//! global constraint on the coarsest grid; Venner & Lubrecht, Multilevel Methods in Lubrication (2000),
 //! ch. 4 and 7.
 
 use crate::solve::fmg::{
@@ -90,6 +92,15 @@ impl Swing {
         false
     }
 }
+
+/// The largest algebraic error the finest level may stop with, however large its
+/// discretisation error estimate: a grid so coarse that its estimate exceeds ten times this is
+/// not a solution to stop at, and the cycles continue until it is met or the budget is spent.
+pub const MAX_ALGEBRAIC_ERROR: f64 = 1e-2;
+
+/// A level whose residual exceeds this multiple of the largest residual on the coarser levels
+/// has diverged: on a converging hierarchy the finer levels' residuals are no larger.
+pub const LEVEL_RESIDUAL_GROWTH: f64 = 1e3;
 
 /// Bracket ends of the load balance older than this many cycles are dropped.
 pub const BRACKET_MEMORY: usize = 4;
@@ -156,6 +167,19 @@ fn no_contraction(l: usize, k: usize, rec: &CycleRecord, min_res: &mut f64) -> R
     Ok(())
 }
 
+/// The reason to give up on level `l` when its `residual` exceeds [`LEVEL_RESIDUAL_GROWTH`]
+/// times `coarser_max`, the largest residual of the coarser levels (0 on the first level: no
+/// check).
+fn residual_jump(l: usize, residual: f64, coarser_max: f64) -> Result<(), String> {
+    if coarser_max > 0.0 && residual > LEVEL_RESIDUAL_GROWTH * coarser_max {
+        return Err(format!(
+            "residual {residual:.3e} on level {l}, more than {LEVEL_RESIDUAL_GROWTH:.0e} times \
+             the coarser levels' largest ({coarser_max:.3e})"
+        ));
+    }
+    Ok(())
+}
+
 /// Run full multigrid to the discretisation error (see the module docs).
 pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
     let c = s.control();
@@ -171,6 +195,9 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
     let mut lb = LoadBalance::new(s.load_slope()).with_memory(BRACKET_MEMORY);
     let mut history = vec![];
     let mut min_res = f64::INFINITY;
+    // The largest residual of the coarser levels' cycles (see [`LEVEL_RESIDUAL_GROWTH`]).
+    let mut coarser_max_res = 0.0f64;
+    let mut level_max_res = 0.0f64;
     let mut h0_end = vec![s.h0()];
     let warm = s.install_guess(top);
     let mut coarser = if warm { None } else { Some(s.record(0)) };
@@ -191,6 +218,7 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
         } else {
             2 * c.fmg_cycles
         };
+        coarser_max_res = coarser_max_res.max(level_max_res);
         let mut last = s.record(l);
         let mut prev_delta = None;
         lb.reset();
@@ -203,8 +231,10 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
             if final_level {
                 history.push(rec);
             }
+            level_max_res = level_max_res.max(rec.residual);
             let diverged = check_divergence(s, l, final_level, &rec, &mut min_res)
-                .and_then(|()| no_contraction(l, k - damped_at, &rec, &mut level_min_res));
+                .and_then(|()| no_contraction(l, k - damped_at, &rec, &mut level_min_res))
+                .and_then(|()| residual_jump(l, rec.residual, coarser_max_res));
             if let Err(why) = diverged {
                 return with_errors(s.finish(start, Status::Diverged, why, history), e_a, e_d);
             }
@@ -231,7 +261,12 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
             } else {
                 COARSE_FRACTION
             };
-            let goal = (fraction * disc.unwrap_or(0.0)).max(c.tol_h);
+            let cap = if final_level {
+                MAX_ALGEBRAIC_ERROR
+            } else {
+                f64::INFINITY
+            };
+            let goal = (fraction * disc.unwrap_or(0.0)).min(cap).max(c.tol_h);
             if alg <= goal {
                 if final_level {
                     status = Status::Converged;

@@ -142,14 +142,22 @@ pub fn undistributed(dq: &[f64], jset: &[bool], i: usize) -> f64 {
     dp
 }
 
+/// The fraction of its pressure by which a node may change in one sweep whatever the viscosity
+/// step limit ([`relaxed`]): a one-node pressure spike that has to double on a finer grid then
+/// rises in two or three sweeps instead of one 2/alpha_bar step per sweep.
+pub const RELATIVE_STEP_LIMIT: f64 = 0.25;
+
 /// The new P of a node: 0 when cavitated, `old` when frozen, else old + omega dp with the change
-/// clamped to +-max_dp, projected on P >= 0.
+/// clamped to +-max(max_dp, [`RELATIVE_STEP_LIMIT`] old), projected on P >= 0.
 #[inline]
 pub fn relaxed(kind: Kind, old: f64, omega: f64, dp: f64, max_dp: f64) -> f64 {
     match kind {
         Kind::Cavitated => 0.0,
         Kind::Frozen => old,
-        Kind::Active => (old + (omega * dp).clamp(-max_dp, max_dp)).max(0.0),
+        Kind::Active => {
+            let lim = max_dp.max(RELATIVE_STEP_LIMIT * old);
+            (old + (omega * dp).clamp(-lim, lim)).max(0.0)
+        }
     }
 }
 
