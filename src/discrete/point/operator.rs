@@ -66,6 +66,9 @@ impl std::ops::DerefMut for PointPhysics {
     }
 }
 
+/// Nodes per rayon job in [`PointLevel::update_film_parallel`].
+const PARALLEL_CHUNK: usize = 4096;
+
 /// One grid level of a point contact: its grid, the rigid gap, the deformation kernel and the
 /// node fields ([`NodeFields`], which the level dereferences to), row-major with X fastest.
 pub struct PointLevel {
@@ -90,6 +93,9 @@ pub struct PointLevel {
     pub gap: Vec<f64>,
     /// Compute the deformation by the O(N^2) direct sum instead of the FFT (baseline).
     pub direct_deformation: bool,
+    /// Compute the film, the coefficients and the residual on the rayon pool (the same values
+    /// to the bit as the serial loops, whatever the number of threads).
+    pub parallel: bool,
 }
 
 deref_nodes!(PointLevel);
@@ -129,6 +135,7 @@ impl PointLevel {
             kernel,
             gap,
             direct_deformation: false,
+            parallel: false,
         }
     }
 
@@ -181,10 +188,51 @@ impl PointLevel {
         }
     }
 
-    /// Recompute H (by the fast product), rho and eps from P and H0.
+    /// Recompute H (by the fast product), rho and eps from P and H0 (on the rayon pool when
+    /// the level is `parallel`).
     pub fn update_film(&mut self, phys: &PointPhysics, h0: f64) {
+        if self.parallel {
+            return self.update_film_parallel(phys, h0);
+        }
         self.film_only(phys, h0);
         self.update_coefficients(phys);
+    }
+
+    /// [`PointLevel::update_film`] with the film and the coefficients computed on the rayon pool
+    /// (and the deformation product by [`DeformPlan2d::apply_parallel`]); the result is the same
+    /// to the bit, whatever the number of threads.
+    fn update_film_parallel(&mut self, phys: &PointPhysics, h0: f64) {
+        use rayon::prelude::*;
+        if phys.elastic && !self.direct_deformation {
+            self.deform
+                .apply_parallel(&self.nodes.p, &mut self.nodes.work);
+        } else {
+            self.deformation(phys);
+        }
+        // The FFT product is the bare sum: its coefficient is applied below, as deformation does.
+        let coef = if phys.elastic && !self.direct_deformation {
+            phys.coef
+        } else {
+            1.0
+        };
+        let law = phys.coefficients();
+        let nodes = &mut self.nodes;
+        nodes
+            .film
+            .par_chunks_mut(PARALLEL_CHUNK)
+            .zip(nodes.work.par_chunks_mut(PARALLEL_CHUNK))
+            .zip(self.gap.par_chunks(PARALLEL_CHUNK))
+            .zip(nodes.p.par_chunks(PARALLEL_CHUNK))
+            .zip(nodes.rho.par_chunks_mut(PARALLEL_CHUNK))
+            .zip(nodes.eps.par_chunks_mut(PARALLEL_CHUNK))
+            .zip(nodes.divisor.par_chunks_mut(PARALLEL_CHUNK))
+            .for_each(|((((((film, work), gap), p), rho), eps), divisor)| {
+                for ((f, w), &g) in film.iter_mut().zip(work.iter_mut()).zip(gap) {
+                    *w *= coef;
+                    *f = h0 + g + *w;
+                }
+                law.update(p, film, rho, eps, divisor);
+            });
     }
 
     /// Recompute H (by the fast product) from P and H0, nothing else.
@@ -233,15 +281,29 @@ impl PointLevel {
 
     /// r = f - L at interior nodes, 0 on the boundary; with `active_only`, 0 also where P = 0.
     pub fn residual(&self, phys: &PointPhysics, active_only: bool, out: &mut [f64]) {
+        if self.parallel {
+            use rayon::prelude::*;
+            let nx = self.nx;
+            out[..nx * self.ny]
+                .par_chunks_mut(nx)
+                .enumerate()
+                .for_each(|(j, row)| self.residual_row(phys, active_only, j, row));
+            return;
+        }
         for j in 0..self.ny {
-            for i in 0..self.nx {
-                let c = self.at(i, j);
-                out[c] = if self.boundary(i, j) || (active_only && self.p[c] <= 0.0) {
-                    0.0
-                } else {
-                    self.f[c] - self.reynolds(phys, i, j)
-                };
-            }
+            self.residual_row(phys, active_only, j, &mut out[j * self.nx..][..self.nx]);
+        }
+    }
+
+    /// [`PointLevel::residual`] of row j into `row` (nx values).
+    fn residual_row(&self, phys: &PointPhysics, active_only: bool, j: usize, row: &mut [f64]) {
+        for (i, r) in row.iter_mut().enumerate() {
+            let c = self.at(i, j);
+            *r = if self.boundary(i, j) || (active_only && self.p[c] <= 0.0) {
+                0.0
+            } else {
+                self.f[c] - self.reynolds(phys, i, j)
+            };
         }
     }
 

@@ -29,14 +29,18 @@ use std::f64::consts::PI;
 /// Multigrid settings of a line solve.
 pub type LineMgParams = MgParams<DomainParams>;
 
+/// The line contact's [`crate::solve::relax::RelaxParams::relative_step`].
+pub const LINE_RELATIVE_STEP: f64 = 0.25;
+
 impl Default for MgParams<DomainParams> {
-    /// The shared defaults with V(1, 1) cycles: on the line, one pre-relaxation does what two
-    /// did (the banded line solve is close to a local Newton step), for a third less work.
+    /// The shared defaults with V(1, 1) cycles (on the line one pre-relaxation does what two
+    /// did, for a third less work) and a relative step limit of 1/4
+    /// ([`crate::solve::relax::RelaxParams::relative_step`]).
     fn default() -> Self {
-        MgParams {
-            pre: 1,
-            ..MgParams::defaults(DomainParams::default(), 2049, 60, 5e-7, 1e-6)
-        }
+        let mut p = MgParams::defaults(DomainParams::default(), 2049, 60, 5e-7, 1e-6);
+        p.pre = 1;
+        p.relax.relative_step = LINE_RELATIVE_STEP;
+        p
     }
 }
 

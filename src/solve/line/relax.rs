@@ -140,7 +140,14 @@ pub fn line_sweep(
     let max_dp = viscosity_step_limit(phys.fluid.alpha_bar);
     for i in 1..n - 1 {
         let dp = undistributed(rhs, jset, i);
-        lv.p[i] = relaxed(kind[i], lv.p[i], rp.omega_line, dp, max_dp);
+        lv.p[i] = relaxed(
+            kind[i],
+            lv.p[i],
+            rp.omega_line,
+            dp,
+            max_dp,
+            rp.relative_step,
+        );
     }
     lv.update_film(phys, h0);
 }

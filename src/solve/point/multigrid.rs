@@ -22,6 +22,10 @@ use crate::solve::newton::{
 use crate::solve::params::{FinerCoarsest, MgParams};
 use crate::solve::point::relax::{point_line_sweep, PointScratch};
 
+/// With [`MgParams::parallel`], the levels of at least this many rows per direction relax in
+/// zebra order and compute their films and residuals on the rayon pool.
+pub const PARALLEL_MIN_ROWS: usize = 65;
+
 /// Multigrid settings of a point solve.
 pub type PointMgParams = MgParams<PointDomainParams>;
 
@@ -64,6 +68,8 @@ impl Multigrid<PointContact> {
         loop {
             let mut lv = PointLevel::new(&phys, domain.x_in, domain.x_out, domain.y_half, n, n);
             lv.direct_deformation = params.direct_deformation;
+            // Zebra rows on the rayon pool only where a level has enough rows to share.
+            lv.parallel = params.parallel && n + 1 >= PARALLEL_MIN_ROWS;
             levels.push(lv);
             if n + 1 >= params.grid {
                 break;
@@ -134,8 +140,7 @@ impl Contact for PointContact {
     type Extra = PointExtra;
     fn sweep(mg: &mut PointMultigrid, l: usize) -> f64 {
         let lv = &mut mg.levels[l];
-        // Zebra rows on the rayon pool only where a level has enough rows to share.
-        let parallel = mg.params.parallel && lv.ny >= 65;
+        let parallel = lv.parallel;
         point_line_sweep(
             lv,
             &mg.phys,

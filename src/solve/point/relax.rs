@@ -41,6 +41,8 @@ pub struct PointScratch {
     change: Vec<f64>,
     /// The changes of one colour in zebra order.
     zebra: Vec<f64>,
+    /// One row scratch per zebra job (rayon thread).
+    jobs: Vec<PointScratch>,
 }
 
 /// One sweep of x-line relaxation over all interior rows: Gauss-Seidel from row to row, or, with
@@ -58,33 +60,42 @@ pub fn point_line_sweep(
     let (nx, ny) = (lv.nx, lv.ny);
     if parallel {
         use rayon::prelude::*;
-        // The changes of one colour, row after row (taken out of the scratch so the rows can
-        // fill it in parallel; each rayon job has its own row scratch).
+        // The changes of one colour, row after row, filled by one job per thread, each with its
+        // own row scratch kept between sweeps (taken out of `s` so the jobs can borrow them).
         let mut zebra = std::mem::take(&mut s.zebra);
+        let mut jobs = std::mem::take(&mut s.jobs);
+        jobs.resize_with(rayon::current_num_threads().max(1), PointScratch::default);
         for first in [1usize, 2] {
             let count = (ny - 1 - first).div_ceil(2);
             zebra.clear();
             zebra.resize(count * nx, 0.0);
+            let per_job = count.div_ceil(jobs.len());
             {
                 let lv = &*lv;
-                zebra.par_chunks_mut(nx).enumerate().for_each_init(
-                    PointScratch::default,
-                    |rs, (k, out)| {
-                        row_changes(lv, phys, rp, first + 2 * k, rs);
-                        out.copy_from_slice(&rs.change);
-                    },
-                );
+                zebra
+                    .par_chunks_mut(per_job * nx)
+                    .zip(jobs.par_iter_mut())
+                    .enumerate()
+                    .for_each(|(b, (block, rs))| {
+                        for (k, out) in block.chunks_mut(nx).enumerate() {
+                            row_changes(lv, phys, rp, first + 2 * (b * per_job + k), rs);
+                            out.copy_from_slice(&rs.change);
+                        }
+                    });
             }
-            for (k, ch) in zebra.chunks(nx).enumerate() {
-                let j = first + 2 * k;
-                for i in 1..nx - 1 {
-                    let c = lv.at(i, j);
-                    lv.p[c] += ch[i];
-                }
-            }
+            // Row first + 2k of P is the first half of its chunk of two rows.
+            lv.p[first * nx..]
+                .par_chunks_mut(2 * nx)
+                .zip(zebra.par_chunks(nx))
+                .for_each(|(rows, ch)| {
+                    for i in 1..nx - 1 {
+                        rows[i] += ch[i];
+                    }
+                });
             lv.update_film(phys, h0);
         }
         s.zebra = zebra;
+        s.jobs = jobs;
         return;
     }
     let reach = 2 * (rp.band + 1);
@@ -199,7 +210,7 @@ fn row_changes(
                 0.0
             }
         };
-        change[i] = relaxed(kind[i], old, rp.omega_line, dp, max_dp) - old;
+        change[i] = relaxed(kind[i], old, rp.omega_line, dp, max_dp, rp.relative_step) - old;
     }
 }
 
