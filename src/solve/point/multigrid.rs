@@ -174,18 +174,44 @@ impl Contact for PointContact {
             }
         }
         coarse.update_film(phys, h0);
-        coarse.f.fill(0.0);
-        for j in 1..coarse.ny - 1 {
-            for i in 1..coarse.nx - 1 {
-                let cc = coarse.at(i, j);
+        // Row j of f and of the frozen marks from the coarse operator and the fine level (taken
+        // out of `coarse` so that its rows can be filled in parallel).
+        let (mut f, mut frozen) = (
+            std::mem::take(&mut coarse.nodes.f),
+            std::mem::take(&mut coarse.nodes.frozen),
+        );
+        let cl = &*coarse;
+        let nx = fine.nx;
+        let row = |j: usize, f: &mut [f64], frozen: &mut [bool]| {
+            f.fill(0.0);
+            if j == 0 || j + 1 == cl.ny {
+                return;
+            }
+            for i in 1..cl.nx - 1 {
                 let fc = fine.at(2 * i, 2 * j);
-                let nx = fine.nx;
-                coarse.frozen[cc] = [fc - nx, fc, fc + nx]
+                frozen[i] = [fc - nx, fc, fc + nx]
                     .iter()
                     .any(|&b| (b - 1..=b + 1).any(|q| fine.p[q] <= 0.0 || fine.frozen[q]));
-                coarse.f[cc] = coarse.reynolds(phys, i, j) + full_weight(fine, r, i, j);
+                f[i] = cl.reynolds(phys, i, j) + full_weight(fine, r, i, j);
+            }
+        };
+        if cl.parallel {
+            use rayon::prelude::*;
+            f.par_chunks_mut(cl.nx)
+                .zip(frozen.par_chunks_mut(cl.nx))
+                .enumerate()
+                .for_each(|(j, (f, frozen))| row(j, f, frozen));
+        } else {
+            for (j, (f, frozen)) in f
+                .chunks_mut(cl.nx)
+                .zip(frozen.chunks_mut(cl.nx))
+                .enumerate()
+            {
+                row(j, f, frozen);
             }
         }
+        coarse.nodes.f = f;
+        coarse.nodes.frozen = frozen;
     }
 
     /// Bilinear interpolation of the correction.
@@ -200,15 +226,28 @@ impl Contact for PointContact {
             let c = coarse.at(i, j);
             coarse.p[c] - ph[c]
         };
-        for j in 0..fine.ny {
-            for i in 0..fine.nx {
-                let (ic, jc) = (i / 2, j / 2);
-                let (ic1, jc1) = (i.div_ceil(2), j.div_ceil(2));
+        let (nx, ny) = (fine.nx, fine.ny);
+        let row = |j: usize, p: &mut [f64]| {
+            if j == 0 || j + 1 == ny {
+                return;
+            }
+            let (jc, jc1) = (j / 2, j.div_ceil(2));
+            for (i, p) in p.iter_mut().enumerate().take(nx - 1).skip(1) {
+                let (ic, ic1) = (i / 2, i.div_ceil(2));
                 let v = 0.25 * (e(ic, jc) + e(ic1, jc) + e(ic, jc1) + e(ic1, jc1));
-                let c = fine.at(i, j);
-                if !fine.boundary(i, j) {
-                    fine.p[c] = (fine.p[c] + v).max(0.0);
-                }
+                *p = (*p + v).max(0.0);
+            }
+        };
+        if fine.parallel {
+            use rayon::prelude::*;
+            fine.nodes
+                .p
+                .par_chunks_mut(nx)
+                .enumerate()
+                .for_each(|(j, p)| row(j, p));
+        } else {
+            for (j, p) in fine.nodes.p.chunks_mut(nx).enumerate() {
+                row(j, p);
             }
         }
         fine.update_film(phys, h0);
