@@ -52,15 +52,6 @@ fn point(case: &PointCase, grid: usize, converge: Converge, parallel: bool) -> O
     solve_point(case, &p).outputs
 }
 
-/// `threads` rayon threads for `run`.
-fn on_threads<T: Send>(threads: usize, run: impl FnOnce() -> T + Send) -> T {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .expect("a thread pool")
-        .install(run)
-}
-
 fn verdict(ok: bool) -> &'static str {
     if ok {
         "met"
@@ -158,15 +149,31 @@ fn main() {
         ));
     }
 
-    println!("\nzebra rows on 1 and 2 threads (circular M=20 L=10):");
+    println!("\nzebra rows on 1 and 2 threads (circular M=20 L=10; runs alternated):");
     for grid in [513usize, 1025] {
-        let repeats = if grid >= 1025 { 3 } else { 5 };
-        let (t1, o1) = on_threads(1, || {
-            time(repeats, || point(&pc, grid, Converge::Fast, true))
-        });
-        let (t2, o2) = on_threads(2, || {
-            time(repeats, || point(&pc, grid, Converge::Fast, true))
-        });
+        let repeats = if grid >= 1025 { 5 } else { 9 };
+        // The two pools are built once and their runs alternate, so that a change of the
+        // machine's load during the measurement weighs on both medians alike.
+        let pools: Vec<rayon::ThreadPool> = [1, 2]
+            .iter()
+            .map(|&n| {
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(n)
+                    .build()
+                    .expect("a thread pool")
+            })
+            .collect();
+        let (mut times, mut outs) = ([vec![], vec![]], [None, None]);
+        for _ in 0..repeats {
+            for (k, pool) in pools.iter().enumerate() {
+                let t = Instant::now();
+                let o = pool.install(|| point(&pc, grid, Converge::Fast, true));
+                times[k].push(t.elapsed().as_secs_f64());
+                outs[k] = Some(o);
+            }
+        }
+        let [t1, t2] = times.map(median);
+        let [o1, o2] = outs.map(|o| o.expect("at least one repeat"));
         let same = o1.h_c.to_bits() == o2.h_c.to_bits();
         println!(
             "{grid:>5}^2: 1 thread {t1:.3} s, 2 threads {t2:.3} s, speed-up {:.2} (identical H_c: {same})",

@@ -64,14 +64,14 @@ struct Linearisation {
 }
 
 /// The dense Jacobian of (L at the unknowns, the load sum) with respect to (the unknowns, H0), H0
-/// last, for either contact: `row(c)` is the Jacobian row of L at storage index c, `entry(row, c)`
-/// its derivative with respect to P at c, `d_h0(row)` with respect to H0, and `cell` the load
-/// sum's weight of each pressure (h, or hx hy).
+/// last, for either contact: `row(c)` is the Jacobian row of L at storage index c,
+/// `entry(row, q, c)` its derivative with respect to P at the q-th unknown (storage index c),
+/// `d_h0(row)` with respect to H0, and `cell` the load sum's weight of each pressure (h, or hx hy).
 pub fn dense_jacobian<R>(
     unknowns: &[usize],
     cell: f64,
     row: impl Fn(usize) -> R,
-    entry: impl Fn(&R, usize) -> f64,
+    entry: impl Fn(&R, usize, usize) -> f64,
     d_h0: impl Fn(&R) -> f64,
 ) -> DMatrix<f64> {
     let m = unknowns.len();
@@ -79,7 +79,7 @@ pub fn dense_jacobian<R>(
     for (r, &c) in unknowns.iter().enumerate() {
         let row = row(c);
         for (q, &cc) in unknowns.iter().enumerate() {
-            jac[(r, q)] = entry(&row, cc);
+            jac[(r, q)] = entry(&row, q, cc);
         }
         jac[(r, m)] = d_h0(&row);
     }

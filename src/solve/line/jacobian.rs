@@ -139,7 +139,7 @@ impl NewtonLevel for LineLevel {
             unknowns,
             self.h,
             row,
-            |r, j| r.entry(&self.kernel, j),
+            |r, _, j| r.entry(&self.kernel, j),
             JacRow::d_h0,
         )
     }

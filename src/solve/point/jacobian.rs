@@ -166,6 +166,50 @@ impl PointJacRow {
         }
     }
 
+    /// [`PointJacRow::entry`] for every interior node (k, l) of an nx x ny level, in the order
+    /// of the unknowns (l = 1..ny-1 outer, k = 1..nx-1 inner), into `out`: the same sums in the
+    /// same order, so the same values to the bit, with the kernel rows looked up once per l.
+    pub fn dense_row(&self, kernel: &[f64], nx: usize, ny: usize, out: &mut [f64]) {
+        let (i, j) = (self.i, self.j);
+        let m = nx - 2;
+        for (l, o) in (1..ny - 1).zip(out.chunks_exact_mut(m)) {
+            if self.coef != 0.0 {
+                let k0 = &kernel[j.abs_diff(l) * nx..][..nx];
+                let km = &kernel[(j - 1).abs_diff(l) * nx..][..nx];
+                let kp = &kernel[(j + 1).abs_diff(l) * nx..][..nx];
+                for (k, v) in (1..nx - 1).zip(o.iter_mut()) {
+                    let mut s = 0.0;
+                    for (t, &g) in self.g_h.iter().enumerate() {
+                        if g != 0.0 {
+                            s += g * k0[(i + t - 2).abs_diff(k)];
+                        }
+                    }
+                    let dx = i.abs_diff(k);
+                    if self.g_y[0] != 0.0 {
+                        s += self.g_y[0] * km[dx];
+                    }
+                    if self.g_y[1] != 0.0 {
+                        s += self.g_y[1] * kp[dx];
+                    }
+                    *v = self.coef * s;
+                }
+            } else {
+                o.fill(0.0);
+            }
+            if l == j {
+                for (t, &v) in self.local.iter().enumerate() {
+                    if let Some(k) = (i + t).checked_sub(2).filter(|k| (1..nx - 1).contains(k)) {
+                        o[k - 1] += v;
+                    }
+                }
+            } else if l + 1 == j {
+                o[i - 1] += self.local_y[0];
+            } else if l == j + 1 {
+                o[i - 1] += self.local_y[1];
+            }
+        }
+    }
+
     /// dL_ij/dH0.
     pub fn d_h0(&self) -> f64 {
         self.g_h.iter().sum::<f64>() + self.g_y.iter().sum::<f64>()
@@ -205,9 +249,27 @@ impl NewtonLevel for PointLevel {
         u
     }
     fn dense_jacobian(&self, phys: &PointPhysics, unknowns: &[usize]) -> DMatrix<f64> {
-        let nx = self.nx;
+        let (nx, ny) = (self.nx, self.ny);
         let row = |c| PointJacRow::new(self, phys, c % nx, c / nx);
-        let entry = |r: &PointJacRow, c| r.entry(&self.kernel, nx, c % nx, c / nx);
+        let m = unknowns.len();
+        if m == (nx - 2) * (ny - 2) {
+            // All interior nodes, in order (`unknowns`): whole rows at once.
+            let mut jac = DMatrix::<f64>::zeros(m + 1, m + 1);
+            let mut buf = vec![0.0; m];
+            for (r, &c) in unknowns.iter().enumerate() {
+                let row = row(c);
+                row.dense_row(&self.kernel, nx, ny, &mut buf);
+                for (q, &v) in buf.iter().enumerate() {
+                    jac[(r, q)] = v;
+                }
+                jac[(r, m)] = row.d_h0();
+            }
+            for q in 0..m {
+                jac[(m, q)] = self.hx * self.hy;
+            }
+            return jac;
+        }
+        let entry = |r: &PointJacRow, _, c: usize| r.entry(&self.kernel, nx, c % nx, c / nx);
         dense_jacobian(unknowns, self.hx * self.hy, row, entry, PointJacRow::d_h0)
     }
     fn residual_at(&self, phys: &PointPhysics, c: usize) -> f64 {
@@ -279,6 +341,14 @@ mod tests {
             row.row_entries(&win, lo, hi, &mut out);
             for (k, &o) in out.iter().enumerate().take(hi + 1).skip(lo) {
                 assert_eq!(o.to_bits(), row.entry(&lv.kernel, lv.nx, k, j).to_bits());
+            }
+        }
+        // So are the whole dense rows of the Jacobian.
+        for (r, &c) in unknowns.iter().enumerate() {
+            let row = PointJacRow::new(&lv, &phys, c % lv.nx, c / lv.nx);
+            for (q, &cc) in unknowns.iter().enumerate() {
+                let e = row.entry(&lv.kernel, lv.nx, cc % lv.nx, cc / lv.nx);
+                assert_eq!(jac[(r, q)].to_bits(), e.to_bits(), "row {r} col {q}");
             }
         }
         let mut plus = mk();
