@@ -27,6 +27,7 @@ fn warm_start_from_lower_m_reaches_the_cold_solution() {
         let from = solve_line(&nb, &p);
         assert_eq!(from.info.status, Status::Converged);
         let mut guess = warm_guess(&case, &nb, &from).expect("a guess");
+        let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
         // The guess is the neighbour's pressure at a film level of its own, not this case's.
         assert!(
             (guess.centre_film * 8.0 * m / std::f64::consts::PI / cold.outputs.h_c - 1.0).abs()
@@ -37,7 +38,8 @@ fn warm_start_from_lower_m_reaches_the_cold_solution() {
             g.centre_film *= scale;
             let warm = solve_line_from(&case, &p, Some(&g));
             assert_eq!(warm.info.status, Status::Converged, "{}", warm.info.reason);
-            let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
+            // No coarser level to estimate from: never a NaN in the reason.
+            assert!(!warm.info.reason.contains("NaN"), "{}", warm.info.reason);
             assert!(
                 rel(warm.outputs.h_c, cold.outputs.h_c) < 1e-5,
                 "M {m} L {l} x{scale}"
@@ -49,6 +51,19 @@ fn warm_start_from_lower_m_reaches_the_cold_solution() {
             // Started from the guess, not the FMG ascent: a different cost.
             assert!(warm.info.work_units != cold.info.work_units);
         }
+        // The default stopping rule from a guess: no coarser level to estimate the
+        // discretisation error from, so the cycles run to the tolerance and say so (the reason
+        // once printed "a tenth of the discretisation error NaN").
+        let mut fast = p;
+        fast.mg.converge = Converge::Fast;
+        let warm = solve_line_from(&case, &fast, Some(&guess));
+        assert_eq!(warm.info.status, Status::Converged, "{}", warm.info.reason);
+        assert!(
+            warm.info.reason.contains("no coarser level") && !warm.info.reason.contains("NaN"),
+            "{}",
+            warm.info.reason
+        );
+        assert!(rel(warm.outputs.h_c, cold.outputs.h_c) < 1e-4);
         guess.p.clear();
         guess.x.clear();
         // An empty guess (zero pressure) still ends converged or with a status, never a panic.

@@ -270,12 +270,20 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
             if alg <= goal {
                 if final_level {
                     status = Status::Converged;
-                    reason = format!(
-                        "algebraic error {alg:.1e} below a tenth of the discretisation error {:.1e} \
-                         (load error {:.1e})",
-                        disc.unwrap_or(f64::NAN),
-                        rec.load_error
-                    );
+                    reason = match disc {
+                        Some(d) => format!(
+                            "algebraic error {alg:.1e} below a tenth of the discretisation error \
+                             {d:.1e} (load error {:.1e})",
+                            rec.load_error
+                        ),
+                        // A warm start has no coarser level to estimate the discretisation
+                        // error from: the cycles ran to the tolerance instead.
+                        None => format!(
+                            "algebraic error {alg:.1e} below the tolerance {:.1e} (load error \
+                             {:.1e}; no coarser level for a discretisation estimate)",
+                            c.tol_h, rec.load_error
+                        ),
+                    };
                 }
                 break;
             }
