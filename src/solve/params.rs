@@ -181,7 +181,8 @@ pub struct MgParams<D> {
 
 impl<D> MgParams<D> {
     /// The settings every contact defaults to, with the contact's domain rule, finest grid,
-    /// cycle limit and tolerances: V(2, 1) cycles, two cycles per FMG level, 20 coarse sweeps
+    /// cycle limit and tolerances: V(2, 1) cycles (the line contact's own default takes V(1, 1)),
+    /// two cycles per FMG level, 20 coarse sweeps
     /// and 40 Newton iterations as fallbacks, second-order upwinding, the FFT deformation.
     pub fn defaults(domain: D, grid: usize, max_cycles: usize, tol_load: f64, tol_h: f64) -> Self {
         MgParams {
