@@ -65,21 +65,24 @@ struct Linearisation {
 
 /// The dense Jacobian of (L at the unknowns, the load sum) with respect to (the unknowns, H0), H0
 /// last, for either contact: `row(c)` is the Jacobian row of L at storage index c,
-/// `entry(row, q, c)` its derivative with respect to P at the q-th unknown (storage index c),
-/// `d_h0(row)` with respect to H0, and `cell` the load sum's weight of each pressure (h, or hx hy).
+/// `fill(row, out)` writes its derivatives with respect to P at every unknown (in the order of
+/// `unknowns`), `d_h0(row)` its derivative with respect to H0, and `cell` the load sum's weight of
+/// each pressure (h, or hx hy).
 pub fn dense_jacobian<R>(
     unknowns: &[usize],
     cell: f64,
     row: impl Fn(usize) -> R,
-    entry: impl Fn(&R, usize, usize) -> f64,
+    fill: impl Fn(&R, &mut [f64]),
     d_h0: impl Fn(&R) -> f64,
 ) -> DMatrix<f64> {
     let m = unknowns.len();
     let mut jac = DMatrix::<f64>::zeros(m + 1, m + 1);
+    let mut buf = vec![0.0; m];
     for (r, &c) in unknowns.iter().enumerate() {
         let row = row(c);
-        for (q, &cc) in unknowns.iter().enumerate() {
-            jac[(r, q)] = entry(&row, q, cc);
+        fill(&row, &mut buf);
+        for (q, &v) in buf.iter().enumerate() {
+            jac[(r, q)] = v;
         }
         jac[(r, m)] = d_h0(&row);
     }

@@ -139,7 +139,11 @@ impl NewtonLevel for LineLevel {
             unknowns,
             self.h,
             row,
-            |r, _, j| r.entry(&self.kernel, j),
+            |r, out| {
+                for (o, &j) in out.iter_mut().zip(unknowns) {
+                    *o = r.entry(&self.kernel, j);
+                }
+            },
             JacRow::d_h0,
         )
     }

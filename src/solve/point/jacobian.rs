@@ -250,27 +250,11 @@ impl NewtonLevel for PointLevel {
     }
     fn dense_jacobian(&self, phys: &PointPhysics, unknowns: &[usize]) -> DMatrix<f64> {
         let (nx, ny) = (self.nx, self.ny);
+        // dense_row covers every interior node in order: the unknowns of this level.
+        debug_assert_eq!(unknowns.len(), (nx - 2) * (ny - 2));
         let row = |c| PointJacRow::new(self, phys, c % nx, c / nx);
-        let m = unknowns.len();
-        if m == (nx - 2) * (ny - 2) {
-            // All interior nodes, in order (`unknowns`): whole rows at once.
-            let mut jac = DMatrix::<f64>::zeros(m + 1, m + 1);
-            let mut buf = vec![0.0; m];
-            for (r, &c) in unknowns.iter().enumerate() {
-                let row = row(c);
-                row.dense_row(&self.kernel, nx, ny, &mut buf);
-                for (q, &v) in buf.iter().enumerate() {
-                    jac[(r, q)] = v;
-                }
-                jac[(r, m)] = row.d_h0();
-            }
-            for q in 0..m {
-                jac[(m, q)] = self.hx * self.hy;
-            }
-            return jac;
-        }
-        let entry = |r: &PointJacRow, _, c: usize| r.entry(&self.kernel, nx, c % nx, c / nx);
-        dense_jacobian(unknowns, self.hx * self.hy, row, entry, PointJacRow::d_h0)
+        let fill = |r: &PointJacRow, out: &mut [f64]| r.dense_row(&self.kernel, nx, ny, out);
+        dense_jacobian(unknowns, self.hx * self.hy, row, fill, PointJacRow::d_h0)
     }
     fn residual_at(&self, phys: &PointPhysics, c: usize) -> f64 {
         self.f[c] - self.reynolds(phys, c % self.nx, c / self.nx)
