@@ -33,6 +33,23 @@ pub struct NewtonParams {
     pub stall_window: usize,
 }
 
+impl NewtonParams {
+    /// The full solve that starts a multigrid of `levels` levels on its coarsest level:
+    /// `max_iter` iterations, given up when stalled ([`MULTIGRID_STALL_WINDOW`]) except by the
+    /// Newton baseline (one level), which has no fallback and runs its budget.
+    pub fn coarsest_start(max_iter: usize, levels: usize) -> Self {
+        NewtonParams {
+            max_iter,
+            stall_window: if levels > 1 {
+                MULTIGRID_STALL_WINDOW
+            } else {
+                0
+            },
+            ..NewtonParams::default()
+        }
+    }
+}
+
 impl Default for NewtonParams {
     fn default() -> Self {
         NewtonParams {

@@ -66,6 +66,26 @@ impl std::ops::DerefMut for PointPhysics {
     }
 }
 
+/// `f(j, row)` for every row j of `data` (rows of `nx` values, row-major like a level's fields),
+/// on the rayon pool when `parallel`; the rows are independent, so the result is the same.
+pub fn for_each_row<T: Send>(
+    parallel: bool,
+    data: &mut [T],
+    nx: usize,
+    f: impl Fn(usize, &mut [T]) + Sync + Send,
+) {
+    if parallel {
+        use rayon::prelude::*;
+        data.par_chunks_mut(nx)
+            .enumerate()
+            .for_each(|(j, row)| f(j, row));
+    } else {
+        for (j, row) in data.chunks_mut(nx).enumerate() {
+            f(j, row);
+        }
+    }
+}
+
 /// Nodes per rayon job in [`PointLevel::update_film_parallel`].
 const PARALLEL_CHUNK: usize = 4096;
 
@@ -166,7 +186,8 @@ impl PointLevel {
         i == 0 || j == 0 || i + 1 == self.nx || j + 1 == self.ny
     }
 
-    /// The deformation sum c K*P (no H0, no gap) into `work`.
+    /// The deformation sum c K*P (no H0, no gap) into `work` (the FFT product on the rayon pool
+    /// for a `parallel` level).
     pub fn deformation(&mut self, phys: &PointPhysics) {
         if phys.elastic {
             if self.direct_deformation {
@@ -177,12 +198,17 @@ impl PointLevel {
                     &self.nodes.p,
                     &mut self.nodes.work,
                 );
+            } else if self.parallel {
+                self.deform
+                    .apply_parallel(&self.nodes.p, &mut self.nodes.work);
             } else {
                 self.deform.apply(&self.nodes.p, &mut self.nodes.work);
             }
-            for w in self.work.iter_mut() {
-                *w *= phys.coef;
-            }
+            for_each_row(self.parallel, &mut self.nodes.work, self.nx, |_, row| {
+                for w in row {
+                    *w *= phys.coef;
+                }
+            });
         } else {
             self.work.fill(0.0);
         }
@@ -199,37 +225,25 @@ impl PointLevel {
     }
 
     /// [`PointLevel::update_film`] with the film and the coefficients computed on the rayon pool
-    /// (and the deformation product by [`DeformPlan2d::apply_parallel`]); the result is the same
-    /// to the bit, whatever the number of threads.
+    /// (and the deformation by [`PointLevel::deformation`]'s parallel product); the result is
+    /// the same to the bit, whatever the number of threads.
     fn update_film_parallel(&mut self, phys: &PointPhysics, h0: f64) {
         use rayon::prelude::*;
-        if phys.elastic && !self.direct_deformation {
-            self.deform
-                .apply_parallel(&self.nodes.p, &mut self.nodes.work);
-        } else {
-            self.deformation(phys);
-        }
-        // The FFT product is the bare sum: its coefficient is applied below, as deformation does.
-        let coef = if phys.elastic && !self.direct_deformation {
-            phys.coef
-        } else {
-            1.0
-        };
+        self.deformation(phys);
         let law = phys.coefficients();
         let nodes = &mut self.nodes;
         nodes
             .film
             .par_chunks_mut(PARALLEL_CHUNK)
-            .zip(nodes.work.par_chunks_mut(PARALLEL_CHUNK))
+            .zip(nodes.work.par_chunks(PARALLEL_CHUNK))
             .zip(self.gap.par_chunks(PARALLEL_CHUNK))
             .zip(nodes.p.par_chunks(PARALLEL_CHUNK))
             .zip(nodes.rho.par_chunks_mut(PARALLEL_CHUNK))
             .zip(nodes.eps.par_chunks_mut(PARALLEL_CHUNK))
             .zip(nodes.divisor.par_chunks_mut(PARALLEL_CHUNK))
             .for_each(|((((((film, work), gap), p), rho), eps), divisor)| {
-                for ((f, w), &g) in film.iter_mut().zip(work.iter_mut()).zip(gap) {
-                    *w *= coef;
-                    *f = h0 + g + *w;
+                for ((f, &w), &g) in film.iter_mut().zip(work).zip(gap) {
+                    *f = h0 + g + w;
                 }
                 law.update(p, film, rho, eps, divisor);
             });
@@ -281,18 +295,9 @@ impl PointLevel {
 
     /// r = f - L at interior nodes, 0 on the boundary; with `active_only`, 0 also where P = 0.
     pub fn residual(&self, phys: &PointPhysics, active_only: bool, out: &mut [f64]) {
-        if self.parallel {
-            use rayon::prelude::*;
-            let nx = self.nx;
-            out[..nx * self.ny]
-                .par_chunks_mut(nx)
-                .enumerate()
-                .for_each(|(j, row)| self.residual_row(phys, active_only, j, row));
-            return;
-        }
-        for j in 0..self.ny {
-            self.residual_row(phys, active_only, j, &mut out[j * self.nx..][..self.nx]);
-        }
+        for_each_row(self.parallel, &mut out[..self.len()], self.nx, |j, row| {
+            self.residual_row(phys, active_only, j, row)
+        });
     }
 
     /// [`PointLevel::residual`] of row j into `row` (nx values).

@@ -20,9 +20,7 @@ use crate::discrete::line::operator::{LineLevel, LinePhysics};
 use crate::model::case::LineCase;
 use crate::solve::line::relax::{relax, LineScratch};
 use crate::solve::multilevel::{grid_level, Contact, DomainRule, Multigrid};
-use crate::solve::newton::{
-    load_slope, newton_solve, NewtonOutcome, NewtonParams, MULTIGRID_STALL_WINDOW,
-};
+use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
 use crate::solve::params::{FinerCoarsest, MgParams};
 use std::f64::consts::PI;
 
@@ -253,16 +251,10 @@ impl Contact for LineContact {
     /// Full Newton (with the load equation) on the coarsest level from the initial guess, then the
     /// slope dG/dH0 from a second fixed-H0 solve at a perturbed H0.
     fn start_coarse(mg: &mut LineMultigrid, with_slope: bool) -> NewtonOutcome {
-        let multigrid = mg.levels.len() > 1;
+        let np = NewtonParams::coarsest_start(mg.params.newton_max_iter, mg.levels.len());
         let lv = &mut mg.levels[0];
         lv.f.fill(0.0);
         lv.g = PI / 2.0;
-        let np = NewtonParams {
-            max_iter: mg.params.newton_max_iter,
-            // The Newton baseline (one level) has no fallback: it runs its budget.
-            stall_window: if multigrid { MULTIGRID_STALL_WINDOW } else { 0 },
-            ..NewtonParams::default()
-        };
         let out = newton_solve(lv, &mg.phys, &mut mg.h0, &np);
         let first = out;
         mg.work_units += (out.iterations * lv.len()) as f64 / mg.extra.fine_intervals as f64;

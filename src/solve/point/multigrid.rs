@@ -13,12 +13,10 @@
 
 use crate::discrete::point::domain::PointDomain;
 use crate::discrete::point::domain::PointDomainParams;
-use crate::discrete::point::operator::{PointLevel, PointPhysics};
+use crate::discrete::point::operator::{for_each_row, PointLevel, PointPhysics};
 use crate::model::case::{Elasticity, PointCase};
 use crate::solve::multilevel::{grid_level, Contact, DomainRule, Multigrid};
-use crate::solve::newton::{
-    load_slope, newton_solve, NewtonOutcome, NewtonParams, MULTIGRID_STALL_WINDOW,
-};
+use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
 use crate::solve::params::{FinerCoarsest, MgParams};
 use crate::solve::point::relax::{point_line_sweep, PointScratch};
 
@@ -140,15 +138,7 @@ impl Contact for PointContact {
     type Extra = PointExtra;
     fn sweep(mg: &mut PointMultigrid, l: usize) -> f64 {
         let lv = &mut mg.levels[l];
-        let parallel = lv.parallel;
-        point_line_sweep(
-            lv,
-            &mg.phys,
-            mg.h0,
-            &mg.params.relax,
-            &mut mg.extra.scratch,
-            parallel,
-        );
+        point_line_sweep(lv, &mg.phys, mg.h0, &mg.params.relax, &mut mg.extra.scratch);
         ((lv.nx - 1) * (lv.ny - 1)) as f64 / mg.extra.fine_cells
     }
 
@@ -174,42 +164,32 @@ impl Contact for PointContact {
             }
         }
         coarse.update_film(phys, h0);
-        // Row j of f and of the frozen marks from the coarse operator and the fine level (taken
-        // out of `coarse` so that its rows can be filled in parallel).
+        // The rows of f and of the frozen marks from the coarse operator and the fine level
+        // (taken out of `coarse` so that its rows can be filled in parallel).
         let (mut f, mut frozen) = (
             std::mem::take(&mut coarse.nodes.f),
             std::mem::take(&mut coarse.nodes.frozen),
         );
         let cl = &*coarse;
-        let nx = fine.nx;
-        let row = |j: usize, f: &mut [f64], frozen: &mut [bool]| {
+        let (nx, interior) = (fine.nx, |j: usize| j > 0 && j + 1 < cl.ny);
+        for_each_row(cl.parallel, &mut frozen, cl.nx, |j, frozen| {
+            if interior(j) {
+                for (i, fr) in frozen.iter_mut().enumerate().take(cl.nx - 1).skip(1) {
+                    let fc = fine.at(2 * i, 2 * j);
+                    *fr = [fc - nx, fc, fc + nx]
+                        .iter()
+                        .any(|&b| (b - 1..=b + 1).any(|q| fine.p[q] <= 0.0 || fine.frozen[q]));
+                }
+            }
+        });
+        for_each_row(cl.parallel, &mut f, cl.nx, |j, f| {
             f.fill(0.0);
-            if j == 0 || j + 1 == cl.ny {
-                return;
+            if interior(j) {
+                for (i, v) in f.iter_mut().enumerate().take(cl.nx - 1).skip(1) {
+                    *v = cl.reynolds(phys, i, j) + full_weight(fine, r, i, j);
+                }
             }
-            for i in 1..cl.nx - 1 {
-                let fc = fine.at(2 * i, 2 * j);
-                frozen[i] = [fc - nx, fc, fc + nx]
-                    .iter()
-                    .any(|&b| (b - 1..=b + 1).any(|q| fine.p[q] <= 0.0 || fine.frozen[q]));
-                f[i] = cl.reynolds(phys, i, j) + full_weight(fine, r, i, j);
-            }
-        };
-        if cl.parallel {
-            use rayon::prelude::*;
-            f.par_chunks_mut(cl.nx)
-                .zip(frozen.par_chunks_mut(cl.nx))
-                .enumerate()
-                .for_each(|(j, (f, frozen))| row(j, f, frozen));
-        } else {
-            for (j, (f, frozen)) in f
-                .chunks_mut(cl.nx)
-                .zip(frozen.chunks_mut(cl.nx))
-                .enumerate()
-            {
-                row(j, f, frozen);
-            }
-        }
+        });
         coarse.nodes.f = f;
         coarse.nodes.frozen = frozen;
     }
@@ -227,7 +207,7 @@ impl Contact for PointContact {
             coarse.p[c] - ph[c]
         };
         let (nx, ny) = (fine.nx, fine.ny);
-        let row = |j: usize, p: &mut [f64]| {
+        for_each_row(fine.parallel, &mut fine.nodes.p, nx, |j, p| {
             if j == 0 || j + 1 == ny {
                 return;
             }
@@ -237,19 +217,7 @@ impl Contact for PointContact {
                 let v = 0.25 * (e(ic, jc) + e(ic1, jc) + e(ic, jc1) + e(ic1, jc1));
                 *p = (*p + v).max(0.0);
             }
-        };
-        if fine.parallel {
-            use rayon::prelude::*;
-            fine.nodes
-                .p
-                .par_chunks_mut(nx)
-                .enumerate()
-                .for_each(|(j, p)| row(j, p));
-        } else {
-            for (j, p) in fine.nodes.p.chunks_mut(nx).enumerate() {
-                row(j, p);
-            }
-        }
+        });
         fine.update_film(phys, h0);
     }
 
@@ -304,16 +272,10 @@ impl Contact for PointContact {
         lv.update_film(&mg.phys, mg.h0);
     }
     fn start_coarse(mg: &mut PointMultigrid, with_slope: bool) -> NewtonOutcome {
-        let multigrid = mg.levels.len() > 1;
+        let np = NewtonParams::coarsest_start(mg.params.newton_max_iter, mg.levels.len());
         let lv = &mut mg.levels[0];
         lv.f.fill(0.0);
         lv.g = mg.phys.load;
-        let np = NewtonParams {
-            max_iter: mg.params.newton_max_iter,
-            // The Newton baseline (one level) has no fallback: it runs its budget.
-            stall_window: if multigrid { MULTIGRID_STALL_WINDOW } else { 0 },
-            ..NewtonParams::default()
-        };
         let out = newton_solve(lv, &mg.phys, &mut mg.h0, &np);
         mg.work_units += PointContact::newton_cost(mg, out.iterations);
         if !(out.converged || out.residual < 1e-6) {

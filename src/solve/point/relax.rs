@@ -45,8 +45,8 @@ pub struct PointScratch {
     jobs: Vec<PointScratch>,
 }
 
-/// One sweep of x-line relaxation over all interior rows: Gauss-Seidel from row to row, or, with
-/// `parallel`, zebra order (all odd rows from the same state, then all even rows; the rows of one
+/// One sweep of x-line relaxation over all interior rows: Gauss-Seidel from row to row, or, on a
+/// `parallel` level ([`PointLevel::parallel`]), zebra order (all odd rows from the same state, then all even rows; the rows of one
 /// colour solved in parallel on the current rayon pool, the film updated by the FFT product between
 /// the colours). Zebra results do not depend on the number of threads.
 pub fn point_line_sweep(
@@ -55,10 +55,9 @@ pub fn point_line_sweep(
     h0: f64,
     rp: &RelaxParams,
     s: &mut PointScratch,
-    parallel: bool,
 ) {
     let (nx, ny) = (lv.nx, lv.ny);
-    if parallel {
+    if lv.parallel {
         use rayon::prelude::*;
         // The changes of one colour, row after row, filled by one job per thread, each with its
         // own row scratch kept between sweeps (taken out of `s` so the jobs can borrow them).
