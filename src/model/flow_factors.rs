@@ -276,11 +276,23 @@ mod tests {
             [1.52, 1.1838477631085023, 1.065],
             [1.87, 1.3075914498161483, 1.10875],
         ];
+        assert_table(&want, [1.0, 2.0, 4.0], "phi_x", |f| {
+            assert!(!f.below_range);
+            f.phi_x
+        });
+    }
+
+    /// Each `want[row][k]` is the factor `pick` of the Table row's gamma at `hs[k]`, to 1e-14.
+    fn assert_table(
+        want: &[[f64; 3]; 7],
+        hs: [f64; 3],
+        name: &str,
+        pick: impl Fn(&FlowFactors) -> f64,
+    ) {
         for (g, row) in GAMMAS.iter().zip(want.iter()) {
-            for (h, w) in [1.0, 2.0, 4.0].iter().zip(row.iter()) {
-                let f = flow_factors(*h, *g).unwrap();
-                assert!(rel(f.phi_x, *w) < 1e-14, "phi_x({h}, {g}) = {}", f.phi_x);
-                assert!(!f.below_range);
+            for (h, w) in hs.iter().zip(row.iter()) {
+                let v = pick(&flow_factors(*h, *g).unwrap());
+                assert!(rel(v, *w) < 1e-14, "{name}({h}, {g}) = {v}");
             }
         }
     }
@@ -297,12 +309,7 @@ mod tests {
             [0.4698424836472651, 0.19904623139886016, 0.08657450213759077],
             [0.3756640346232881, 0.1517062150558541, 0.06582339724378679],
         ];
-        for (g, row) in GAMMAS.iter().zip(want.iter()) {
-            for (h, w) in [1.0, 3.0, 6.0].iter().zip(row.iter()) {
-                let f = flow_factors(*h, *g).unwrap();
-                assert!(rel(f.phi_s, *w) < 1e-14, "Phi_s({h}, {g}) = {}", f.phi_s);
-            }
-        }
+        assert_table(&want, [1.0, 3.0, 6.0], "Phi_s", |f| f.phi_s);
     }
 
     /// An independent check of the Table 7-3 transcription: 7-57 and 7-58 meet at H = 5 for
