@@ -407,7 +407,10 @@ fn table() -> Vec<Bad> {
         input("--accuracy 1.5", "solve --M 20 --accuracy 1.5"),
         input("--accuracy NaN", "solve --M 20 --accuracy NaN"),
         input("--accuracy -0.1", "solve --M 20 --accuracy -0.1"),
-        input("--full-model", "solve --M 20 --full-model"),
+        input("--full-model", "solve --M 20 --grid 513 --full-model"),
+        input("--accuracy", "solve --M 20 --grid 513 --accuracy 0.01"),
+        input("--no-estimate", "solve --M 20 --no-estimate"),
+        input("--max-grid", "solve --M 20 --method newton --max-grid 1025"),
         input("--max-grid", "solve --M 20 --max-grid 0"),
         input("--max-grid 0", "solve --M 20 --accuracy 0.01 --max-grid 0"),
         input(

@@ -51,15 +51,71 @@ fn json_has_exactly_the_documented_fields() {
         "work_units",
         "wall_s",
         "algebraic_error",
+        "H_c_err",
+        "H_min_err",
+        "error_estimate",
+        "accuracy_met",
     ];
     want.sort();
     assert_eq!(keys, want);
+    // A fixed grid: no target, but the half-grid estimate (1025 points are 0.19 % below the
+    // grid limit 5.27566, Richardson over tight solves on 8193 and 16385 points).
+    assert!(v["accuracy_met"].is_null());
+    let (e_c, e_m) = (
+        v["H_c_err"].as_f64().unwrap(),
+        v["H_min_err"].as_f64().unwrap(),
+    );
+    assert!(
+        e_c > 1e-5 && e_c < 5e-3 && e_m > 1e-5 && e_m < 5e-3,
+        "{e_c} {e_m}"
+    );
+    assert_eq!(v["error_estimate"].as_f64().unwrap(), e_c.max(e_m));
     assert_eq!(v["model_used"], "full");
     assert_eq!(v["level"], 5, "1025 points are 2^5 x 32 intervals");
     assert_eq!(v["status"], "converged");
     assert_eq!(v["grid"], 1025);
     let hc = v["H_c"].as_f64().unwrap();
     assert!((hc / 5.2655 - 1.0).abs() < 1e-3, "H_c {hc}");
+}
+
+/// The default solve meets the default 1 % target, says so, and prints its error bars.
+#[test]
+fn the_default_solve_meets_one_percent_with_error_bars() {
+    let out = ehlmap(&["solve", "--M", "20", "--L", "10", "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("one JSON object");
+    assert_eq!(v["status"], "converged", "{}", v["reason"]);
+    assert_eq!(v["accuracy_met"], true, "{}", v["reason"]);
+    let e = v["error_estimate"].as_f64().unwrap();
+    assert!(e <= 0.01, "{e}");
+    // Against the grid-converged H_c (Richardson over tight solves on 8193 and 16385 points,
+    // 5.275501 and 5.275621): within the estimate.
+    let hc = v["H_c"].as_f64().unwrap();
+    let reference = 5.27566;
+    assert!(
+        (hc / reference - 1.0).abs() <= v["H_c_err"].as_f64().unwrap(),
+        "H_c {hc}"
+    );
+    let text = ehlmap(&["solve", "--M", "20", "--L", "10"]);
+    let text = String::from_utf8_lossy(&text.stdout);
+    assert!(text.contains("H_c            5.2"), "{text}");
+    assert!(text.contains(" +- "), "{text}");
+    assert!(text.contains("accuracy       target met"), "{text}");
+    // A point contact is a circular one by default.
+    let out = ehlmap(&[
+        "solve",
+        "--contact",
+        "point",
+        "--M",
+        "20",
+        "--L",
+        "10",
+        "--json",
+    ]);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).expect("one JSON object");
+    assert_eq!(
+        (v["D"].as_f64(), v["accuracy_met"].as_bool()),
+        (Some(1.0), Some(true))
+    );
 }
 
 #[test]

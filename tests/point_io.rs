@@ -53,7 +53,9 @@ fn point_specs_parse_and_bad_ones_name_the_key() {
     let s = spec::parse("p.toml", &format!("{head}D = [0.5, 1]\n"), "p").unwrap();
     assert_eq!(s.contacts[0].contact, Contact::Point);
     assert_eq!(s.d.as_deref(), Some(&[0.5, 1.0][..]));
-    assert_eq!(s.contacts[0].numerics.grid, 129);
+    // No grid named: the default 1 % target, up to 513^2.
+    let n = &s.contacts[0].numerics;
+    assert_eq!((n.grid, n.accuracy), (513, Some(0.01)));
     let s = spec::parse(
         "p.toml",
         &format!("{head}D = {{ from = 0.05, to = 1, count = 4, scale = \"log\" }}\n"),
@@ -222,6 +224,10 @@ fn point_json_has_the_line_fields_plus_d_k_y_min() {
         "work_units",
         "wall_s",
         "algebraic_error",
+        "H_c_err",
+        "H_min_err",
+        "error_estimate",
+        "accuracy_met",
     ];
     want.sort();
     assert_eq!(keys, want);

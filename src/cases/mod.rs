@@ -7,7 +7,7 @@ use crate::model::case::Contact;
 pub use crate::model::case_file::{read_case, Body, CaseError, CaseSpec};
 pub use crate::model::dimensional::Groups;
 use crate::model::lubricant::Viscosity;
-use crate::solve::solution::{Outputs, PointFields, Profile};
+use crate::solve::solution::{with_error, Outputs, PointFields, Profile};
 use crate::solve::Status;
 use crate::strategy::solve_case::{solve as solve_case, SolveParams};
 use serde::Serialize;
@@ -54,7 +54,7 @@ pub fn run(
     let (mut numerical, mut p_max, mut fields) = (None, None, None);
     if solve {
         let params = SolveParams {
-            grid: Some(d.grid),
+            grid: d.grid,
             keep_fields,
             ..SolveParams::default()
         };
@@ -122,6 +122,19 @@ fn film_parameter(spec: &CaseSpec, r: &mut CaseReport) {
     });
 }
 
+/// Whether the numerical answer met its accuracy target, in words.
+fn accuracy_words(o: &Outputs) -> String {
+    match (o.error_estimate, o.accuracy_met) {
+        (Some(e), Some(true)) => format!("target met, error estimate {:.1} %", 100.0 * e),
+        (Some(e), Some(false)) => format!(
+            "target NOT met: error estimate {:.1} % at the finest grid allowed (see the solve's reason)",
+            100.0 * e
+        ),
+        (Some(e), None) => format!("error estimate {:.1} % (fixed grid, against its half grid)", 100.0 * e),
+        (None, _) => "no error estimate (see the solve's reason)".to_string(),
+    }
+}
+
 /// A readable report in engineering units.
 pub fn summary(r: &CaseReport) -> String {
     let mut s = if r.contact == Contact::Point {
@@ -182,6 +195,7 @@ pub fn summary(r: &CaseReport) -> String {
     ));
     if let Some(o) = &r.numerical {
         s.push_str(&format!("numerical solve: {} ({})\n", o.status, o.reason));
+        s.push_str(&format!("accuracy: {}\n", accuracy_words(o)));
     }
     for (name, what, h) in &r.films {
         let base = r
@@ -194,7 +208,12 @@ pub fn summary(r: &CaseReport) -> String {
             }
             _ => String::new(),
         };
-        s.push_str(&format!("{what:<6} {:>9.4} um  {name}{dev}\n", h * 1e6));
+        let value = match (&r.numerical, name.starts_with("ehlmap"), what.as_str()) {
+            (Some(o), true, "h_c") => with_error(h * 1e6, o.h_c_err),
+            (Some(o), true, "h_min") => with_error(h * 1e6, o.h_min_err),
+            _ => format!("{:.4}", h * 1e6),
+        };
+        s.push_str(&format!("{what:<6} {value:>9} um  {name}{dev}\n"));
     }
     if let Some(p) = r.p_max {
         s.push_str(&format!("p_max  {:.3} GPa\n", p * 1e-9));

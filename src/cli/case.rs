@@ -5,6 +5,7 @@
 use crate::cli::error::{input, CliError};
 use crate::cli::limits::{check_memory, estimate, Solver};
 use crate::cli::output::{note, out, outln, prepare_dir, report_plot};
+use ehlmap::strategy::solve_case::default_max_grid;
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
@@ -32,10 +33,17 @@ pub fn run_case(a: &CaseArgs) -> Result<(), CliError> {
     let derived = spec.derive().map_err(|e| input(format!("{path}: {e}")))?;
     if !a.no_solve {
         let contact = derived.case.contact();
+        let (grid, what) = match derived.grid {
+            Some(g) => (g, format!("{path}: grid = {g}")),
+            None => {
+                let g = default_max_grid(contact);
+                (g, format!("{path}: the accuracy ladder's largest grid {g}"))
+            }
+        };
         check_memory(
-            &format!("{path}: grid = {}", derived.grid),
+            &what,
             &format!("a {contact} solve on this grid"),
-            estimate(contact, derived.grid, Solver::Multigrid),
+            estimate(contact, grid, Solver::Multigrid),
         )?;
     }
     if let Some(dir) = &a.plot {

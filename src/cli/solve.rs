@@ -17,7 +17,7 @@ use ehlmap::solve::params::Method;
 use ehlmap::solve::params::{Converge, CycleType};
 use ehlmap::solve::solution::{Outputs, Solution};
 use ehlmap::solve::{CycleEvent, Observer};
-use ehlmap::strategy::solve_case::{default_max_grid, solve, SolveParams};
+use ehlmap::strategy::solve_case::{default_max_grid, solve, SolveParams, DEFAULT_ACCURACY};
 use std::path::PathBuf;
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
@@ -97,11 +97,16 @@ pub struct SolveArgs {
     /// Solver: full multigrid, or the baselines (dense Newton, single-grid relaxation).
     #[arg(long, value_enum, default_value = "multigrid")]
     pub method: MethodArg,
-    /// Points of the finest grid (rounded up to 2^k n0 + 1): default 2049 for line contacts,
-    /// 33 to 1048577; per direction for point contacts, default 129, 17 to 2049. Not with
-    /// --accuracy (the ladder picks the grid up to --max-grid).
+    /// Fix the finest grid (rounded up to 2^k n0 + 1): 33 to 1048577 line points, 17 to 2049
+    /// point nodes per direction. The half grid is solved too, for the error estimate (see
+    /// --no-estimate). Without --grid the accuracy ladder picks the grid (--accuracy); the
+    /// baseline methods use 2049 line points or 129 point nodes per direction.
     #[arg(long)]
     pub grid: Option<usize>,
+    /// With --grid or a baseline method: skip the half-grid solve, so H_c_err, H_min_err and
+    /// error_estimate are null (benchmarks only).
+    #[arg(long)]
+    pub no_estimate: bool,
     /// Multigrid cycle (default v); --method multigrid only.
     #[arg(long, value_enum)]
     pub cycle: Option<CycleArg>,
@@ -109,17 +114,18 @@ pub struct SolveArgs {
     /// load and H_c tolerances (tight); --method multigrid only.
     #[arg(long, value_enum)]
     pub converge: Option<ConvergeArg>,
-    /// Target relative accuracy of H_c and H_min: pick the cheapest adequate model (rigid,
-    /// isoviscous, closed form; see --full-model) and refine the grid from 257 points until the
-    /// Richardson estimate meets it (up to --max-grid); reports model_used, level,
-    /// error_estimate and accuracy_met. --method multigrid only.
+    /// Target relative accuracy of H_c and H_min (default 0.01): pick the cheapest adequate
+    /// model (rigid, isoviscous, closed form; see --full-model) and refine the grid from 257
+    /// line points (33 point nodes per direction) until the Richardson estimate meets it (up
+    /// to --max-grid); reports model_used, level, H_c_err, H_min_err, error_estimate and
+    /// accuracy_met. --method multigrid only; not with --grid.
     #[arg(long, allow_hyphen_values = true)]
     pub accuracy: Option<f64>,
-    /// With --accuracy: always solve the full model (no model selection).
+    /// Always solve the full model (no model selection; not with --grid).
     #[arg(long)]
     pub full_model: bool,
-    /// With --accuracy: the largest grid the ladder may use (default 16385 line points, 513
-    /// point nodes per direction; line 513 to 1048577, point 65 to 513).
+    /// The largest grid the accuracy ladder may use (default 16385 line points, 513 point
+    /// nodes per direction; line 513 to 1048577, point 65 to 513; not with --grid).
     #[arg(long)]
     pub max_grid: Option<usize>,
     /// Cycles allowed on the finest level, 1 to 100000 (default: the contact's, 60 for line
@@ -214,21 +220,29 @@ fn check_flags(a: &SolveArgs) -> Result<(), CliError> {
             ));
         }
     }
-    if a.accuracy.is_none() {
+    // The accuracy ladder runs unless the grid is fixed or a baseline method is chosen.
+    let fixed = match (a.grid, method) {
+        (Some(g), _) => Some(format!("--grid {g}")),
+        (None, Some(m)) => Some(format!("--method {m}")),
+        (None, None) => None,
+    };
+    if let Some(why) = &fixed {
         for (given, flag) in [
+            (a.accuracy.is_some(), "--accuracy"),
             (a.full_model, "--full-model"),
             (a.max_grid.is_some(), "--max-grid"),
         ] {
             if given {
                 return Err(input(format!(
-                    "{flag} applies with --accuracy only (without a target the solve uses --grid)"
+                    "{flag} applies to the accuracy ladder, which {why} turns off (the solve \
+                     uses one grid); drop {flag}, or drop --grid and let the ladder pick the grid"
                 )));
             }
         }
-    } else if let Some(g) = a.grid {
-        return Err(input(format!(
-            "--grid {g} with --accuracy: the accuracy ladder picks the grid; give --max-grid instead"
-        )));
+    } else if a.no_estimate {
+        return Err(input(
+            "--no-estimate applies with --grid only (the accuracy ladder always estimates its error)",
+        ));
     }
     if let Some(n) = a.max_cycles {
         if !(1..=MAX_CYCLES).contains(&n) {
@@ -422,7 +436,13 @@ fn params_arg(a: &SolveArgs, case: &Case) -> Result<SolveParams, CliError> {
         },
         max_cycles: a.max_cycles,
         fallback: !a.no_fallback,
-        accuracy: a.accuracy.map(accuracy_arg).transpose()?,
+        accuracy: match (a.grid, a.method) {
+            (None, MethodArg::Multigrid) => {
+                Some(accuracy_arg(a.accuracy.unwrap_or(DEFAULT_ACCURACY))?)
+            }
+            _ => None,
+        },
+        estimate: !a.no_estimate,
         max_grid: a
             .max_grid
             .map(|g| max_grid_arg(g, case.contact()))

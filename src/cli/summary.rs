@@ -1,9 +1,10 @@
 //! The readable summary of `ehlmap solve`: one line per output, with the status and its reason
-//! first and the model and error estimate last.
+//! first, H_c and H_min with their error bars (`4.485 +- 0.041`, digits to the error's second
+//! significant figure), and the model and the accuracy, met or not in words, last.
 
 use ehlmap::model::case::Case;
 use ehlmap::model::error::num;
-use ehlmap::solve::solution::{ModelUsed, Outputs};
+use ehlmap::solve::solution::{with_error, ModelUsed, Outputs};
 
 /// The readable summary of a solve, line or point contact.
 pub fn summary(case: &Case, o: &Outputs) -> String {
@@ -40,13 +41,19 @@ pub fn summary(case: &Case, o: &Outputs) -> String {
         ("status", format!("{}: {}", o.status, o.reason)),
         (
             "H_c",
-            format!("{:.6}   (film at {h_c_at}, Moes units)", o.h_c),
+            format!(
+                "{}   (film at {h_c_at}, Moes units)",
+                with_error(o.h_c, o.h_c_err)
+            ),
         ),
         (
             "H_c_pmax",
             format!("{:.6}   (film at the pressure maximum)", o.h_c_pmax),
         ),
-        ("H_min", format!("{:.6}   at {h_min_at}", o.h_min)),
+        (
+            "H_min",
+            format!("{}   at {h_min_at}", with_error(o.h_min, o.h_min_err)),
+        ),
         ("P_max", format!("{:.6}", o.p_max)),
         ("spike", spike),
         ("H0", format!("{:.6}", o.h0)),
@@ -72,15 +79,25 @@ pub fn summary(case: &Case, o: &Outputs) -> String {
     out + &model_line(o)
 }
 
-/// The model and error-estimate line of a summary (accuracy targets only).
+/// The model and accuracy lines of a summary: which model answered, and whether the accuracy
+/// target was met, in words.
 fn model_line(o: &Outputs) -> String {
-    match o.error_estimate {
-        Some(e) => format!(
-            "model          {}, level {}, error estimate {e:.1e}\n",
-            o.model_used,
-            o.level.map_or("-".to_string(), |l| l.to_string())
-        ),
-        None if o.model_used != ModelUsed::Full => format!("model          {}\n", o.model_used),
-        None => String::new(),
-    }
+    let level = o.level.map_or("-".to_string(), |l| l.to_string());
+    let model = format!("model          {}, level {level}\n", o.model_used);
+    let errs = match (o.h_c_err, o.h_min_err) {
+        (Some(c), Some(m)) => format!(" (H_c {c:.1e}, H_min {m:.1e})"),
+        _ => String::new(),
+    };
+    let accuracy = match (o.error_estimate, o.accuracy_met) {
+        (Some(e), Some(true)) => format!("target met: error estimate {e:.1e}{errs}"),
+        (Some(e), Some(false)) => {
+            format!("target NOT met: error estimate {e:.1e}{errs} (see the status line for why)")
+        }
+        (Some(e), None) => {
+            format!("error estimate {e:.1e}{errs} against the half grid (no target)")
+        }
+        (None, Some(_)) => "target NOT met: no error estimate (see the status line for why)".into(),
+        (None, None) => "no error estimate (see the status line for why)".into(),
+    };
+    model + &format!("accuracy       {accuracy}\n")
 }

@@ -13,11 +13,6 @@ use crate::model::lubricant::{Density, Viscosity};
 use crate::model::oils::{LubricantSpec, Resolved};
 use serde::{Deserialize, Serialize};
 
-/// Default finest grid of a line case: points.
-pub const LINE_CASE_GRID: usize = 4097;
-/// Default finest grid of a point case: points per direction.
-pub const POINT_CASE_GRID: usize = 129;
-
 /// A case file that cannot be read or is not a valid case; the message names the input.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum CaseError {
@@ -85,8 +80,8 @@ pub struct CaseSpec {
     /// The `[lubricant]` table (a Walther oil at a temperature), instead of `eta0` and `alpha`.
     #[serde(default)]
     pub lubricant: Option<LubricantSpec>,
-    /// Finest grid: points (line, default [`LINE_CASE_GRID`]) or points per direction (point,
-    /// default [`POINT_CASE_GRID`]).
+    /// A fixed finest grid: points (line) or points per direction (point). By default the
+    /// accuracy ladder of `ehlmap solve` picks the grid (1 % target on H_c and H_min).
     #[serde(default)]
     pub grid: Option<usize>,
     /// Roelands viscosity in the solve with this index z (default: Barus) ...

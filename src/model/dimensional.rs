@@ -27,9 +27,7 @@
 //! elliptic regime formula (g-parameters).
 
 use crate::model::case::{Case, Contact, LineCase, Models, PointCase};
-use crate::model::case_file::{
-    check, e_reduced, CaseError, CaseSpec, LINE_CASE_GRID, POINT_CASE_GRID,
-};
+use crate::model::case_file::{check, e_reduced, CaseError, CaseSpec};
 use crate::model::formulas::{
     dowson_higginson_line_hmin, dowson_toyoda_line_hc, elliptic_g_params, elliptic_regime_hmin,
     hamrock_dowson_hc, hamrock_dowson_hmin, line_g_params, line_regime_hmin, moes_line_hc,
@@ -95,8 +93,8 @@ pub struct Groups {
 pub struct Derived {
     /// The case in Moes' parameters with the solver's models.
     pub case: Case,
-    /// Finest grid of the solve.
-    pub grid: usize,
+    /// Fixed finest grid of the solve; `None`: the accuracy ladder picks it (the default).
+    pub grid: Option<usize>,
     /// The speed group U_s = 2 U_m: a film is h = H_Moes r U_s^(1/2) (m).
     pub u_s: f64,
     /// The groups.
@@ -123,21 +121,23 @@ impl CaseSpec {
     }
 }
 
-/// The case's finest grid, default or given, within the range every solve takes
+/// The case's fixed finest grid when it names one, within the range every solve takes
 /// ([`Contact::grid_range`], as `ehlmap solve --grid` and a sweep's `numerics.grid`).
-fn case_grid(spec: &CaseSpec, contact: Contact) -> Result<usize, CaseError> {
-    let (default, unit) = match contact {
-        Contact::Line => (LINE_CASE_GRID, "points"),
-        Contact::Point => (POINT_CASE_GRID, "points per direction"),
+fn case_grid(spec: &CaseSpec, contact: Contact) -> Result<Option<usize>, CaseError> {
+    let unit = match contact {
+        Contact::Line => "points",
+        Contact::Point => "points per direction",
     };
-    let grid = spec.grid.unwrap_or(default);
+    let Some(grid) = spec.grid else {
+        return Ok(None);
+    };
     let (lo, hi) = contact.grid_range();
     if !(lo..=hi).contains(&grid) {
         return Err(CaseError::invalid(format!(
             "grid = {grid} is invalid: {lo} to {hi} {unit} for {contact} contacts"
         )));
     }
-    Ok(grid)
+    Ok(Some(grid))
 }
 
 /// `radius_y`: a line contact's bodies are cylinders (omitted or infinite); a point contact's
@@ -410,7 +410,7 @@ impl Loads {
 #[allow(clippy::too_many_arguments)]
 fn assemble(
     case: Case,
-    grid: usize,
+    grid: Option<usize>,
     u_s: f64,
     shape: Shape,
     lubricant: Lubricant,

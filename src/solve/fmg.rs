@@ -30,6 +30,8 @@ pub struct FmgControl {
     pub tol_h: f64,
     /// Load tolerance on the coarser FMG levels.
     pub tol_load_fmg: f64,
+    /// Fast convergence: the largest algebraic error the finest level may stop with.
+    pub max_algebraic: f64,
     /// Damping of the secant step on H0 (`None`: 1).
     pub load_factor: Option<f64>,
     /// The cycle budget of a coarser FMG level grows by this factor per level below the finest

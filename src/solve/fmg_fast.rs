@@ -18,8 +18,9 @@
 //!   rigid-isoviscous limit, weaker elsewhere);
 //! * the discretisation error of level l is estimated by Richardson for second order from level
 //!   l-1's final values, e_d = max |Q_l - Q_(l-1)| / (3 |Q_l|);
-//! * the finest level stops when e_a <= max(min(e_d / 10, 1e-2), tol_h) ([`FINEST_FRACTION`],
-//!   [`MAX_ALGEBRAIC_ERROR`]), after at
+//! * the finest level stops when e_a <= max(min(e_d / 10, cap), tol_h) ([`FINEST_FRACTION`];
+//!   the cap is `max_algebraic`, by default [`MAX_ALGEBRAIC_ERROR`] = 1e-2) and its residual is within [`STOP_RESIDUAL_FACTOR`] of the
+//!   smallest its cycles reached, after at
 //!   most `max_cycles` cycles (status max-iterations then); a coarser level when
 //!   e_a <= max(e_d, tol_h) ([`COARSE_FRACTION`]), after at most 2 `fmg_cycles` cycles.
 //!
@@ -93,14 +94,20 @@ impl Swing {
     }
 }
 
-/// The largest algebraic error the finest level may stop with, however large its
-/// discretisation error estimate: a grid so coarse that its estimate exceeds ten times this is
+/// The default largest algebraic error the finest level may stop with, however large its
+/// discretisation error estimate ([`crate::solve::params::MgParams::max_algebraic`]): a grid so coarse that its estimate exceeds ten times this is
 /// not a solution to stop at, and the cycles continue until it is met or the budget is spent.
 pub const MAX_ALGEBRAIC_ERROR: f64 = 1e-2;
 
 /// A level whose residual exceeds this multiple of the largest residual on the coarser levels
 /// has diverged: on a converging hierarchy the finer levels' residuals are no larger.
 pub const LEVEL_RESIDUAL_GROWTH: f64 = 1e3;
+
+/// The finest level stops only while its residual is within this factor of the smallest
+/// residual its cycles have reached: cycles whose residual grew (a pressure spike moving to its
+/// place on the finest grid) change H_c and H_min little from one cycle to the next while they
+/// are still far from the solution, so small changes there do not measure the algebraic error.
+pub const STOP_RESIDUAL_FACTOR: f64 = 2.0;
 
 /// Bracket ends of the load balance older than this many cycles are dropped.
 pub const BRACKET_MEMORY: usize = 4;
@@ -223,6 +230,8 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
         let mut prev_delta = None;
         lb.reset();
         let mut level_min_res = f64::INFINITY;
+        // The smallest residual of the level's cycles (not reset by damping).
+        let mut smallest_res = f64::INFINITY;
         let mut swing = Swing::default();
         // The cycle of the level's last damping: the contraction check starts again there.
         let mut damped_at = 0;
@@ -232,6 +241,7 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
                 history.push(rec);
             }
             level_max_res = level_max_res.max(rec.residual);
+            smallest_res = smallest_res.min(rec.residual);
             let diverged = check_divergence(s, l, final_level, &rec, &mut min_res)
                 .and_then(|()| no_contraction(l, k - damped_at, &rec, &mut level_min_res))
                 .and_then(|()| residual_jump(l, rec.residual, coarser_max_res));
@@ -262,12 +272,13 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
                 COARSE_FRACTION
             };
             let cap = if final_level {
-                MAX_ALGEBRAIC_ERROR
+                c.max_algebraic
             } else {
                 f64::INFINITY
             };
             let goal = (fraction * disc.unwrap_or(0.0)).min(cap).max(c.tol_h);
-            if alg <= goal {
+            let settled = !final_level || rec.residual <= STOP_RESIDUAL_FACTOR * smallest_res;
+            if alg <= goal && settled {
                 if final_level {
                     status = Status::Converged;
                     reason = match disc {

@@ -161,6 +161,11 @@ pub struct MgParams<D> {
     pub tol_h: f64,
     /// Load tolerance on the coarser FMG levels before moving up.
     pub tol_load_fmg: f64,
+    /// Fast convergence: the largest algebraic error the finest level may stop with, however
+    /// large its discretisation error estimate (default
+    /// [`crate::solve::fmg_fast::MAX_ALGEBRAIC_ERROR`]; the accuracy ladder lowers it to a
+    /// fraction of its target).
+    pub max_algebraic: f64,
     /// The contact's domain rule.
     pub domain: D,
     /// Line contacts: override the coarsest grid's interval count (a power of two >= 8).
@@ -199,6 +204,7 @@ impl<D> MgParams<D> {
             tol_load,
             tol_h,
             tol_load_fmg: 1e-4,
+            max_algebraic: crate::solve::fmg_fast::MAX_ALGEBRAIC_ERROR,
             domain,
             coarse_intervals: None,
             second_order: true,
@@ -218,6 +224,7 @@ impl<D> MgParams<D> {
             tol_load: self.tol_load,
             tol_h: self.tol_h,
             tol_load_fmg: self.tol_load_fmg,
+            max_algebraic: self.max_algebraic,
             load_factor: self.load_factor,
             coarse_budget_growth,
         }

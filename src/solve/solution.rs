@@ -155,13 +155,57 @@ pub struct Outputs {
     /// is far below the tolerances, and for a closed form).
     #[serde(skip_serializing_if = "Option::is_none", default)]
     pub algebraic_error: Option<f64>,
-    /// With an accuracy target only: the estimated relative discretisation error of H_c and
-    /// H_min (the larger; Richardson between this grid and the one with half the intervals).
-    #[serde(skip_serializing_if = "Option::is_none", default)]
+    /// The estimated relative error of H_c: the discretisation error by Richardson between
+    /// this grid and the one with half the intervals, plus the algebraic errors both solves
+    /// left, plus what a simplified model neglects or the point domain's truncation; none when
+    /// there is no estimate (`--no-estimate`, or a coarser solve did not converge).
+    #[serde(rename = "H_c_err", default)]
+    pub h_c_err: Option<f64>,
+    /// The same for H_min.
+    #[serde(rename = "H_min_err", default)]
+    pub h_min_err: Option<f64>,
+    /// The larger of `H_c_err` and `H_min_err`.
+    #[serde(default)]
     pub error_estimate: Option<f64>,
-    /// With an accuracy target only: whether the estimate met the target.
-    #[serde(skip_serializing_if = "Option::is_none", default)]
+    /// With an accuracy target: whether the estimate met it (none on a fixed grid).
+    #[serde(default)]
     pub accuracy_met: Option<bool>,
+}
+
+impl Outputs {
+    /// Set the relative error estimates of H_c and H_min; `error_estimate` is the larger.
+    pub fn set_errors(&mut self, h_c_err: f64, h_min_err: f64) {
+        self.h_c_err = Some(h_c_err);
+        self.h_min_err = Some(h_min_err);
+        self.error_estimate = Some(h_c_err.max(h_min_err));
+    }
+
+    /// Add `e` to every error estimate there is (a neglected effect, a truncation estimate).
+    pub fn widen_errors(&mut self, e: f64) {
+        for x in [
+            &mut self.h_c_err,
+            &mut self.h_min_err,
+            &mut self.error_estimate,
+        ] {
+            *x = x.map(|v| v + e);
+        }
+    }
+}
+
+/// `v +- e` with `e = v rel` to two significant figures and `v` to the same decimal; `v` to six
+/// decimals and "(no error estimate)" without `rel`.
+pub fn with_error(v: f64, rel: Option<f64>) -> String {
+    let e = rel
+        .map(|r| (v * r).abs())
+        .filter(|e| e.is_finite() && *e > 0.0);
+    match e {
+        Some(e) => {
+            let decimals = (1 - e.log10().floor() as i32).clamp(0, 12) as usize;
+            format!("{v:.decimals$} +- {e:.decimals$}")
+        }
+        None if rel == Some(0.0) => format!("{v:.6} (exact)"),
+        None => format!("{v:.6} (no error estimate)"),
+    }
 }
 
 /// log2((grid - 1) / base), rounded: the refinement level of a grid over `base` intervals.
@@ -272,6 +316,8 @@ pub fn line_outputs(
         work_units: info.work_units,
         wall_s: info.wall_s,
         algebraic_error: info.algebraic_error,
+        h_c_err: None,
+        h_min_err: None,
         error_estimate: None,
         accuracy_met: None,
     }
@@ -280,6 +326,15 @@ pub fn line_outputs(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn values_carry_two_significant_figures_of_their_error() {
+        assert_eq!(with_error(4.4846, Some(9.2e-3)), "4.485 +- 0.041");
+        assert_eq!(with_error(0.87039, Some(0.14)), "0.87 +- 0.12");
+        assert_eq!(with_error(123.4, Some(0.5)), "123 +- 62");
+        assert_eq!(with_error(2.4475, Some(0.0)), "2.447500 (exact)");
+        assert_eq!(with_error(1.5, None), "1.500000 (no error estimate)");
+    }
 
     #[test]
     fn model_names_round_trip_and_unknown_names_are_errors() {

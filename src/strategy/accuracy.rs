@@ -13,7 +13,7 @@ use crate::solve::ladder::Attempt;
 use crate::solve::line::{solve_line, LineSolveParams};
 use crate::solve::params::ContactParams;
 use crate::solve::point::{solve_point, PointSolveParams};
-use crate::solve::solution::Solution;
+use crate::solve::solution::{Outputs, Solution};
 use crate::solve::Status;
 use serde::{Deserialize, Serialize};
 
@@ -70,10 +70,13 @@ pub const COARSE_LADDER_CYCLES: usize = 20;
 /// Solve on `start`, 2 start - 1, ... points (up to `max_grid`) until the error estimate between
 /// the last two grids is below `target`. The estimate is Richardson's with order p,
 /// |Q_h - Q_2h| / ((2^p - 1) |Q_h|), max over H_c and H_min, from two consecutive converged
-/// grids, plus the algebraic error estimates of both solves. `solve(grid, last)` is told whether `grid` is the finest allowed: callers run their
-/// fallback ladder there only, so a coarse grid that does not resolve the case costs one attempt
-/// and the ladder moves on to a finer grid instead of stopping. Returns the finest solution with
-/// `error_estimate` and `accuracy_met` set; the cost of all grids is counted.
+/// grids, plus the algebraic error estimates of both solves. `solve(grid, full)` is told whether
+/// to spend the full effort on `grid` (the fallback ladder and the whole cycle budget): the
+/// finest allowed grid gets it, a coarser one does not, so a coarse grid that does not resolve
+/// the case costs one attempt and the ladder moves on. Where a grid converges after the grid
+/// below it failed, that grid is solved again with the full effort, so that an estimate is not
+/// lost to a coarse grid's cheap attempt. Returns the finest solution with `error_estimate` and
+/// `accuracy_met` set; the cost of all grids is counted.
 pub fn refine_to_accuracy<S: Attempt>(
     start: usize,
     max_grid: usize,
@@ -85,23 +88,34 @@ pub fn refine_to_accuracy<S: Attempt>(
     let mut prev: Option<S> = None;
     let (mut wu, mut wall) = (0.0, 0.0);
     let mut failed_grids = vec![];
+    let mut count = |s: &mut S| {
+        let (si, _) = s.parts();
+        wu += si.work_units;
+        wall += si.wall_s;
+    };
     loop {
         let last = 2 * (grid - 1) + 1 > max_grid;
         let mut s = solve(grid, last);
+        count(&mut s);
+        let converged = s.info().status == Status::Converged;
+        if converged && prev.is_none() && failed_grids.last() == Some(&coarser_grid(grid)) {
+            let mut again = solve(coarser_grid(grid), true);
+            count(&mut again);
+            if again.info().status == Status::Converged {
+                failed_grids.pop();
+                prev = Some(again);
+            }
+        }
         let (si, so) = s.parts();
-        wu += si.work_units;
-        wall += si.wall_s;
-        let converged = si.status == Status::Converged;
-        let est = prev.as_mut().filter(|_| converged).map(|c| {
-            let (_, co) = c.parts();
-            // The algebraic errors the cycles left on both grids add to the estimate (they
-            // contaminate the difference as well as the fine answer).
-            let algebraic = so.algebraic_error.unwrap_or(0.0) + co.algebraic_error.unwrap_or(0.0);
-            relative_error(co.h_c, so.h_c, order).max(relative_error(co.h_min, so.h_min, order))
-                + algebraic
-        });
+        let est = prev
+            .as_mut()
+            .filter(|_| converged)
+            .and_then(|c| half_grid_errors(c.parts().1, so, order));
+        if let Some((c, m)) = est {
+            so.set_errors(c, m);
+        }
+        let est = est.map(|(c, m)| c.max(m));
         if est.is_some_and(|e| e <= target) || last {
-            so.error_estimate = est;
             so.accuracy_met = Some(est.is_some_and(|e| e <= target));
             let mut note = match est {
                 Some(e) if e <= target => {
@@ -117,7 +131,7 @@ pub fn refine_to_accuracy<S: Attempt>(
             };
             if !failed_grids.is_empty() {
                 note.push_str(&format!(
-                    " (not converged on the coarser grids {failed_grids:?}, fallback not tried there)"
+                    " (not converged on the coarser grids {failed_grids:?} at the first attempt)"
                 ));
             }
             so.reason.push_str(&note);
@@ -138,6 +152,75 @@ pub fn refine_to_accuracy<S: Attempt>(
         grid = 2 * (g - 1) + 1;
     }
 }
+
+/// The grid below `grid` in the ladder (half the intervals).
+pub fn coarser_grid(grid: usize) -> usize {
+    (grid - 1) / 2 + 1
+}
+
+/// The relative error estimates of H_c and H_min of `fine` from `coarse`, the solve on its
+/// half grid: Richardson at `order` ([`relative_error`]) plus the algebraic errors both solves
+/// left (they contaminate the difference as well as the fine answer). None unless both
+/// converged and the estimates are finite.
+pub fn half_grid_errors(coarse: &Outputs, fine: &Outputs, order: f64) -> Option<(f64, f64)> {
+    if coarse.status != Status::Converged || fine.status != Status::Converged {
+        return None;
+    }
+    let algebraic = fine.algebraic_error.unwrap_or(0.0) + coarse.algebraic_error.unwrap_or(0.0);
+    let c = relative_error(coarse.h_c, fine.h_c, order) + algebraic;
+    let m = relative_error(coarse.h_min, fine.h_min, order) + algebraic;
+    (c.is_finite() && m.is_finite()).then_some((c, m))
+}
+
+/// Add the half-grid error estimate to a solve on a fixed grid: solve again on the grid with
+/// half the intervals (`solve_half(grid)`, counted in the cost) and set `H_c_err`, `H_min_err`
+/// and `error_estimate` ([`half_grid_errors`] at `order`). A grid below `2 min_grid - 1`, a
+/// solve that did not converge or a half-grid solve that did not leaves the estimates empty
+/// and says why in the reason.
+pub fn add_half_grid_estimate(
+    s: &mut Solution,
+    min_grid: usize,
+    order: f64,
+    solve_half: impl FnOnce(usize) -> Solution,
+) {
+    let grid = s.outputs.grid;
+    let note = if s.outputs.status != Status::Converged {
+        "; no error estimate: the solve did not converge".to_string()
+    } else if grid < 2 * min_grid - 1 {
+        format!("; no error estimate: the half grid of {grid} points is below {min_grid}")
+    } else {
+        let half = solve_half(coarser_grid(grid));
+        for (w, t) in [
+            (&mut s.outputs.work_units, &mut s.outputs.wall_s),
+            (&mut s.info.work_units, &mut s.info.wall_s),
+        ] {
+            *w += half.outputs.work_units;
+            *t += half.outputs.wall_s;
+        }
+        match half_grid_errors(&half.outputs, &s.outputs, order) {
+            Some((c, m)) => {
+                s.outputs.set_errors(c, m);
+                return;
+            }
+            None => format!(
+                "; no error estimate: the half-grid solve ({} points) ended {}",
+                half.outputs.grid, half.outputs.status
+            ),
+        }
+    };
+    s.outputs.reason.push_str(&note);
+    s.info.reason.push_str(&note);
+}
+
+/// The point domain's truncation estimate of a case under `params` (rigid-like cases; see
+/// `PointDomain::truncation_error`), to add to its error estimates.
+pub fn point_truncation(case: &PointCase, params: &PointSolveParams) -> f64 {
+    PointDomain::of_case(case, &params.mg.domain).truncation_error()
+}
+
+/// The fraction of the accuracy target each solve of the ladder may leave as algebraic error
+/// ([`crate::solve::params::MgParams::max_algebraic`]).
+pub const LADDER_ALGEBRAIC_FRACTION: f64 = 0.1;
 
 /// The convergence order assumed by the accuracy-target error estimate.
 pub const ESTIMATE_ORDER: f64 = 1.5;
@@ -178,10 +261,10 @@ pub fn solve_point_to_accuracy(
     let mut s = refine(33, POINT_ESTIMATE_ORDER, params, target, max_grid, |p| {
         solve_point(case, p)
     });
-    let t = PointDomain::of_case(case, &params.mg.domain).truncation_error();
+    let t = point_truncation(case, params);
     let o = &mut s.outputs;
     if let Some(e) = o.error_estimate {
-        o.error_estimate = Some(e + t);
+        o.widen_errors(t);
         if o.accuracy_met == Some(true) && e + t > target {
             o.accuracy_met = Some(false);
             let note = format!(
@@ -212,6 +295,9 @@ fn refine<D: Copy>(
         if !last {
             p.mg.max_cycles = p.mg.max_cycles.min(COARSE_LADDER_CYCLES);
         }
+        // Two solves' algebraic errors enter the estimate: each may use a small part of the
+        // target only.
+        p.mg.max_algebraic = p.mg.max_algebraic.min(LADDER_ALGEBRAIC_FRACTION * target);
         solve(&p)
     })
 }
@@ -219,6 +305,56 @@ fn refine<D: Copy>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn outputs(status: Status, h_c: f64, h_min: f64) -> Outputs {
+        Outputs {
+            h_c,
+            h_c_pmax: h_c,
+            h_min,
+            x_min: 0.9,
+            y_min: None,
+            d: None,
+            k: None,
+            p_max: 1.0,
+            spike: None,
+            h0: 0.0,
+            f: 0.0,
+            load_error: 0.0,
+            status,
+            reason: String::new(),
+            grid: 129,
+            levels: 4,
+            level: Some(3),
+            model_used: crate::solve::solution::ModelUsed::Full,
+            work_units: 1.0,
+            wall_s: 0.0,
+            algebraic_error: None,
+            h_c_err: None,
+            h_min_err: None,
+            error_estimate: None,
+            accuracy_met: None,
+        }
+    }
+
+    #[test]
+    fn half_grid_errors_need_two_converged_solves() {
+        let mut fine = outputs(Status::Converged, 5.0, 4.0);
+        let mut coarse = outputs(Status::Converged, 5.1, 3.9);
+        let factor = 1.0 / (2f64.powf(ESTIMATE_ORDER) - 1.0);
+        let (c, m) = half_grid_errors(&coarse, &fine, ESTIMATE_ORDER).unwrap();
+        assert!((c - factor * 0.1 / 5.0).abs() < 1e-14);
+        assert!((m - factor * 0.1 / 4.0).abs() < 1e-14);
+        // Both solves' algebraic errors add to both estimates.
+        fine.algebraic_error = Some(1e-4);
+        coarse.algebraic_error = Some(2e-4);
+        let (c2, m2) = half_grid_errors(&coarse, &fine, ESTIMATE_ORDER).unwrap();
+        assert!((c2 - c - 3e-4).abs() < 1e-14 && (m2 - m - 3e-4).abs() < 1e-14);
+        let failed = outputs(Status::Diverged, 5.1, 3.9);
+        assert_eq!(half_grid_errors(&failed, &fine, ESTIMATE_ORDER), None);
+        let nan = outputs(Status::Converged, f64::NAN, 3.9);
+        assert_eq!(half_grid_errors(&nan, &fine, ESTIMATE_ORDER), None);
+        assert_eq!(coarser_grid(129), 65);
+    }
 
     #[test]
     fn recovers_order_and_limit() {

@@ -39,6 +39,8 @@ pub fn closed_form_line(m: f64) -> Solution {
         work_units: 0.0,
         wall_s: 0.0,
         algebraic_error: Some(0.0),
+        h_c_err: Some(0.0),
+        h_min_err: Some(0.0),
         error_estimate: Some(0.0),
         accuracy_met: Some(true),
     };

@@ -158,7 +158,7 @@ fn annotate(o: &mut Outputs, info: &mut SolveInfo, sel: &Selection) {
     if sel.model == ModelUsed::Full {
         return;
     }
-    o.error_estimate = o.error_estimate.map(|e| e + sel.neglected);
+    o.widen_errors(sel.neglected);
     let how = if sel.model == ModelUsed::SlenderLine {
         "the slender-contact gap bound"
     } else if sel.measured.is_some() {

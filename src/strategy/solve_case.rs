@@ -1,11 +1,14 @@
 //! One solve for both contacts: [`solve`] takes a [`Case`] (line or point) and one
 //! [`SolveParams`], and returns a [`Solution`].
 //!
-//! Contract: with no accuracy target the case is solved on one grid (`grid`, or the contact's
-//! default) by the chosen method, with the fallback ladder when `fallback` is set; with
-//! `accuracy = Some(t)` the grid is refined until the Richardson estimate of H_c and H_min meets
-//! `t` (up to `max_grid`), and unless `full_model` is set the cheapest verified model answers
-//! ([`crate::strategy::select`]). Every solve ends with a status and a reason; numerical failure
+//! Contract: by default (`accuracy = Some(`[`DEFAULT_ACCURACY`]`)`, no `grid`) the multigrid
+//! solve refines the grid until the Richardson estimate of H_c and H_min meets the target (up to
+//! `max_grid`), and unless `full_model` is set the cheapest verified model answers
+//! ([`crate::strategy::select`]). With a fixed `grid` (or no target, or a baseline method) the
+//! case is solved on that grid (or the contact's default) by the chosen method and, with
+//! `estimate` (the default), once more on the half grid for the Richardson estimate
+//! ([`crate::strategy::accuracy::add_half_grid_estimate`]). The fallback ladder runs when
+//! `fallback` is set. Point answers add the domain-truncation estimate. Every solve ends with a status and a reason; numerical failure
 //! is a result, never a panic. The shared controls here override the contact's defaults; what
 //! they leave as `None` keeps the contact's own value (grid 2049 points for a line contact, 129
 //! per direction for a point contact; 60 or 40 cycles on the finest level).
@@ -20,8 +23,22 @@ use crate::solve::params::{Converge, CycleType};
 use crate::solve::point::{solve_point, PointSolveParams};
 use crate::solve::solution::Solution;
 use crate::solve::Observer;
-use crate::strategy::accuracy::{solve_line_to_accuracy, solve_point_to_accuracy};
+use crate::strategy::accuracy::{
+    add_half_grid_estimate, point_truncation, solve_line_to_accuracy, solve_point_to_accuracy,
+    ESTIMATE_ORDER, POINT_ESTIMATE_ORDER,
+};
 use crate::strategy::select::{solve_line_selected, solve_point_selected};
+
+/// The default target relative accuracy of H_c and H_min.
+pub const DEFAULT_ACCURACY: f64 = 0.01;
+
+/// The smallest grid a solve takes: points (line) or points per direction (point).
+pub const fn min_grid(contact: Contact) -> usize {
+    match contact {
+        Contact::Line => 33,
+        Contact::Point => 17,
+    }
+}
 
 /// Largest grid of the accuracy ladder by default: points (line) or points per direction (point).
 pub const fn default_max_grid(contact: Contact) -> usize {
@@ -37,8 +54,9 @@ pub const fn default_max_grid(contact: Contact) -> usize {
 pub struct SolveParams {
     /// Full multigrid (default), or a baseline (dense Newton, single-grid relaxation).
     pub method: Method,
-    /// Points of the finest grid (per direction for point contacts); `None`: the contact's
-    /// default.
+    /// A fixed finest grid (points, per direction for point contacts): no accuracy ladder.
+    /// `None`: the ladder picks the grid when there is an accuracy target, else the contact's
+    /// default grid.
     pub grid: Option<usize>,
     /// Multigrid cycle type.
     pub cycle: CycleType,
@@ -54,8 +72,11 @@ pub struct SolveParams {
     pub tol_h: Option<f64>,
     /// Retry a failed solve with conservative settings (the fallback ladder).
     pub fallback: bool,
-    /// Target relative accuracy of H_c and H_min: refine the grid until the estimate meets it.
+    /// Target relative accuracy of H_c and H_min: refine the grid until the estimate meets it
+    /// (multigrid without a fixed `grid`; default [`DEFAULT_ACCURACY`]).
     pub accuracy: Option<f64>,
+    /// On a fixed grid: also solve the half grid for the error estimate (default on).
+    pub estimate: bool,
     /// With `accuracy`: the largest grid the ladder may use; `None`: [`default_max_grid`].
     pub max_grid: Option<usize>,
     /// With `accuracy`: always solve the full model (no model selection).
@@ -85,7 +106,8 @@ impl Default for SolveParams {
             tol_load: None,
             tol_h: None,
             fallback: line.fallback,
-            accuracy: None,
+            accuracy: Some(DEFAULT_ACCURACY),
+            estimate: true,
             max_grid: None,
             full_model: false,
             keep_fields: false,
@@ -143,9 +165,9 @@ impl SolveParams {
 /// Solve a line or point case (see the module docs).
 pub fn solve(case: &Case, params: &SolveParams) -> Solution {
     let max_grid = params.max_grid.unwrap_or(default_max_grid(case.contact()));
-    match (case, params.accuracy) {
-        (Case::Line(c), None) => solve_line(c, &params.line_params()),
-        (Case::Point(c), None) => solve_point(c, &params.point_params()),
+    let ladder = params.method == Method::Multigrid && params.grid.is_none();
+    match (case, params.accuracy.filter(|_| ladder)) {
+        (_, None) => solve_fixed(case, params),
         (Case::Line(c), Some(t)) if params.full_model => {
             solve_line_to_accuracy(c, &params.line_params(), t, max_grid)
         }
@@ -154,5 +176,45 @@ pub fn solve(case: &Case, params: &SolveParams) -> Solution {
         }
         (Case::Line(c), Some(t)) => solve_line_selected(c, &params.line_params(), t, max_grid).0,
         (Case::Point(c), Some(t)) => solve_point_selected(c, &params.point_params(), t, max_grid).0,
+    }
+}
+
+/// One grid (`grid` or the contact's default), with [`estimate_fixed`] when `estimate` is set.
+fn solve_fixed(case: &Case, params: &SolveParams) -> Solution {
+    let mut s = solve_once(case, params);
+    if params.estimate {
+        estimate_fixed(case, params, &mut s);
+    }
+    s
+}
+
+/// One solve on `params`' grid (or the contact's default), no estimate.
+fn solve_once(case: &Case, params: &SolveParams) -> Solution {
+    match case {
+        Case::Line(c) => solve_line(c, &params.line_params()),
+        Case::Point(c) => solve_point(c, &params.point_params()),
+    }
+}
+
+/// The error estimate of a solve `s` on a fixed grid: the half-grid Richardson estimate
+/// ([`add_half_grid_estimate`], the half grid solved with `params`) plus, for a point contact,
+/// the domain-truncation estimate.
+pub fn estimate_fixed(case: &Case, params: &SolveParams, s: &mut Solution) {
+    let order = match case {
+        Case::Line(_) => ESTIMATE_ORDER,
+        Case::Point(_) => POINT_ESTIMATE_ORDER,
+    };
+    add_half_grid_estimate(s, min_grid(case.contact()), order, |g| {
+        solve_once(
+            case,
+            &SolveParams {
+                grid: Some(g),
+                ..*params
+            },
+        )
+    });
+    if let Case::Point(c) = case {
+        s.outputs
+            .widen_errors(point_truncation(c, &params.point_params()));
     }
 }

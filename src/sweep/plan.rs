@@ -356,8 +356,8 @@ mod tests {
         assert_eq!(
             c.canonical(),
             "ehlmap-case-v2;contact=line;M=1e0;L=0e0;D=-;elasticity=elastic;viscosity=barus;\
-             density=incompressible;grid=2049;cycle=v;converge=fast;max_cycles=60;fallback=true;\
-             tol_load=1e-7;tol_h=1e-6;error_estimate=false"
+             density=incompressible;grid=16385;cycle=v;converge=fast;max_cycles=60;fallback=true;\
+             tol_load=1e-7;tol_h=1e-6;error_estimate=false;accuracy=1e-2"
         );
         assert_eq!(c.id_hex(), id_hex(fnv1a64(c.canonical().as_bytes())));
         // Largest cost first.
@@ -396,15 +396,18 @@ mod tests {
         assert_eq!(
             c.canonical(),
             "ehlmap-case-v2;contact=point;M=1e1;L=0e0;D=5e-1;elasticity=elastic;viscosity=barus;\
-             density=incompressible;grid=129;cycle=v;converge=fast;max_cycles=60;fallback=true;\
-             tol_load=1e-7;tol_h=1e-6;error_estimate=false"
+             density=incompressible;grid=513;cycle=v;converge=fast;max_cycles=60;fallback=true;\
+             tol_load=1e-7;tol_h=1e-6;error_estimate=false;accuracy=1e-2"
         );
         assert!(c.point_case().is_ok() && c.line_case().is_ok());
         assert!(cases.windows(2).all(|w| w[0].cost >= w[1].cost));
         assert!(cases[0].m == 100.0);
         // Doubling the grid costs about four times as much (grid^2 log grid).
-        let fine = parse("p.toml", &format!("{text}[numerics]\ngrid = 257\n"), "p").unwrap();
-        let r = plan(&fine).unwrap()[0].cost / cases[0].cost;
+        let on = |g: usize| {
+            let spec = parse("p.toml", &format!("{text}[numerics]\ngrid = {g}\n"), "p").unwrap();
+            plan(&spec).unwrap()[0].cost
+        };
+        let r = on(257) / on(129);
         assert!(r > 4.0 && r < 5.0, "{r}");
         // Roelands from eta0 derives z from the point-contact alpha_bar, per D.
         let roe = "contact = \"point\"\n[axes]\nM = [10]\nL = [10]\nD = [0.5, 1]\n\

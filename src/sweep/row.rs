@@ -8,10 +8,8 @@ use crate::model::lubricant::{Density, Viscosity};
 use crate::solve::solution::ModelUsed;
 use crate::solve::solution::{Outputs, Solution};
 use crate::solve::Status;
-use crate::store::results::{finite, larger_error, CaseRow, RowStatus};
-use crate::strategy::accuracy::relative_error;
-use crate::strategy::accuracy::ESTIMATE_ORDER;
-use crate::strategy::solve_case::{solve, SolveParams};
+use crate::store::results::{finite, CaseRow, RowStatus};
+use crate::strategy::solve_case::{estimate_fixed, solve, SolveParams};
 use crate::strategy::warm::warm_start_line;
 use crate::sweep::plan::Case;
 
@@ -54,8 +52,8 @@ pub fn input_row(case: &Case, sweep: &str) -> CaseRow {
     }
 }
 
-/// The solve parameters of a planned case on `grid` (its numerics over the defaults; no accuracy
-/// target).
+/// The solve parameters of a planned case on the fixed `grid` (its numerics over the defaults;
+/// no accuracy target, no estimate).
 pub fn solve_params(case: &Case, grid: usize) -> SolveParams {
     let n = &case.numerics;
     SolveParams {
@@ -66,33 +64,39 @@ pub fn solve_params(case: &Case, grid: usize) -> SolveParams {
         tol_load: Some(n.tol_load),
         tol_h: Some(n.tol_h),
         fallback: n.fallback,
+        accuracy: None,
+        estimate: false,
         ..SolveParams::default()
     }
 }
 
-/// Solve one case (line or point, [`solve`]) and turn it into a row. With `error_estimate` the case is also solved on the half grid and
-/// `H_c_err`, `H_min_err` hold relative error estimates (both solves converged): Richardson with
-/// the conservative order [`ESTIMATE_ORDER`] of the accuracy targets, the same estimate
-/// `ehlmap solve --accuracy` reports; `work_units`, `wall_s` are the cost of both solves.
-/// Every float goes through [`finite`]: a non-finite output is null and the row not `valid`.
+/// Solve one case (line or point, [`solve`]) and turn it into a row. With an accuracy target
+/// the ladder refines the grid up to the spec's `grid`; without one the case is solved on
+/// `grid` and, with `error_estimate`, on its half grid ([`estimate_fixed`], after a warm start
+/// where one ran): `H_c_err`, `H_min_err` hold relative error estimates (Richardson with the
+/// conservative order of the accuracy targets plus both solves' algebraic errors, the estimate
+/// `ehlmap solve` reports); `work_units`, `wall_s` are the cost of every solve.
 pub fn solve_case(case: &Case, sweep: &str) -> CaseRow {
     let c = match case.case() {
         Ok(c) => c,
         Err(e) => return invalid_row(case, sweep, e),
     };
+    let n = &case.numerics;
     let params = SolveParams {
-        accuracy: case.numerics.accuracy,
-        max_grid: Some(case.numerics.grid),
-        ..solve_params(case, case.numerics.grid)
+        grid: n.accuracy.is_none().then_some(n.grid),
+        accuracy: n.accuracy,
+        max_grid: Some(n.grid),
+        ..solve_params(case, n.grid)
     };
     let mut s = solve(&c, &params);
     // D and k are inputs (k from the exact Hertz ellipse, set by input_row); a solver that
     // reports them must agree.
     debug_assert!(s.outputs.d.is_none_or(|d| Some(d) == c.d()));
     let warm = warm_start(case, &c, &params, &mut s);
-    let mut row = build_row(case, sweep, &s.outputs, s.attempt, |g| {
-        solve(&c, &solve_params(case, g)).outputs
-    });
+    if n.accuracy.is_none() && n.error_estimate {
+        estimate_fixed(&c, &params, &mut s);
+    }
+    let mut row = build_row(case, sweep, &s.outputs, s.attempt);
     row.warm_start = warm;
     row
 }
@@ -133,31 +137,6 @@ fn invalid_row(case: &Case, sweep: &str, e: ParamError) -> CaseRow {
     row
 }
 
-/// Does the case ask for a half-grid error estimate, and does `grid` have a half grid that the
-/// contact accepts?
-fn wants_half_grid(case: &Case, grid: usize) -> bool {
-    let min = case.contact.grid_range().0;
-    case.numerics.error_estimate && grid >= 2 * min - 1
-}
-
-/// The half grid of `grid` (half the intervals).
-fn half_grid(grid: usize) -> usize {
-    (grid - 1) / 2 + 1
-}
-
-/// Relative error estimates of H_c and H_min from a solve and its half-grid twin: Richardson with
-/// order [`ESTIMATE_ORDER`]; none unless both converged, none for a non-finite estimate.
-fn half_grid_errors(fine: &Outputs, coarse: &Outputs) -> (Option<f64>, Option<f64>) {
-    if fine.status != Status::Converged || coarse.status != Status::Converged {
-        return (None, None);
-    }
-    let est = |a: f64, b: f64| {
-        let e = relative_error(a, b, ESTIMATE_ORDER);
-        e.is_finite().then_some(e)
-    };
-    (est(coarse.h_c, fine.h_c), est(coarse.h_min, fine.h_min))
-}
-
 /// Copy a solve's outputs into `row` (non-finite values become null and clear `valid`).
 fn fill_outputs(row: &mut CaseRow, o: &Outputs, attempt: usize, valid: &mut bool) {
     row.model_used = o.model_used;
@@ -192,38 +171,20 @@ fn fill_outputs(row: &mut CaseRow, o: &Outputs, attempt: usize, valid: &mut bool
     row.attempt = Some(attempt as i64);
 }
 
-/// The row of a finished solve: its outputs, the error columns (the accuracy target's estimate,
-/// or Richardson against `half(grid)`, a solve on the half grid, when the spec asks for it), the
-/// cost of every solve, `error_estimate` and `valid`.
-fn build_row(
-    case: &Case,
-    sweep: &str,
-    o: &Outputs,
-    attempt: usize,
-    half: impl FnOnce(usize) -> Outputs,
-) -> CaseRow {
+/// The row of a finished solve: its outputs, the error columns, the cost of every solve,
+/// `error_estimate` and `valid`.
+fn build_row(case: &Case, sweep: &str, o: &Outputs, attempt: usize) -> CaseRow {
     let mut row = input_row(case, sweep);
     let mut valid = true;
     fill_outputs(&mut row, o, attempt, &mut valid);
     // A film <= 0 is no answer: the row stays, flagged.
     valid &= o.status != Status::UnderResolved;
-    let (mut wu, mut wall) = (o.work_units, o.wall_s);
-    if let Some(est) = o.error_estimate {
-        // Accuracy target: the estimate of the chosen grid (max over H_c and H_min).
-        row.h_c_err = finite(est, &mut valid);
-        row.h_min_err = row.h_c_err;
-    } else if wants_half_grid(case, o.grid) {
-        let coarse = half(half_grid(o.grid));
-        wu += coarse.work_units;
-        wall += coarse.wall_s;
-        (row.h_c_err, row.h_min_err) = half_grid_errors(o, &coarse);
-    }
-    row.work_units = finite(wu, &mut valid);
-    row.wall_s = finite(wall, &mut valid);
-    // The algebraic error left by the cycles adds to the discretisation estimate.
+    row.h_c_err = o.h_c_err.and_then(|e| finite(e, &mut valid));
+    row.h_min_err = o.h_min_err.and_then(|e| finite(e, &mut valid));
+    row.work_units = finite(o.work_units, &mut valid);
+    row.wall_s = finite(o.wall_s, &mut valid);
     row.algebraic_error = o.algebraic_error.and_then(|a| finite(a, &mut valid));
-    row.error_estimate =
-        larger_error(row.h_c_err, row.h_min_err).map(|e| e + row.algebraic_error.unwrap_or(0.0));
+    row.error_estimate = o.error_estimate.and_then(|e| finite(e, &mut valid));
     row.valid = valid;
     row
 }
@@ -249,49 +210,6 @@ pub(crate) fn solve_guarded(case: &Case, sweep: &str) -> CaseRow {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn outputs(status: Status, h_c: f64, h_min: f64) -> Outputs {
-        Outputs {
-            h_c,
-            h_c_pmax: h_c,
-            h_min,
-            x_min: 0.9,
-            y_min: None,
-            d: None,
-            k: None,
-            p_max: 1.0,
-            spike: None,
-            h0: 0.0,
-            f: 0.0,
-            load_error: 0.0,
-            status,
-            reason: String::new(),
-            grid: 129,
-            levels: 4,
-            level: Some(3),
-            model_used: ModelUsed::Full,
-            work_units: 1.0,
-            wall_s: 0.0,
-            algebraic_error: None,
-            error_estimate: None,
-            accuracy_met: None,
-        }
-    }
-
-    #[test]
-    fn half_grid_errors_need_two_converged_solves() {
-        let fine = outputs(Status::Converged, 5.0, 4.0);
-        let coarse = outputs(Status::Converged, 5.1, 3.9);
-        let (c, m) = half_grid_errors(&fine, &coarse);
-        let factor = 1.0 / (2f64.powf(ESTIMATE_ORDER) - 1.0);
-        assert!((c.unwrap() - factor * 0.1 / 5.0).abs() < 1e-14);
-        assert!((m.unwrap() - factor * 0.1 / 4.0).abs() < 1e-14);
-        let failed = outputs(Status::Diverged, 5.1, 3.9);
-        assert_eq!(half_grid_errors(&fine, &failed), (None, None));
-        let nan = outputs(Status::Converged, f64::NAN, 3.9);
-        assert_eq!(half_grid_errors(&fine, &nan).0, None);
-        assert_eq!(half_grid(129), 65);
-    }
 
     #[test]
     fn point_cases_become_point_rows() {

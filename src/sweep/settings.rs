@@ -251,9 +251,9 @@ mod tests {
         assert_eq!(
             s.to_string(),
             "models.elasticity=elastic;models.viscosity=barus;models.z=-;models.eta0=-;\
-             models.ph=-;models.density=incompressible;line.grid=2049;line.cycle=v;\
+             models.ph=-;models.density=incompressible;line.grid=16385;line.cycle=v;\
              line.converge=fast;line.max_cycles=60;line.fallback=true;line.tol_load=1e-7;\
-             line.tol_h=1e-5;line.error_estimate=false;line.accuracy=-;point.grid=65;\
+             line.tol_h=1e-5;line.error_estimate=false;line.accuracy=1e-2;point.grid=65;\
              point.cycle=v;point.converge=fast;point.max_cycles=60;point.fallback=true;\
              point.tol_load=1e-7;point.tol_h=1e-5;point.error_estimate=false;point.accuracy=-"
         );

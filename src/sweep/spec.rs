@@ -20,8 +20,9 @@
 //! # z = 0.6                      # Roelands pressure-viscosity index
 //!
 //! [numerics]                     # all optional; defaults shown
-//! grid = 2049                    # finest-grid points (the solver rounds up to 2^k n0 + 1), 33..=1048577;
-//!                                # point contacts: per direction, default 129, 17..=2049
+//! grid = 2049                    # a fixed finest grid (the solver rounds up to 2^k n0 + 1), 33..=1048577
+//!                                # points; point contacts: per direction, 17..=2049. Not named: the
+//!                                # accuracy target picks the grid, up to 16385 (point: 513)
 //! cycle = "v"                    # or "w"
 //! converge = "fast"              # or "tight" (stopping rule, solve::params::Converge)
 //! max_cycles = 60
@@ -29,8 +30,9 @@
 //! tol_load = 1e-7
 //! tol_h = 1e-6
 //! error_estimate = false         # true: also solve on the half grid, Richardson error columns
-//! accuracy = 0.005               # optional: refine from 257 line points (33^2 point nodes) up
-//!                                # to `grid` until the error estimate meets it
+//! accuracy = 0.005               # refine from 257 line points (33^2 point nodes) up to `grid`
+//!                                # until the error estimate meets it; default 0.01 when no
+//!                                # grid is named, none when one is
 //! # [numerics.point]             # a mixed spec: overrides for one contact, same keys
 //! # grid = 65
 //!

@@ -2,13 +2,16 @@
 //! from [`Numerics::for_contact`]); a mixed spec (`contact = ["line", "point"]`) overrides them
 //! for one contact in `[numerics.line]` or `[numerics.point]`, e.g. 2049 line points but 65^2
 //! point nodes. Every value is checked against the contact it applies to (the grid range, the
-//! half grid of `error_estimate`), and errors name the key that set it.
+//! half grid of `error_estimate`), and errors name the key that set it. A contact whose
+//! numerics name no `grid` is solved to an accuracy target (`accuracy`, default 1 %) by the
+//! ladder, up to its largest default grid (16385 line points, 513 point nodes per direction).
 
 use super::contacts::ContactAxes;
 use super::ctx::{join, Ctx, Table};
 use super::error::SpecError;
 use super::types::{Contact, ContactSpec, Numerics};
 use crate::solve::params::{Converge, CycleType};
+use crate::strategy::solve_case::{default_max_grid, DEFAULT_ACCURACY};
 use std::ops::Range;
 
 /// The settings a `[numerics]` table (or one of its per-contact tables) may hold.
@@ -58,14 +61,24 @@ pub(super) fn parse(
         let mut n = Numerics::for_contact(contact);
         // The key that switched the error estimate on, for the half-grid check below.
         let mut estimate_key: Option<(Range<usize>, String)> = None;
+        let mut grid_named = false;
         if let Some((t, _)) = table {
             apply(cx, t, "numerics", contact, &mut n, &mut estimate_key)?;
+            grid_named |= t.get("grid").is_some();
             if let Some(v) = t.get(contact.as_str()) {
                 let key = join("numerics", contact.as_str());
                 let sub = cx.table(v, &key)?;
                 cx.keys(sub, &key, &KEYS)?;
                 apply(cx, sub, &key, contact, &mut n, &mut estimate_key)?;
+                grid_named |= sub.get("grid").is_some();
             }
+        }
+        if !grid_named && n.accuracy.is_none() {
+            // No grid named: the default accuracy target picks it, up to the ladder's largest.
+            n.accuracy = Some(DEFAULT_ACCURACY);
+            n.grid = default_max_grid(contact);
+        } else if !grid_named {
+            n.grid = default_max_grid(contact);
         }
         let grid_min = contact.grid_range().0;
         if let (true, Some((span, key))) = (n.error_estimate, &estimate_key) {

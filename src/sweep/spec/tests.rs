@@ -44,10 +44,14 @@ fn point_specs_parse_with_their_defaults() {
     let s = parse("p.toml", &format!("{POINT}D = [0.5, 1]\n"), "p").unwrap();
     assert_eq!(s.contacts[0].contact, Contact::Point);
     assert_eq!(s.d, Some(vec![0.5, 1.0]));
-    assert_eq!(s.contacts[0].numerics.grid, 129);
+    // No grid named: the default accuracy target, up to the ladder's largest point grid.
     assert_eq!(
         s.contacts[0].numerics,
-        Numerics::for_contact(Contact::Point)
+        Numerics {
+            grid: 513,
+            accuracy: Some(0.01),
+            ..Numerics::for_contact(Contact::Point)
+        }
     );
     let text = format!(
         "{POINT}D = {{ from = 0.05, to = 1, count = 4, scale = \"log\" }}\n\
@@ -59,10 +63,16 @@ fn point_specs_parse_with_their_defaults() {
     assert!(d.windows(2).all(|w| w[0] < w[1]));
     assert_eq!(s.contacts[0].numerics.grid, 65);
     assert!(s.contacts[0].numerics.error_estimate);
-    // The line defaults are unchanged.
+    // The line defaults: no grid named, so the default accuracy target up to 16385 points.
     let l = parse("t.toml", OK, "t").unwrap();
-    assert_eq!(l.contacts[0].numerics, Numerics::default());
-    assert_eq!(l.contacts[0].numerics.grid, 2049);
+    assert_eq!(
+        l.contacts[0].numerics,
+        Numerics {
+            grid: 16385,
+            accuracy: Some(0.01),
+            ..Numerics::default()
+        }
+    );
 }
 
 #[test]
@@ -154,8 +164,10 @@ fn mixed_specs_hold_both_contacts_with_their_own_axes_and_numerics() {
     assert_eq!(cases.iter().filter(|c| c.d.is_none()).count(), 6);
     // Defaults per contact when nothing is given.
     let s = parse("m.toml", MIXED, "m").unwrap();
-    assert_eq!(s.numerics(Contact::Line).unwrap().grid, 2049);
-    assert_eq!(s.numerics(Contact::Point).unwrap().grid, 129);
+    let line = s.numerics(Contact::Line).unwrap();
+    assert_eq!((line.grid, line.accuracy), (16385, Some(0.01)));
+    let point = s.numerics(Contact::Point).unwrap();
+    assert_eq!((point.grid, point.accuracy), (513, Some(0.01)));
 }
 
 #[test]
