@@ -53,9 +53,9 @@ fn point_specs_parse_and_bad_ones_name_the_key() {
     let s = spec::parse("p.toml", &format!("{head}D = [0.5, 1]\n"), "p").unwrap();
     assert_eq!(s.contacts[0].contact, Contact::Point);
     assert_eq!(s.d.as_deref(), Some(&[0.5, 1.0][..]));
-    // No grid named: the default 1 % target, up to 513^2.
+    // No grid named: the default 1 % target, up to 1025^2.
     let n = &s.contacts[0].numerics;
-    assert_eq!((n.grid, n.accuracy), (513, Some(0.01)));
+    assert_eq!((n.grid, n.accuracy), (1025, Some(0.01)));
     let s = spec::parse(
         "p.toml",
         &format!("{head}D = {{ from = 0.05, to = 1, count = 4, scale = \"log\" }}\n"),

@@ -3,7 +3,7 @@
 //! reports for H_c and for H_min (`H_c_err`, `H_min_err`: the half-grid Richardson estimate plus
 //! the algebraic errors) bounds the true error of that solve, measured against a reference two
 //! grids finer: Richardson (order 2) over the solves on 4 and 8 times the intervals (line: 1025
-//! points against 4097 and 8193; point: 129^2 against 257^2 and 513^2). The issue asks for at least
+//! points against 4097 and 8193; point: 129^2 against 513^2 and 1025^2). The issue asks for at least
 //! 95 % of the cases; every solve must converge and report an estimate.
 
 use ehlmap::model::case::{Case, LineCase, PointCase};

@@ -161,7 +161,7 @@ pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, FitError> {
         if point.is_some() && truncation > MAX_ERROR_ESTIMATE {
             input.excluded.push(format!(
                 "{}: domain truncation error about {:.0} % > {:.0} % \
-                 (rigid-like case, see src/problem/point_domain.rs)",
+                 (rigid-like case, see src/discrete/point/domain.rs)",
                 label(row),
                 100.0 * truncation,
                 100.0 * MAX_ERROR_ESTIMATE

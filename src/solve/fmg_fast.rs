@@ -151,17 +151,23 @@ pub fn algebraic_error(
 
 /// The reason to give up on level `l` after cycle `k`: its residual grew by 100 over its
 /// smallest on the level, or is no smaller than at the first cycle after 8 cycles. (Cycles that
-/// do not contract are better spent on the fallback ladder's conservative settings.)
-fn no_contraction(l: usize, k: usize, rec: &CycleRecord, min_res: &mut f64) -> Result<(), String> {
+/// do not contract are better spent on the fallback ladder's conservative settings.) `seen`
+/// holds the level's first and smallest residuals (since `k = 0`).
+fn no_contraction(
+    l: usize,
+    k: usize,
+    rec: &CycleRecord,
+    seen: &mut (f64, f64),
+) -> Result<(), String> {
     if k == 0 {
-        *min_res = rec.residual;
+        *seen = (rec.residual, rec.residual);
     }
-    let first = *min_res;
-    *min_res = min_res.min(rec.residual);
-    if rec.residual > 100.0 * *min_res {
+    let (first, min_res) = (seen.0, seen.1.min(rec.residual));
+    seen.1 = min_res;
+    if rec.residual > 100.0 * min_res {
         return Err(format!(
-            "residual grew to {:.3e} (min {:.3e}) on level {l}",
-            rec.residual, *min_res
+            "residual grew to {:.3e} (min {min_res:.3e}) on level {l}",
+            rec.residual
         ));
     }
     if k >= 8 && rec.residual >= first {
@@ -229,7 +235,7 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
         let mut last = s.record(l);
         let mut prev_delta = None;
         lb.reset();
-        let mut level_min_res = f64::INFINITY;
+        let mut level_seen = (f64::INFINITY, f64::INFINITY);
         // The smallest residual of the level's cycles (not reset by damping).
         let mut smallest_res = f64::INFINITY;
         let mut swing = Swing::default();
@@ -243,7 +249,7 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
             level_max_res = level_max_res.max(rec.residual);
             smallest_res = smallest_res.min(rec.residual);
             let diverged = check_divergence(s, l, final_level, &rec, &mut min_res)
-                .and_then(|()| no_contraction(l, k - damped_at, &rec, &mut level_min_res))
+                .and_then(|()| no_contraction(l, k - damped_at, &rec, &mut level_seen))
                 .and_then(|()| residual_jump(l, rec.residual, coarser_max_res));
             if let Err(why) = diverged {
                 return with_errors(s.finish(start, Status::Diverged, why, history), e_a, e_d);

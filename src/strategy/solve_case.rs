@@ -44,7 +44,7 @@ pub const fn min_grid(contact: Contact) -> usize {
 pub const fn default_max_grid(contact: Contact) -> usize {
     match contact {
         Contact::Line => 16385,
-        Contact::Point => 513,
+        Contact::Point => 1025,
     }
 }
 

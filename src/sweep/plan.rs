@@ -396,7 +396,7 @@ mod tests {
         assert_eq!(
             c.canonical(),
             "ehlmap-case-v2;contact=point;M=1e1;L=0e0;D=5e-1;elasticity=elastic;viscosity=barus;\
-             density=incompressible;grid=513;cycle=v;converge=fast;max_cycles=60;fallback=true;\
+             density=incompressible;grid=1025;cycle=v;converge=fast;max_cycles=60;fallback=true;\
              tol_load=1e-7;tol_h=1e-6;error_estimate=false;accuracy=1e-2"
         );
         assert!(c.point_case().is_ok() && c.line_case().is_ok());

@@ -22,7 +22,7 @@
 //! [numerics]                     # all optional; defaults shown
 //! grid = 2049                    # a fixed finest grid (the solver rounds up to 2^k n0 + 1), 33..=1048577
 //!                                # points; point contacts: per direction, 17..=2049. Not named: the
-//!                                # accuracy target picks the grid, up to 16385 (point: 513)
+//!                                # accuracy target picks the grid, up to 16385 (point: 1025)
 //! cycle = "v"                    # or "w"
 //! converge = "fast"              # or "tight" (stopping rule, solve::params::Converge)
 //! max_cycles = 60

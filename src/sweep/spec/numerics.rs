@@ -4,7 +4,7 @@
 //! point nodes. Every value is checked against the contact it applies to (the grid range, the
 //! half grid of `error_estimate`), and errors name the key that set it. A contact whose
 //! numerics name no `grid` is solved to an accuracy target (`accuracy`, default 1 %) by the
-//! ladder, up to its largest default grid (16385 line points, 513 point nodes per direction).
+//! ladder, up to its largest default grid (16385 line points, 1025 point nodes per direction).
 
 use super::contacts::ContactAxes;
 use super::ctx::{join, Ctx, Table};

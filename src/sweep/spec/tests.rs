@@ -48,7 +48,7 @@ fn point_specs_parse_with_their_defaults() {
     assert_eq!(
         s.contacts[0].numerics,
         Numerics {
-            grid: 513,
+            grid: 1025,
             accuracy: Some(0.01),
             ..Numerics::for_contact(Contact::Point)
         }
@@ -167,7 +167,7 @@ fn mixed_specs_hold_both_contacts_with_their_own_axes_and_numerics() {
     let line = s.numerics(Contact::Line).unwrap();
     assert_eq!((line.grid, line.accuracy), (16385, Some(0.01)));
     let point = s.numerics(Contact::Point).unwrap();
-    assert_eq!((point.grid, point.accuracy), (513, Some(0.01)));
+    assert_eq!((point.grid, point.accuracy), (1025, Some(0.01)));
 }
 
 #[test]
