@@ -2,17 +2,21 @@
 //! contacts of any ellipticity, by full multigrid, in Moes' parameters (M, L) and D = Rx/Ry.
 //!
 //! One [`solve()`] takes a [`Case`] (a [`LineCase`] or a [`PointCase`]) and [`SolveParams`] and
-//! returns a [`Solution`]: the films and pressures in [`Outputs`], with a [`Status`] and a reason
-//! (numerical failure is a result, never a panic).
+//! returns a [`Solution`]: the films and pressures in [`Outputs`], with a [`Status`], a reason
+//! (numerical failure is a result, never a panic) and the error estimates of H_c and H_min. By
+//! default the grid is refined until they meet 1 %; a fixed `grid` is estimated against its half
+//! grid.
 //!
 //! ```
 //! use ehlmap::{solve, Case, LineCase, SolveParams, Status};
 //!
 //! let case = Case::Line(LineCase::new(20.0, 10.0).expect("valid M, L"));
-//! let s = solve(&case, &SolveParams { grid: Some(513), ..SolveParams::default() });
+//! let s = solve(&case, &SolveParams::default());
 //! assert_eq!(s.outputs.status, Status::Converged);
-//! // Moes 1992 gives H_c = 5.10 for M = 20, L = 10; the grid-converged solver 5.276.
-//! assert!((s.outputs.h_c / 5.27 - 1.0).abs() < 0.01);
+//! assert_eq!(s.outputs.accuracy_met, Some(true));
+//! // Moes 1992 gives H_c = 5.10 for M = 20, L = 10; the grid-converged solver 5.2757.
+//! let err = s.outputs.h_c_err.expect("an estimate");
+//! assert!(err <= 0.01 && (s.outputs.h_c / 5.2757 - 1.0).abs() <= err);
 //! ```
 //!
 //! The modules follow the data flow, each importing only from those before it:

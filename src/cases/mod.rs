@@ -1,6 +1,6 @@
 //! A dimensional case, line or point contact: read and derived by
-//! [`crate::model::dimensional`], solved by [`crate::strategy::solve_case::solve`] on the case's
-//! grid, and set beside the published formulas in engineering units, with the film parameter
+//! [`crate::model::dimensional`], solved by [`crate::strategy::solve_case::solve`] (to the
+//! default 1 % accuracy target, or on the case's `grid` when it names one), and set beside the published formulas in engineering units, with the film parameter
 //! `Lambda = h_min/sigma`: `< 1` boundary, `1..3` mixed, `> 3` full film.
 
 use crate::model::case::Contact;

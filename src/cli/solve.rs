@@ -592,7 +592,10 @@ pub fn run_solve(a: &SolveArgs) -> Result<(), CliError> {
             serde_json::to_string(&s.outputs).expect("outputs serialise")
         )
     } else {
-        out!("{}", crate::cli::summary::summary(&case, &s.outputs))
+        out!(
+            "{}",
+            crate::cli::summary::summary(&case, &s.outputs, a.no_estimate)
+        )
     };
     // The results are printed even when a file could not be written; the first error decides
     // the exit code.

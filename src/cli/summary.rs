@@ -6,8 +6,9 @@ use ehlmap::model::case::Case;
 use ehlmap::model::error::num;
 use ehlmap::solve::solution::{with_error, ModelUsed, Outputs};
 
-/// The readable summary of a solve, line or point contact.
-pub fn summary(case: &Case, o: &Outputs) -> String {
+/// The readable summary of a solve, line or point contact (`skipped_estimate`: the half-grid
+/// estimate was not asked for).
+pub fn summary(case: &Case, o: &Outputs, skipped_estimate: bool) -> String {
     let m = case.models();
     let head = match case {
         Case::Line(c) => format!("line contact  M = {}  L = {}", num(c.m), num(c.l)),
@@ -76,12 +77,12 @@ pub fn summary(case: &Case, o: &Outputs) -> String {
     for (name, value) in rows {
         out += &format!("{name:<15}{value}\n");
     }
-    out + &model_line(o)
+    out + &model_line(o, skipped_estimate)
 }
 
 /// The model and accuracy lines of a summary: which model answered, and whether the accuracy
 /// target was met, in words.
-fn model_line(o: &Outputs) -> String {
+fn model_line(o: &Outputs, skipped_estimate: bool) -> String {
     let level = o.level.map_or("-".to_string(), |l| l.to_string());
     let model = format!("model          {}, level {level}\n", o.model_used);
     let errs = match (o.h_c_err, o.h_min_err) {
@@ -97,6 +98,7 @@ fn model_line(o: &Outputs) -> String {
             format!("error estimate {e:.1e}{errs} against the half grid (no target)")
         }
         (None, Some(_)) => "target NOT met: no error estimate (see the status line for why)".into(),
+        (None, None) if skipped_estimate => "no error estimate (--no-estimate)".into(),
         (None, None) => "no error estimate (see the status line for why)".into(),
     };
     model + &format!("accuracy       {accuracy}\n")
