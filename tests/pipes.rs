@@ -144,7 +144,11 @@ fn case_report_json_and_no_solve() {
         Path::new(env!("CARGO_MANIFEST_DIR")).join("sweeps/cases/example-7-1.toml"),
     )
     .unwrap()
-    .replace("grid = 4097", "grid = 129");
+    .replace("u2 = 1.08\n", "u2 = 1.08\ngrid = 129\n");
+    assert!(
+        text.contains("grid = 129"),
+        "the example's speeds moved: {text}"
+    );
     std::fs::write(&file, text).unwrap();
     let f = file.to_str().unwrap();
     both(&["case", f]);
