@@ -76,8 +76,10 @@ pub const COARSE_LADDER_CYCLES: usize = 20;
 /// the case costs one attempt and the ladder moves on. Where a grid converges after the grid
 /// below it failed, that grid is solved again with the full effort, so that an estimate is not
 /// lost to a coarse grid's cheap attempt. Returns the finest solution with `error_estimate` and
-/// `accuracy_met` set; the cost of all grids is counted.
-pub fn refine_to_accuracy<S: Attempt>(
+/// `accuracy_met` set, or, when the finest allowed grid does not converge even with its
+/// fallback ladder, the finest converged solution that has an estimate (target not met, the
+/// reason naming the grids that failed); the cost of all grids is counted.
+pub fn refine_to_accuracy<S: Attempt + Clone>(
     start: usize,
     max_grid: usize,
     target: f64,
@@ -86,6 +88,8 @@ pub fn refine_to_accuracy<S: Attempt>(
 ) -> S {
     let mut grid = start;
     let mut prev: Option<S> = None;
+    // The finest converged solve with an error estimate so far.
+    let mut best: Option<S> = None;
     let (mut wu, mut wall) = (0.0, 0.0);
     let mut failed_grids = vec![];
     let mut count = |s: &mut S| {
@@ -115,6 +119,31 @@ pub fn refine_to_accuracy<S: Attempt>(
             so.set_errors(c, m);
         }
         let est = est.map(|(c, m)| c.max(m));
+        if last && !converged {
+            if let Some(mut b) = best.take() {
+                // The finest grid failed even with its fallback ladder: the finest converged
+                // grid's answer, with its error bar, is the better result.
+                let (bi, bo) = b.parts();
+                bo.accuracy_met = Some(false);
+                let note = format!(
+                    "; accuracy target {target:.1e} NOT met: estimate {:.1e} on {} points, the \
+                     finest grid that converged (not converged on the finer grids {:?}, the \
+                     last with its fallback ladder: {})",
+                    bo.error_estimate.unwrap_or(f64::NAN),
+                    bo.grid,
+                    failed_grids.iter().chain([&so.grid]).collect::<Vec<_>>(),
+                    so.status
+                );
+                for (r, w, t) in [
+                    (&mut bo.reason, &mut bo.work_units, &mut bo.wall_s),
+                    (&mut bi.reason, &mut bi.work_units, &mut bi.wall_s),
+                ] {
+                    r.push_str(&note);
+                    (*w, *t) = (wu, wall);
+                }
+                return b;
+            }
+        }
         if est.is_some_and(|e| e <= target) || last {
             so.accuracy_met = Some(est.is_some_and(|e| e <= target));
             let mut note = match est {
@@ -144,6 +173,9 @@ pub fn refine_to_accuracy<S: Attempt>(
         }
         let g = so.grid;
         if converged {
+            if est.is_some() {
+                best = Some(s.clone());
+            }
             prev = Some(s);
         } else {
             failed_grids.push(g);
@@ -354,6 +386,86 @@ mod tests {
         let nan = outputs(Status::Converged, f64::NAN, 3.9);
         assert_eq!(half_grid_errors(&nan, &fine, ESTIMATE_ORDER), None);
         assert_eq!(coarser_grid(129), 65);
+    }
+
+    /// A converged solve on `grid` with films `h` (or a failed one), 1 work unit.
+    fn fake(grid: usize, h: f64, status: Status) -> Solution {
+        let mut o = outputs(status, h, h);
+        o.grid = grid;
+        Solution {
+            info: crate::solve::SolveInfo {
+                status,
+                reason: String::new(),
+                history: vec![],
+                work_units: 1.0,
+                wall_s: 0.0,
+                grid,
+                levels: 4,
+                algebraic_error: None,
+                discretisation_error: None,
+            },
+            outputs: o,
+            attempt: 1,
+            profile: None,
+            fields: None,
+        }
+    }
+
+    #[test]
+    fn the_ladder_stops_at_the_target_and_falls_back_to_the_finest_converged_grid() {
+        // H converges like 1 - 1/grid: 257 -> 513 changes H by about 1.9e-3.
+        let h = |g: usize| 1.0 - 1.0 / g as f64;
+        let ladder = |target: f64, fail_from: usize| {
+            let mut asked = vec![];
+            let s = refine_to_accuracy(257, 1025, target, 2.0, |g, full| {
+                asked.push((g, full));
+                let status = if g >= fail_from {
+                    Status::Diverged
+                } else {
+                    Status::Converged
+                };
+                fake(g, h(g), status)
+            });
+            (s, asked)
+        };
+        // Met on 513: (h(513) - h(257)) / (3 h(513)) = 6.5e-4.
+        let (s, asked) = ladder(1e-3, usize::MAX);
+        assert_eq!(asked, vec![(257, false), (513, false)]);
+        assert_eq!((s.outputs.grid, s.outputs.accuracy_met), (513, Some(true)));
+        let e = (h(513) - h(257)) / (3.0 * h(513));
+        assert!((s.outputs.error_estimate.unwrap() - e).abs() < 1e-15);
+        // Not met on 513, and 1025 (the finest allowed, with its fallback) fails: the 513
+        // answer with its estimate, the cost of all three solves, the failure named.
+        let (s, asked) = ladder(1e-4, 1025);
+        assert_eq!(asked, vec![(257, false), (513, false), (1025, true)]);
+        assert_eq!((s.outputs.grid, s.outputs.accuracy_met), (513, Some(false)));
+        assert_eq!(s.outputs.status, Status::Converged);
+        assert!((s.outputs.error_estimate.unwrap() - e).abs() < 1e-15);
+        assert_eq!(s.outputs.work_units, 3.0);
+        assert!(
+            s.outputs.reason.contains("finer grids [1025]"),
+            "{}",
+            s.outputs.reason
+        );
+        // 513 fails its cheap attempt and 1025 converges: 513 is solved again with its
+        // fallback ladder, and the estimate comes from the pair.
+        let mut asked = vec![];
+        let s = refine_to_accuracy(257, 1025, 1e-4, 2.0, |g, full| {
+            asked.push((g, full));
+            let status = if g == 513 && !full {
+                Status::Diverged
+            } else {
+                Status::Converged
+            };
+            fake(g, h(g), status)
+        });
+        assert_eq!(
+            asked,
+            vec![(257, false), (513, false), (1025, true), (513, true)]
+        );
+        let e = (h(1025) - h(513)) / (3.0 * h(1025));
+        assert!((s.outputs.error_estimate.unwrap() - e).abs() < 1e-15);
+        assert_eq!(s.outputs.accuracy_met, Some(false));
     }
 
     #[test]
