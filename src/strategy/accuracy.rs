@@ -79,7 +79,7 @@ pub const COARSE_LADDER_CYCLES: usize = 20;
 /// `accuracy_met` set, or, when the finest allowed grid does not converge even with its
 /// fallback ladder, the finest converged solution that has an estimate (target not met, the
 /// reason naming the grids that failed); the cost of all grids is counted.
-pub fn refine_to_accuracy<S: Attempt + Clone>(
+pub fn refine_to_accuracy<S: Attempt>(
     start: usize,
     max_grid: usize,
     target: f64,
@@ -87,7 +87,8 @@ pub fn refine_to_accuracy<S: Attempt + Clone>(
     mut solve: impl FnMut(usize, bool) -> S,
 ) -> S {
     let mut grid = start;
-    let mut prev: Option<S> = None;
+    // The outputs of the grid below, when it converged.
+    let mut prev: Option<Outputs> = None;
     // The finest converged solve with an error estimate so far.
     let mut best: Option<S> = None;
     let (mut wu, mut wall) = (0.0, 0.0);
@@ -107,14 +108,14 @@ pub fn refine_to_accuracy<S: Attempt + Clone>(
             count(&mut again);
             if again.info().status == Status::Converged {
                 failed_grids.pop();
-                prev = Some(again);
+                prev = Some(again.parts().1.clone());
             }
         }
         let (si, so) = s.parts();
         let est = prev
-            .as_mut()
+            .as_ref()
             .filter(|_| converged)
-            .and_then(|c| half_grid_errors(c.parts().1, so, order));
+            .and_then(|c| half_grid_errors(c, so, order));
         if let Some((c, m)) = est {
             so.set_errors(c, m);
         }
@@ -173,10 +174,10 @@ pub fn refine_to_accuracy<S: Attempt + Clone>(
         }
         let g = so.grid;
         if converged {
+            prev = Some(so.clone());
             if est.is_some() {
-                best = Some(s.clone());
+                best = Some(s);
             }
-            prev = Some(s);
         } else {
             failed_grids.push(g);
             prev = None;

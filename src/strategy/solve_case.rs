@@ -32,14 +32,6 @@ use crate::strategy::select::{solve_line_selected, solve_point_selected};
 /// The default target relative accuracy of H_c and H_min.
 pub const DEFAULT_ACCURACY: f64 = 0.01;
 
-/// The smallest grid a solve takes: points (line) or points per direction (point).
-pub const fn min_grid(contact: Contact) -> usize {
-    match contact {
-        Contact::Line => 33,
-        Contact::Point => 17,
-    }
-}
-
 /// Largest grid of the accuracy ladder by default: points (line) or points per direction (point).
 pub const fn default_max_grid(contact: Contact) -> usize {
     match contact {
@@ -204,7 +196,7 @@ pub fn estimate_fixed(case: &Case, params: &SolveParams, s: &mut Solution) {
         Case::Line(_) => ESTIMATE_ORDER,
         Case::Point(_) => POINT_ESTIMATE_ORDER,
     };
-    add_half_grid_estimate(s, min_grid(case.contact()), order, |g| {
+    add_half_grid_estimate(s, case.contact().grid_range().0, order, |g| {
         solve_once(
             case,
             &SolveParams {
