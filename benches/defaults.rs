@@ -8,31 +8,11 @@
 //! (`sweeps/cases/ball-bearing.toml`, M = 8729, L = 16.4, D = 0.031) in under 30 s. Each line of
 //! the summary says `met` or `NOT met`.
 
+mod common;
+use common::{time, verdict};
 use ehlmap::model::case::{Case, LineCase, PointCase};
 use ehlmap::solve::solution::Outputs;
 use ehlmap::strategy::solve_case::{solve, SolveParams};
-use std::time::Instant;
-
-/// Median wall time of `repeats` runs of `run`, and the last run's outputs.
-fn time(repeats: usize, run: impl Fn() -> Outputs) -> (f64, Outputs) {
-    let mut times = vec![];
-    let mut last = None;
-    for _ in 0..repeats {
-        let t = Instant::now();
-        last = Some(run());
-        times.push(t.elapsed().as_secs_f64());
-    }
-    times.sort_by(|a, b| a.partial_cmp(b).expect("finite times"));
-    (times[times.len() / 2], last.expect("at least one repeat"))
-}
-
-fn verdict(ok: bool) -> &'static str {
-    if ok {
-        "met"
-    } else {
-        "NOT met"
-    }
-}
 
 fn report(name: &str, t: f64, o: &Outputs) -> bool {
     let e = |x: Option<f64>| x.map_or("-".to_string(), |v| format!("{v:.2e}"));

@@ -12,30 +12,14 @@
 //!
 //! Each line of the summary says `met` or `NOT met`.
 
+mod common;
+use common::{median, time, verdict};
 use ehlmap::model::case::{LineCase, PointCase};
 use ehlmap::solve::line::{solve_line, LineSolveParams};
 use ehlmap::solve::params::Converge;
 use ehlmap::solve::point::{solve_point, PointSolveParams};
 use ehlmap::solve::solution::Outputs;
 use std::time::Instant;
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(|a, b| a.partial_cmp(b).expect("finite times"));
-    v[v.len() / 2]
-}
-
-/// Median wall time of `repeats` runs of `run`, and the last run's outputs.
-fn time(repeats: usize, run: impl Fn() -> Outputs) -> (f64, Outputs) {
-    let mut times = vec![];
-    let mut last = None;
-    for _ in 0..repeats {
-        let t = Instant::now();
-        let o = run();
-        times.push(t.elapsed().as_secs_f64());
-        last = Some(o);
-    }
-    (median(times), last.expect("at least one repeat"))
-}
 
 fn line(case: &LineCase, grid: usize, converge: Converge) -> Outputs {
     let mut p = LineSolveParams::default();
@@ -50,14 +34,6 @@ fn point(case: &PointCase, grid: usize, converge: Converge, parallel: bool) -> O
     p.mg.converge = converge;
     p.mg.parallel = parallel;
     solve_point(case, &p).outputs
-}
-
-fn verdict(ok: bool) -> &'static str {
-    if ok {
-        "met"
-    } else {
-        "NOT met"
-    }
 }
 
 fn main() {
