@@ -14,6 +14,7 @@ pub mod fit;
 pub mod limits;
 pub mod output;
 pub mod solve;
+pub mod solve_args;
 pub mod summary;
 pub mod sweep;
 
@@ -35,7 +36,7 @@ pub struct Cli {
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// Solve one contact and print its film thickness, pressure and convergence.
-    Solve(solve::SolveArgs),
+    Solve(solve_args::SolveArgs),
     /// Run a sweep spec (TOML) into a Parquet dataset: resumable, shardable.
     Sweep(sweep::SweepArgs),
     /// Fit a Moes-style film formula to sweep datasets; report, fit.json and charts.
