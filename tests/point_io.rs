@@ -282,6 +282,7 @@ fn fields_file_round_trips() {
         y: y.clone(),
         p: p.clone(),
         h: h.clone(),
+        p_asperity: None,
     };
     let path = dir.join("fields.parquet");
     write_fields(&path, &f, &[("M", "100".into()), ("D", "0.5".into())]).unwrap();

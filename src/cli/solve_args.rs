@@ -8,6 +8,7 @@ use clap::ValueEnum;
 use ehlmap::model::case::{Case, Contact, Elasticity, LineCase, Models, ParamError, PointCase};
 use ehlmap::model::error::num;
 use ehlmap::model::lubricant::{Density, Viscosity};
+use ehlmap::model::roughness::Roughness;
 use ehlmap::solve::params::Method;
 use ehlmap::solve::params::{Converge, CycleType};
 use ehlmap::solve::{CycleEvent, Observer};
@@ -36,6 +37,15 @@ pub enum ViscosityArg {
 pub enum DensityArg {
     Incompressible,
     DowsonHigginson,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum RoughSurfaceArg {
+    Both,
+    #[value(name = "1")]
+    One,
+    #[value(name = "2")]
+    Two,
 }
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
@@ -88,6 +98,26 @@ pub struct SolveArgs {
     pub ph: Option<f64>,
     #[arg(long, value_enum, default_value = "incompressible")]
     pub density: DensityArg,
+    /// Composite RMS roughness sigma = sqrt(Rq1^2 + Rq2^2) in Moes film units (the units of
+    /// H_c): solves the Patir-Cheng average Reynolds equation with Greenwood-Tripp asperity
+    /// contact, and the smooth case beside it; 0 (the default) is the smooth solver.
+    #[arg(long, allow_hyphen_values = true)]
+    pub sigma: Option<f64>,
+    /// Roughness orientation gamma (Peklenik): 1 isotropic (default), < 1 transverse ridges,
+    /// > 1 longitudinal; with --sigma.
+    #[arg(long, allow_hyphen_values = true)]
+    pub gamma: Option<f64>,
+    /// Slide-to-roll ratio (u1 - u2)/u_m in [-2, 2] (default 0, pure rolling); with --sigma.
+    #[arg(long, allow_hyphen_values = true)]
+    pub slide_roll: Option<f64>,
+    /// Which surface carries the roughness, for the shear flow: both (equally, default), 1 or 2
+    /// (the surface moving at u1 or u2); with --sigma.
+    #[arg(long, value_enum)]
+    pub rough_surface: Option<RoughSurfaceArg>,
+    /// p_h/E' in (0, 1) for the asperity pressure (default 1 GPa on steel, 0.004333); with
+    /// --sigma.
+    #[arg(long, allow_hyphen_values = true)]
+    pub ph_over_e: Option<f64>,
     /// Solver: full multigrid, or the baselines (dense Newton, single-grid relaxation).
     #[arg(long, value_enum, default_value = "multigrid")]
     pub method: MethodArg,
@@ -201,6 +231,7 @@ pub(crate) fn check_flags(a: &SolveArgs) -> Result<(), CliError> {
             (a.no_fallback, "--no-fallback"),
             (a.accuracy.is_some(), "--accuracy"),
             (a.trace, "--trace"),
+            (a.sigma.is_some_and(|s| s != 0.0), "--sigma"),
         ] {
             if given {
                 return Err(input(format!(
@@ -268,6 +299,49 @@ pub(crate) fn check_flags(a: &SolveArgs) -> Result<(), CliError> {
     Ok(())
 }
 
+/// The rough surfaces of the command line: `None` without --sigma; the other roughness options
+/// need it.
+fn roughness(a: &SolveArgs) -> Result<Option<Roughness>, CliError> {
+    let Some(sigma) = a.sigma else {
+        for (given, name) in [
+            (a.gamma.is_some(), "--gamma"),
+            (a.slide_roll.is_some(), "--slide-roll"),
+            (a.rough_surface.is_some(), "--rough-surface"),
+            (a.ph_over_e.is_some(), "--ph-over-e"),
+        ] {
+            if given {
+                return Err(input(format!("{name} needs --sigma (the RMS roughness)")));
+            }
+        }
+        return Ok(None);
+    };
+    let base = Roughness::isotropic(sigma);
+    let r = Roughness {
+        gamma: a.gamma.unwrap_or(base.gamma),
+        slide_roll: a.slide_roll.unwrap_or(base.slide_roll),
+        variance_ratio_1: match a.rough_surface {
+            None | Some(RoughSurfaceArg::Both) => 0.5,
+            Some(RoughSurfaceArg::One) => 1.0,
+            Some(RoughSurfaceArg::Two) => 0.0,
+        },
+        ph_over_e: a.ph_over_e.unwrap_or(base.ph_over_e),
+        ..base
+    };
+    r.validate().map_err(|e| {
+        let flag = |s: &str| format!("--{}", s.replace('_', "-"));
+        let msg = e.to_string();
+        let named = ["sigma", "gamma", "slide_roll", "ph_over_e"]
+            .into_iter()
+            .find(|n| msg.contains(n))
+            .map(flag);
+        input(match named {
+            Some(f) => format!("{f}: {msg}"),
+            None => msg,
+        })
+    })?;
+    Ok(r.is_rough().then_some(r))
+}
+
 /// The models of the command line; `alpha_bar` of the case converts Roelands' eta0 into z.
 fn build_models(a: &SolveArgs, alpha_bar: f64) -> Result<Models, CliError> {
     let bad = |e: ParamError| input(e.to_string());
@@ -324,6 +398,7 @@ fn build_models(a: &SolveArgs, alpha_bar: f64) -> Result<Models, CliError> {
         elasticity,
         viscosity,
         density,
+        roughness: roughness(a)?,
     })
 }
 

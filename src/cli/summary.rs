@@ -4,7 +4,7 @@
 
 use ehlmap::model::case::Case;
 use ehlmap::model::error::num;
-use ehlmap::solve::solution::{with_error, ModelUsed, Outputs};
+use ehlmap::solve::solution::{with_error, MixedOutputs, ModelUsed, Outputs};
 
 /// The readable summary of a solve, line or point contact (`skipped_estimate`: the half-grid
 /// estimate was not asked for).
@@ -77,7 +77,40 @@ pub fn summary(case: &Case, o: &Outputs, skipped_estimate: bool) -> String {
     for (name, value) in rows {
         out += &format!("{name:<15}{value}\n");
     }
+    if let Some(x) = &o.mixed {
+        out += &mixed_lines(x);
+    }
     out + &model_line(o, skipped_estimate)
+}
+
+/// The mixed-lubrication lines of a summary: the roughness, the film parameters, the asperity
+/// share of the load and the smooth case's films.
+fn mixed_lines(x: &MixedOutputs) -> String {
+    let orientation = match x.gamma {
+        g if g == 1.0 => "isotropic",
+        g if g < 1.0 => "transverse",
+        _ => "longitudinal",
+    };
+    let smooth = match (x.h_c_smooth, x.h_min_smooth) {
+        (Some(c), Some(m)) => format!("H_c {c:.6}, H_min {m:.6}"),
+        _ => "not converged".to_string(),
+    };
+    let mut s = format!(
+        "{:<15}sigma {} (Moes units), gamma {} ({orientation}), slide-roll {}\n",
+        "roughness",
+        num(x.sigma),
+        num(x.gamma),
+        num(x.slide_roll)
+    );
+    s += &format!(
+        "{:<15}Lambda = H_min/sigma {:.3}, H_c/sigma {:.3}\n",
+        "film parameter", x.lambda_min, x.lambda_c
+    );
+    s += &format!(
+        "{:<15}{:.3e} of the load (P_a max {:.3e}, {} fixed-point re-solves)\n",
+        "asperities", x.asperity_load_fraction, x.p_asperity_max, x.mixed_iterations
+    );
+    s + &format!("{:<15}{smooth}\n", "smooth film")
 }
 
 /// The model and accuracy lines of a summary: which model answered, and whether the accuracy

@@ -29,6 +29,14 @@ pub struct NodeFields {
     pub work: Vec<f64>,
     /// Work buffer (relaxation changes, residuals).
     pub delta: Vec<f64>,
+    /// Rough anisotropic surfaces: eps along y, phi_y rho H^3/(eta lambda) (empty otherwise;
+    /// see [`NodeFields::eps_y`]).
+    pub eps_along_y: Vec<f64>,
+    /// Rough surfaces: the wedge film q(H) (empty otherwise; see [`NodeFields::wedge_film`]).
+    pub wfilm: Vec<f64>,
+    /// Mixed lubrication: the deformation by the asperity pressure, added to the film (empty
+    /// otherwise).
+    pub asperity_gap: Vec<f64>,
 }
 
 impl NodeFields {
@@ -45,7 +53,67 @@ impl NodeFields {
             frozen: vec![false; n],
             work: vec![0.0; n],
             delta: vec![0.0; n],
+            eps_along_y: vec![],
+            wfilm: vec![],
+            asperity_gap: vec![],
         }
+    }
+
+    /// The film of the wedge term: q(H) on rough surfaces, H itself on smooth ones.
+    #[inline]
+    pub fn wedge_film(&self) -> &[f64] {
+        if self.wfilm.is_empty() {
+            &self.film
+        } else {
+            &self.wfilm
+        }
+    }
+
+    /// The Poiseuille coefficient along y: eps itself unless rough anisotropic surfaces give it
+    /// its own flow factor.
+    #[inline]
+    pub fn eps_y(&self) -> &[f64] {
+        if self.eps_along_y.is_empty() {
+            &self.eps
+        } else {
+            &self.eps_along_y
+        }
+    }
+
+    /// The rough fields (wedge film, eps along y) of every node from H and eps; nothing on
+    /// smooth surfaces.
+    pub fn refresh_rough(&mut self, law: &Coefficients) {
+        if law.rough.is_none() {
+            return;
+        }
+        for c in 0..self.film.len() {
+            self.refresh_rough_at(law, c);
+        }
+    }
+
+    /// [`NodeFields::refresh_rough`] at node `c` alone.
+    #[inline]
+    pub fn refresh_rough_at(&mut self, law: &Coefficients, c: usize) {
+        let Some(r) = &law.rough else { return };
+        let n = self.film.len();
+        if self.wfilm.len() != n {
+            self.wfilm.resize(n, 0.0);
+        }
+        let film = self.film[c];
+        self.wfilm[c] = r.wedge_film(film);
+        if !r.isotropic() {
+            if self.eps_along_y.len() != n {
+                self.eps_along_y.resize(n, 0.0);
+            }
+            let (fx, fy) = r.factors(film);
+            self.eps_along_y[c] = self.eps[c] * fy / fx;
+        }
+    }
+
+    /// The asperity deformation at node `c` (0 without asperity contact).
+    #[inline]
+    pub fn asperity_gap_at(&self, c: usize) -> f64 {
+        self.asperity_gap.get(c).copied().unwrap_or(0.0)
     }
 
     /// Recompute rho and eps from P and the current H by the coefficient law `law`.
@@ -57,6 +125,7 @@ impl NodeFields {
             &mut self.eps,
             &mut self.divisor,
         );
+        self.refresh_rough(&law);
     }
 }
 

@@ -9,6 +9,7 @@ pub mod level;
 pub mod line;
 pub mod physics;
 pub mod point;
+pub mod roughness;
 pub mod stencil;
 #[cfg(test)]
 pub(crate) mod testing;

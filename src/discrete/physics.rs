@@ -11,6 +11,7 @@
 //! level, node by node in storage order), so equal P and H give bit-identical coefficients in
 //! either contact.
 
+use crate::discrete::roughness::RoughLaw;
 use crate::model::case::{Elasticity, Models};
 use crate::model::lubricant::{Density, Viscosity};
 
@@ -57,13 +58,21 @@ pub struct Coefficients {
     pub lambda: f64,
     /// Dry contact: eps = 0.
     pub dry: bool,
+    /// Rough surfaces: eps carries phi_x, and the level's rough fields follow H
+    /// ([`crate::discrete::level::NodeFields::refresh_rough`]).
+    pub rough: Option<RoughLaw>,
 }
 
 impl Coefficients {
-    /// The law of a fluid at a contact's lambda, dry or not.
+    /// The law of a fluid at a contact's lambda, dry or not, smooth or rough.
     #[inline]
-    pub fn new(fluid: Fluid, lambda: f64, dry: bool) -> Self {
-        Coefficients { fluid, lambda, dry }
+    pub fn new(fluid: Fluid, lambda: f64, dry: bool, rough: Option<RoughLaw>) -> Self {
+        Coefficients {
+            fluid,
+            lambda,
+            dry,
+            rough,
+        }
     }
 
     /// eta(P) lambda, the divisor of eps at one node.
@@ -73,14 +82,19 @@ impl Coefficients {
     }
 
     /// eps = rho H^3/divisor at one node, H clipped at 0, with the node's [`Coefficients::divisor`]
-    /// (for a film change at fixed P: no viscosity to evaluate); 0 when dry.
+    /// (for a film change at fixed P: no viscosity to evaluate), times phi_x(H) on rough
+    /// surfaces; 0 when dry.
     #[inline]
     pub fn eps_with(&self, rho: f64, film: f64, divisor: f64) -> f64 {
         if self.dry {
             0.0
         } else {
             let hh = film.max(0.0);
-            rho * hh * hh * hh / divisor
+            let e = rho * hh * hh * hh / divisor;
+            match &self.rough {
+                None => e,
+                Some(r) => e * r.phi_x(film),
+            }
         }
     }
 
@@ -107,6 +121,23 @@ impl Coefficients {
     }
 }
 
+/// Access to the [`Physics`] every contact's physics holds (the line contact's is one).
+pub trait AsPhysics {
+    /// The shared physics.
+    fn physics(&self) -> &Physics;
+    /// The shared physics, to change.
+    fn physics_mut(&mut self) -> &mut Physics;
+}
+
+impl AsPhysics for Physics {
+    fn physics(&self) -> &Physics {
+        self
+    }
+    fn physics_mut(&mut self) -> &mut Physics {
+        self
+    }
+}
+
 /// The physics every contact shares in Hertzian scaling, the same on all levels.
 #[derive(Clone, Copy, Debug)]
 pub struct Physics {
@@ -121,6 +152,11 @@ pub struct Physics {
     pub dry: bool,
     /// Second-order upwind wedge term (default) or first order.
     pub second_order: bool,
+    /// Rough surfaces (the average Reynolds equation); `None`: smooth.
+    pub rough: Option<RoughLaw>,
+    /// The share of the load the fluid carries (1; less in mixed lubrication, where the
+    /// asperities carry the rest): the finest level's load equation is sum P = share x load.
+    pub fluid_share: f64,
 }
 
 impl Physics {
@@ -133,12 +169,23 @@ impl Physics {
             elastic: models.elasticity == Elasticity::Elastic,
             dry: false,
             second_order: true,
+            rough: None,
+            fluid_share: 1.0,
+        }
+    }
+
+    /// The same physics with the rough surfaces of `models` (sigma in Moes units, H_Moes =
+    /// `h_scale` H).
+    pub fn with_roughness(self, models: &Models, h_scale: f64) -> Self {
+        Physics {
+            rough: RoughLaw::new(&models.roughness, h_scale),
+            ..self
         }
     }
 
     /// The coefficient law rho(P), eps(P, H).
     #[inline]
     pub fn coefficients(&self) -> Coefficients {
-        Coefficients::new(self.fluid, self.lambda, self.dry)
+        Coefficients::new(self.fluid, self.lambda, self.dry, self.rough)
     }
 }

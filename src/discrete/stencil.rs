@@ -87,12 +87,26 @@ pub struct Fields<'a> {
     pub eps: &'a [f64],
     /// Density rho.
     pub rho: &'a [f64],
+    /// The film of the wedge term (H, or q(H) on rough surfaces).
+    pub wfilm: &'a [f64],
 }
 
 impl<'a> Fields<'a> {
-    /// The view of a level's P, H, eps and rho.
-    pub fn new(p: &'a [f64], film: &'a [f64], eps: &'a [f64], rho: &'a [f64]) -> Self {
-        Fields { p, film, eps, rho }
+    /// The view of a level's P, H, eps, rho and wedge film.
+    pub fn new(
+        p: &'a [f64],
+        film: &'a [f64],
+        eps: &'a [f64],
+        rho: &'a [f64],
+        wfilm: &'a [f64],
+    ) -> Self {
+        Fields {
+            p,
+            film,
+            eps,
+            rho,
+            wfilm,
+        }
     }
 }
 
@@ -100,7 +114,9 @@ impl<'a> Fields<'a> {
 /// `local[m]` = the local dL/dP at nodes c-2..=c+2 (both indexed from c - 2), from
 /// * `dle` = dL/d eps at nodes c-1, c, c+1, through d eps/dH ([`deps_dh`]) and d eps/dP
 ///   ([`deps_dp`]);
-/// * the wedge term -sum_k w_k (rho H)_{c-k}/h with its dependence on H and, through rho, on P.
+/// * the wedge term -sum_k w_k (rho H)_{c-k}/h with its dependence on H and, through rho, on P
+///   (on rough surfaces rho q(H), with dq/dH taken as 1: q' = Phi(H/sigma) <= 1 plus the small
+///   shear term, so the row is diagonally heavier, never lighter).
 ///
 /// The Poiseuille stencil's own entries (eps held fixed) are left to the caller.
 #[inline]
@@ -124,7 +140,7 @@ pub fn jacobian_x(
             let q = c - k;
             g_h[2 - k] -= wk * f.rho[q] / h;
             let drho = f.rho[q] * fluid.dln_rho(f.p[q]);
-            local[2 - k] -= wk * drho * f.film[q] / h;
+            local[2 - k] -= wk * drho * f.wfilm[q] / h;
         }
     }
     (g_h, local)

@@ -73,7 +73,7 @@ use std::sync::OnceLock;
 pub const ASPERITY_CUTOFF: f64 = 7.0;
 
 /// Greenwood-Tripp summit statistics (dimensionless).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct AsperityParams {
     /// `eta_s beta sigma`: summit density times summit radius times composite RMS roughness.
     pub eta_beta_sigma: f64,
@@ -168,7 +168,7 @@ pub fn gt_integral(n: f64, t: f64) -> Result<f64, ParamError> {
 }
 
 /// `F_n(t)` for checked `n >= 0`, finite `t`: Gauss-Legendre panels in `v = sqrt(s - t)`.
-fn f_n(n: f64, t: f64) -> f64 {
+pub(crate) fn f_n(n: f64, t: f64) -> f64 {
     const REACH: f64 = 40.0; // |v^2 + t| beyond which exp(-(v^2 + t)^2/2) < exp(-800)
     const PANELS: usize = 16;
     let a = (-t - REACH).max(0.0).sqrt();

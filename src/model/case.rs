@@ -12,6 +12,7 @@
 //! The inverse maps are exact: M = pi sqrt(3/(8 lambda)), L = alpha_bar sqrt(2 pi/M).
 
 use crate::model::lubricant::{Density, Viscosity};
+use crate::model::roughness::Roughness;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 use std::fmt;
@@ -72,6 +73,9 @@ pub struct Models {
     pub viscosity: Viscosity,
     /// Pressure-density law (incompressible or Dowson-Higginson).
     pub density: Density,
+    /// Rough surfaces (mixed lubrication); `None` or `sigma = 0`: smooth.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub roughness: Option<Roughness>,
 }
 
 pub(crate) use crate::model::error::check;
@@ -128,6 +132,9 @@ impl LineCase {
             "the lubricant parameter must be >= 0 and finite",
         )?;
         self.models.viscosity.validate()?;
+        if let Some(r) = &self.models.roughness {
+            r.validate()?;
+        }
         self.models.density.validate()
     }
 

@@ -213,7 +213,7 @@ fn bracket<R>(rows: &[R], row_gamma: fn(&R) -> f64, gamma: f64) -> (usize, usize
 }
 
 /// `phi_x(H, gamma)` interpolated between rows, and whether `H` was below a row's range.
-fn pressure_factor(h: f64, gamma: f64) -> (f64, bool) {
+pub(crate) fn pressure_factor(h: f64, gamma: f64) -> (f64, bool) {
     let (i, j, w) = bracket(&PRESSURE, |row| row.gamma, gamma);
     let (a, below_a) = pressure_row(&PRESSURE[i], h);
     if w == 0.0 {
@@ -235,7 +235,7 @@ fn pressure_row(row: &PressureRow, h: f64) -> (f64, bool) {
 }
 
 /// `Phi_s(H, gamma)` interpolated between rows.
-fn single_shear_factor(h: f64, gamma: f64) -> f64 {
+pub(crate) fn single_shear_factor(h: f64, gamma: f64) -> f64 {
     let (i, j, w) = bracket(&SHEAR, |row| row.gamma, gamma);
     let a = shear_row(&SHEAR[i], h);
     if w == 0.0 {

@@ -84,6 +84,17 @@ pub trait Fas {
     fn install_guess(&mut self, _l: usize) -> bool {
         false
     }
+    /// A warm start's estimate of the finest level's relative discretisation error (from an
+    /// earlier cold solve of nearly the same problem), used where there is no coarser level to
+    /// estimate it from.
+    fn discretisation_hint(&self) -> Option<f64> {
+        None
+    }
+    /// Whether the next solve resumes from a finest-level state that [`Fas::install_guess`]
+    /// installs (no coarse start: the load slope of the earlier solve is kept).
+    fn resuming(&self) -> bool {
+        false
+    }
     /// Whether a coarsest-level solve with the load equation (fast convergence) has failed, so
     /// that H0 no longer moves with the cycles.
     fn coarse_load_failed(&self) -> bool {

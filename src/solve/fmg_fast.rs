@@ -197,11 +197,14 @@ fn residual_jump(l: usize, residual: f64, coarser_max: f64) -> Result<(), String
 pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
     let c = s.control();
     let start = Instant::now();
-    s.initialise();
     let top = s.top();
-    let coarse = s.start_coarse(true);
-    if top == 0 {
-        return single_level(s, start, &coarse);
+    // A resumed solve keeps its load slope and starts on the finest level: no coarse start.
+    if !(top > 0 && s.resuming()) {
+        s.initialise();
+        let coarse = s.start_coarse(true);
+        if top == 0 {
+            return single_level(s, start, &coarse);
+        }
     }
     // H0 moves by the load balance only where the coarsest solve with the load equation fails,
     // then once per cycle, before P has settled: old bracket ends are dropped.
@@ -262,10 +265,12 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
             let delta = changes(&last, &rec);
             let res_ratio = (k > 0).then(|| rec.residual / last.residual.max(1e-300));
             let alg = algebraic_error(delta, prev_delta, res_ratio, rec.load_error);
-            let disc = coarser.map(|q| {
-                let d = changes(&q, &rec);
-                d[0].max(d[1]) / 3.0
-            });
+            let disc = coarser
+                .map(|q| {
+                    let d = changes(&q, &rec);
+                    d[0].max(d[1]) / 3.0
+                })
+                .or_else(|| s.discretisation_hint().filter(|_| final_level));
             if final_level {
                 e_a = Some(alg);
                 e_d = disc;

@@ -8,6 +8,7 @@ pub mod fmg_fast;
 pub mod ladder;
 pub mod line;
 pub mod load_balance;
+pub mod mixed;
 pub mod multilevel;
 pub mod newton;
 pub mod params;

@@ -40,6 +40,14 @@ pub trait GridLevel: NewtonLevel {
     fn residual_into(&self, phys: &Self::Phys, active_only: bool, out: &mut [f64]);
     /// Set the right-hand side of the load equation.
     fn set_load_rhs(&mut self, g: f64);
+    /// The node fields.
+    fn nodes_mut(&mut self) -> &mut crate::discrete::level::NodeFields;
+    /// The deformation by a pressure `field` on this level's nodes (film units), into `out`.
+    fn deformation_of(&mut self, phys: &Self::Phys, field: &[f64], out: &mut [f64]);
+    /// A finer level's nodal `fine_field` at this level's nodes (injection).
+    fn inject_field(&self, fine: &Self, fine_field: &[f64]) -> Vec<f64>;
+    /// The area of one cell: the load is cell_area x sum P.
+    fn cell_area(&self) -> f64;
 }
 
 /// `impl GridLevel` for a level type with the fields `p`, `film`, `delta`, `g` and the methods
@@ -64,6 +72,18 @@ macro_rules! grid_level {
             }
             fn set_load_rhs(&mut self, g: f64) {
                 self.g = g;
+            }
+            fn nodes_mut(&mut self) -> &mut $crate::discrete::level::NodeFields {
+                &mut self.nodes
+            }
+            fn deformation_of(&mut self, phys: &$phys, field: &[f64], out: &mut [f64]) {
+                self.deformation_of(phys, field, out)
+            }
+            fn inject_field(&self, fine: &Self, fine_field: &[f64]) -> Vec<f64> {
+                self.inject_field(fine, fine_field)
+            }
+            fn cell_area(&self) -> f64 {
+                self.cell_area()
             }
         }
     };
@@ -165,6 +185,23 @@ pub struct Multigrid<C: Contact> {
     cycle_backup: Vec<f64>,
     /// The contact's own state.
     pub(crate) extra: C::Extra,
+    /// The finest level's state to resume the next solve from (see [`Resume`]).
+    pub(crate) resume: Option<Resume>,
+    /// The discretisation error of an earlier cold solve, for resumed solves
+    /// ([`Fas::discretisation_hint`]).
+    pub(crate) discretisation_hint: Option<f64>,
+}
+
+/// A finest-level state the next [`Multigrid::solve`] starts its finest cycles from, instead
+/// of the FMG ascent (the mixed-lubrication re-solves: the previous solution under a changed
+/// asperity load).
+pub(crate) struct Resume {
+    /// The finest level's pressure.
+    pub p: Vec<f64>,
+    /// H0.
+    pub h0: f64,
+    /// The finest level's load right-hand side.
+    pub g: f64,
 }
 
 impl<C: Contact> Multigrid<C> {
@@ -192,6 +229,8 @@ impl<C: Contact> Multigrid<C> {
             cycle_damping: 1.0,
             cycle_backup: vec![],
             extra,
+            resume: None,
+            discretisation_hint: None,
         }
     }
 
@@ -386,10 +425,29 @@ impl<C: Contact> Fas for Multigrid<C> {
         self.params.observer
     }
     fn install_guess(&mut self, l: usize) -> bool {
+        if l + 1 == self.levels.len() {
+            if let Some(r) = self.resume.take() {
+                let lv = &mut self.levels[l];
+                lv.pressure().copy_from_slice(&r.p);
+                let nodes = lv.nodes_mut();
+                nodes.f.fill(0.0);
+                nodes.frozen.fill(false);
+                lv.set_load_rhs(r.g);
+                self.h0 = r.h0;
+                lv.refresh(&self.phys, r.h0);
+                return true;
+            }
+        }
         C::install_guess(self, l)
     }
     fn coarse_load_failed(&self) -> bool {
         self.coarse_load_failed
+    }
+    fn discretisation_hint(&self) -> Option<f64> {
+        self.discretisation_hint
+    }
+    fn resuming(&self) -> bool {
+        self.resume.is_some()
     }
     fn work_units(&self) -> f64 {
         self.work_units

@@ -170,6 +170,9 @@ pub struct Outputs {
     /// With an accuracy target: whether the estimate met it (none on a fixed grid).
     #[serde(default)]
     pub accuracy_met: Option<bool>,
+    /// Rough surfaces: the mixed-lubrication outputs (absent for smooth ones).
+    #[serde(flatten, default)]
+    pub mixed: Option<MixedOutputs>,
 }
 
 impl Outputs {
@@ -222,6 +225,39 @@ pub struct Profile {
     pub p: Vec<f64>,
     /// The film H at the nodes, Moes units.
     pub h: Vec<f64>,
+    /// Rough surfaces: the asperity pressure p_a/p_h at the nodes.
+    pub p_asperity: Option<Vec<f64>>,
+}
+
+/// What a solve with rough surfaces reports besides the films (Moes units; module docs of
+/// [`crate::solve::mixed`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct MixedOutputs {
+    /// Composite RMS roughness, Moes film units.
+    pub sigma: f64,
+    /// Roughness orientation gamma.
+    pub gamma: f64,
+    /// Slide-to-roll ratio (u1 - u2)/u_m.
+    pub slide_roll: f64,
+    /// The film parameter H_min/sigma.
+    #[serde(rename = "Lambda")]
+    pub lambda_min: f64,
+    /// H_c/sigma.
+    #[serde(rename = "Lambda_c")]
+    pub lambda_c: f64,
+    /// The share of the load the asperities carry.
+    pub asperity_load_fraction: f64,
+    /// The largest asperity pressure p_a/p_h.
+    #[serde(rename = "P_asperity_max")]
+    pub p_asperity_max: f64,
+    /// Re-solves of the asperity load's fixed point (0: no asperity contact).
+    pub mixed_iterations: usize,
+    /// The same case with smooth surfaces: H_c (filled by the case-level solve).
+    #[serde(rename = "H_c_smooth", default)]
+    pub h_c_smooth: Option<f64>,
+    /// The same case with smooth surfaces: H_min.
+    #[serde(rename = "H_min_smooth", default)]
+    pub h_min_smooth: Option<f64>,
 }
 
 /// Vertex of the parabola through (-1, a), (0, b), (1, c): offset in [-1, 1] and value.
@@ -320,6 +356,7 @@ pub fn line_outputs(
         h_min_err: None,
         error_estimate: None,
         accuracy_met: None,
+        mixed: None,
     }
 }
 
@@ -371,6 +408,8 @@ pub struct PointFields {
     pub p: Vec<f64>,
     /// The film H (Moes units), row-major with X fastest.
     pub h: Vec<f64>,
+    /// Rough surfaces: the asperity pressure p_a/p_h, row-major with X fastest.
+    pub p_asperity: Option<Vec<f64>>,
 }
 
 /// Everything a solve returns, line or point contact.

@@ -64,7 +64,13 @@ mod tests {
             }
         }
         h[7] = f64::NAN;
-        let f = PointFields { x, y, p, h };
+        let f = PointFields {
+            x,
+            y,
+            p,
+            h,
+            p_asperity: None,
+        };
         let dir = std::env::temp_dir().join(format!("ehlmap-fields-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("fields.parquet");

@@ -366,6 +366,7 @@ mod tests {
             h_min_err: None,
             error_estimate: None,
             accuracy_met: None,
+            mixed: None,
         }
     }
 

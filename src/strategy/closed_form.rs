@@ -43,6 +43,7 @@ pub fn closed_form_line(m: f64) -> Solution {
         h_min_err: Some(0.0),
         error_estimate: Some(0.0),
         accuracy_met: Some(true),
+        mixed: None,
     };
     let info = SolveInfo {
         status: Status::Converged,

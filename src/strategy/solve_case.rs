@@ -156,6 +156,44 @@ impl SolveParams {
 
 /// Solve a line or point case (see the module docs).
 pub fn solve(case: &Case, params: &SolveParams) -> Solution {
+    let Some(smooth_case) = smooth_twin(case) else {
+        return solve_surfaces(case, params);
+    };
+    // Rough surfaces: the full model (no simplified model knows the roughness), and the same
+    // case with smooth surfaces beside it.
+    let params = &SolveParams {
+        full_model: true,
+        ..*params
+    };
+    let mut s = solve_surfaces(case, params);
+    let smooth = solve_surfaces(
+        &smooth_case,
+        &SolveParams {
+            keep_fields: false,
+            ..*params
+        },
+    );
+    if let Some(m) = s.outputs.mixed.as_mut() {
+        let ok = smooth.outputs.status == crate::solve::Status::Converged;
+        m.h_c_smooth = ok.then_some(smooth.outputs.h_c);
+        m.h_min_smooth = ok.then_some(smooth.outputs.h_min);
+    }
+    s
+}
+
+/// The case with smooth surfaces, when `case` has rough ones.
+pub fn smooth_twin(case: &Case) -> Option<Case> {
+    let mut twin = *case;
+    let models = match &mut twin {
+        Case::Line(c) => &mut c.models,
+        Case::Point(c) => &mut c.models,
+    };
+    models.roughness.take().filter(|r| r.is_rough())?;
+    Some(twin)
+}
+
+/// [`solve`] of the case's own surfaces, smooth or rough.
+fn solve_surfaces(case: &Case, params: &SolveParams) -> Solution {
     let max_grid = params.max_grid.unwrap_or(default_max_grid(case.contact()));
     let ladder = params.method == Method::Multigrid && params.grid.is_none();
     match (case, params.accuracy.filter(|_| ladder)) {

@@ -228,6 +228,7 @@ fn plan_case(
         elasticity: spec.elasticity,
         viscosity,
         density: spec.density,
+        roughness: None,
     };
     let mut c = Case {
         id: 0,

@@ -25,7 +25,7 @@ impl Physics {
     /// The physics of a line case.
     pub fn from_case(case: &LineCase) -> Self {
         let v = case.venner();
-        Physics::of(&case.models, v.lambda, v.alpha_bar)
+        Physics::of(&case.models, v.lambda, v.alpha_bar).with_roughness(&case.models, v.h_scale)
     }
 }
 
@@ -91,7 +91,34 @@ impl LineLevel {
         for i in 0..n {
             self.film[i] = h0 + 0.5 * self.x[i] * self.x[i] + self.work[i];
         }
+        let nodes = &mut self.nodes;
+        for (f, &a) in nodes.film.iter_mut().zip(&nodes.asperity_gap) {
+            *f += a;
+        }
         self.update_coefficients(phys);
+    }
+
+    /// The deformation (film units, as it enters H) by a pressure `field` on this level's nodes,
+    /// into `out`: 0 for rigid surfaces.
+    pub fn deformation_of(&mut self, phys: &LinePhysics, field: &[f64], out: &mut [f64]) {
+        if !phys.elastic {
+            out.fill(0.0);
+        } else if self.direct_deformation {
+            direct_product(&self.kernel, field, out);
+        } else {
+            self.deform.apply(field, out);
+        }
+    }
+
+    /// `fine_field` (on the nodes of a finer level of the same domain) at this level's nodes.
+    pub fn inject_field(&self, fine: &LineLevel, fine_field: &[f64]) -> Vec<f64> {
+        let step = (fine.len() - 1) / (self.len() - 1);
+        (0..self.len()).map(|i| fine_field[i * step]).collect()
+    }
+
+    /// The area of one cell, h (the load is cell_area x sum P).
+    pub fn cell_area(&self) -> f64 {
+        self.h
     }
 
     /// Recompute rho and eps from P and the current H.
@@ -108,7 +135,7 @@ impl LineLevel {
         let h = self.h;
         let pois = flux_difference(&self.eps, &self.p, i, 1) / (h * h);
         let w = upwind(phys.second_order, i);
-        pois - wedge(w, &self.rho, &self.film, i) / h
+        pois - wedge(w, &self.rho, self.wedge_film(), i) / h
     }
 
     /// r_i = f_i - L_i at interior nodes, 0 at the boundaries; with `active_only`, 0 also where
@@ -147,6 +174,8 @@ mod tests {
             elastic: false,
             dry: false,
             second_order: true,
+            rough: None,
+            fluid_share: 1.0,
         };
         let exact = |x: f64| {
             let hh = 1.0 + 0.5 * x * x;

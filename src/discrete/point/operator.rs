@@ -43,7 +43,8 @@ impl PointPhysics {
     pub fn from_case(case: &PointCase) -> Self {
         let v = case.venner();
         PointPhysics {
-            common: Physics::of(&case.models, v.lambda, v.alpha_bar),
+            common: Physics::of(&case.models, v.lambda, v.alpha_bar)
+                .with_roughness(&case.models, v.h_scale),
             d: case.d,
             k: v.k,
             coef: v.film_coef,
@@ -57,6 +58,15 @@ impl std::ops::Deref for PointPhysics {
     type Target = Physics;
     fn deref(&self) -> &Physics {
         &self.common
+    }
+}
+
+impl crate::discrete::physics::AsPhysics for PointPhysics {
+    fn physics(&self) -> &Physics {
+        &self.common
+    }
+    fn physics_mut(&mut self) -> &mut Physics {
+        &mut self.common
     }
 }
 
@@ -214,6 +224,40 @@ impl PointLevel {
         }
     }
 
+    /// The deformation c K*`field` (film units) by a pressure field on this level's nodes, into
+    /// `out`: 0 for rigid surfaces.
+    pub fn deformation_of(&mut self, phys: &PointPhysics, field: &[f64], out: &mut [f64]) {
+        if !phys.elastic {
+            out.fill(0.0);
+            return;
+        }
+        if self.direct_deformation {
+            direct_product2d(&self.kernel, self.nx, self.ny, field, out);
+        } else {
+            self.deform.apply(field, out);
+        }
+        for w in out.iter_mut() {
+            *w *= phys.coef;
+        }
+    }
+
+    /// `fine_field` (on the nodes of a finer level of the same domain) at this level's nodes.
+    pub fn inject_field(&self, fine: &PointLevel, fine_field: &[f64]) -> Vec<f64> {
+        let step = (fine.nx - 1) / (self.nx - 1);
+        let mut out = Vec::with_capacity(self.len());
+        for j in 0..self.ny {
+            for i in 0..self.nx {
+                out.push(fine_field[fine.at(i * step, j * step)]);
+            }
+        }
+        out
+    }
+
+    /// The area of one cell, hx hy (the load is cell_area x sum P).
+    pub fn cell_area(&self) -> f64 {
+        self.hx * self.hy
+    }
+
     /// Recompute H (by the fast product), rho and eps from P and H0 (on the rayon pool when
     /// the level is `parallel`).
     pub fn update_film(&mut self, phys: &PointPhysics, h0: f64) {
@@ -247,6 +291,16 @@ impl PointLevel {
                 }
                 law.update(p, film, rho, eps, divisor);
             });
+        if !nodes.asperity_gap.is_empty() {
+            // Mixed lubrication (serial; never on the smooth path): the asperity deformation,
+            // then the coefficients again from the full film.
+            for (f, &a) in nodes.film.iter_mut().zip(&nodes.asperity_gap) {
+                *f += a;
+            }
+            nodes.update_coefficients(law);
+        } else {
+            nodes.refresh_rough(&law);
+        }
     }
 
     /// Recompute H (by the fast product) from P and H0, nothing else.
@@ -254,6 +308,10 @@ impl PointLevel {
         self.deformation(phys);
         for c in 0..self.len() {
             self.film[c] = h0 + self.gap[c] + self.work[c];
+        }
+        let nodes = &mut self.nodes;
+        for (f, &a) in nodes.film.iter_mut().zip(&nodes.asperity_gap) {
+            *f += a;
         }
     }
 
@@ -272,6 +330,7 @@ impl PointLevel {
         {
             *e = law.eps_with(r, h, d);
         }
+        nodes.refresh_rough(&law);
     }
 
     /// Recompute rho and eps from P and the current H.
@@ -288,9 +347,9 @@ impl PointLevel {
         }
         let (e, p) = (&self.eps, &self.p);
         let pois = flux_difference(e, p, c, 1) / (self.hx * self.hx)
-            + flux_difference(e, p, c, self.nx) / (self.hy * self.hy);
+            + flux_difference(self.eps_y(), p, c, self.nx) / (self.hy * self.hy);
         let w = upwind(phys.second_order, i);
-        pois - wedge(w, &self.rho, &self.film, c) / self.hx
+        pois - wedge(w, &self.rho, self.wedge_film(), c) / self.hx
     }
 
     /// r = f - L at interior nodes, 0 on the boundary; with `active_only`, 0 also where P = 0.
@@ -334,6 +393,8 @@ mod tests {
                 elastic: false,
                 dry: false,
                 second_order: true,
+                rough: None,
+                fluid_share: 1.0,
             },
             d: 1.0,
             k: 1.0,

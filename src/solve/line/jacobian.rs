@@ -60,7 +60,7 @@ impl JacRow {
         } else {
             [0.5 * a, 0.5 * (a + b), 0.5 * b]
         };
-        let f = Fields::new(&lv.p, &lv.film, &lv.eps, &lv.rho);
+        let f = Fields::new(&lv.p, &lv.film, &lv.eps, &lv.rho, lv.wedge_film());
         let w = upwind(phys.second_order, i);
         let (g_h, mut local) = jacobian_x(&phys.fluid, f, i, w, h, dle);
         let em = face(&lv.eps, i - 1, i);

@@ -24,6 +24,7 @@ use crate::model::case::LineCase;
 use crate::model::formulas::moes_line_hc;
 use crate::solve::ladder::run_rungs;
 use crate::solve::line::multigrid::{LineMgParams, LineMultigrid, WarmGuess};
+use crate::solve::mixed::{set_mixed_outputs, solve_mixed, MixedState};
 use crate::solve::params::{ContactParams, Method, Rung};
 use crate::solve::single_grid::solve_relax;
 use crate::solve::solution::{line_outputs, Profile, Solution};
@@ -52,19 +53,33 @@ fn run(
     if let Some(g) = guess {
         mg.set_guess(g.clone());
     }
-    let info = mg.solve();
-    package(case, &mg, info, keep_fields)
+    let (info, mixed) = solve_mixed(&mut mg);
+    package(case, &mg, info, keep_fields, mixed.as_ref())
 }
 
-fn package(case: &LineCase, mg: &LineMultigrid, info: SolveInfo, keep_fields: bool) -> Solution {
+fn package(
+    case: &LineCase,
+    mg: &LineMultigrid,
+    info: SolveInfo,
+    keep_fields: bool,
+    mixed: Option<&MixedState>,
+) -> Solution {
     let fine = mg.levels.last().expect("levels");
     let ic = mg.domain.centre_index(fine.len() - 1);
     let hs = 8.0 * case.m / std::f64::consts::PI;
-    let outputs = line_outputs(&fine.x, &fine.p, &fine.film, mg.h0, hs, ic, &info);
+    let mut outputs = line_outputs(&fine.x, &fine.p, &fine.film, mg.h0, hs, ic, &info);
+    set_mixed_outputs(
+        &mut outputs,
+        &case.models,
+        mixed,
+        fine.load(),
+        std::f64::consts::PI / 2.0,
+    );
     let profile = keep_fields.then(|| Profile {
         x: fine.x.clone(),
         p: fine.p.clone(),
         h: fine.film.iter().map(|v| v * hs).collect(),
+        p_asperity: mixed.map(|m| m.asperity_pressure.clone()),
     });
     Solution {
         outputs,
@@ -119,7 +134,7 @@ pub fn solve_line_from(
         Method::Relax => {
             let mut mg = LineMultigrid::new(case, &single_level(&params.mg));
             let info = solve_relax(&mut mg, params.relax_max_sweeps, 10);
-            return package(case, &mg, info, params.keep_fields);
+            return package(case, &mg, info, params.keep_fields, None);
         }
     }
     run_rungs(&LADDER, &params.mg, params.fallback, |p| {

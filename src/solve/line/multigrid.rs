@@ -254,7 +254,7 @@ impl Contact for LineContact {
         let np = NewtonParams::coarsest_start(mg.params.newton_max_iter, mg.levels.len());
         let lv = &mut mg.levels[0];
         lv.f.fill(0.0);
-        lv.g = PI / 2.0;
+        lv.g = PI / 2.0 * mg.phys.fluid_share;
         let out = newton_solve(lv, &mg.phys, &mut mg.h0, &np);
         let first = out;
         mg.work_units += (out.iterations * lv.len()) as f64 / mg.extra.fine_intervals as f64;
@@ -299,7 +299,7 @@ impl Contact for LineContact {
         }
         fine.f.fill(0.0);
         fine.frozen.fill(false);
-        fine.g = PI / 2.0;
+        fine.g = PI / 2.0 * mg.phys.fluid_share;
         fine.update_film(&mg.phys, mg.h0);
     }
     /// Put the guess on level `l`: P interpolated onto its grid, H0 so that the central film is
@@ -319,7 +319,7 @@ impl Contact for LineContact {
         }
         lv.f.fill(0.0);
         lv.frozen.fill(false);
-        lv.g = PI / 2.0;
+        lv.g = PI / 2.0 * mg.phys.fluid_share;
         lv.update_film(&mg.phys, 0.0);
         mg.h0 = g.centre_film - lv.film[mg.domain.centre_index(n - 1)];
         lv.update_film(&mg.phys, mg.h0);

@@ -176,6 +176,7 @@ fn wedge_derivative(
 /// One relaxation sweep on a level; returns nothing, updates P, H, rho, eps.
 pub fn relax_sweep(lv: &mut LineLevel, phys: &LinePhysics, h0: f64, rp: &RelaxParams) {
     let n = lv.len();
+    let law = phys.coefficients();
     let h2 = lv.h * lv.h;
     let k = |d: isize| -> f64 {
         let d = d.unsigned_abs();
@@ -214,6 +215,7 @@ pub fn relax_sweep(lv: &mut LineLevel, phys: &LinePhysics, h0: f64, rp: &RelaxPa
             if phys.elastic && change != 0.0 {
                 for kk in i.saturating_sub(2)..(i + 3).min(n) {
                     lv.film[kk] -= kv(kk as isize - i as isize) * change / PI;
+                    lv.nodes.refresh_rough_at(&law, kk);
                 }
             }
         }

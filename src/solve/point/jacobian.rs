@@ -48,28 +48,35 @@ impl PointJacRow {
         let c = lv.at(i, j);
         let (hx2, hy2) = (lv.hx * lv.hx, lv.hy * lv.hy);
         let (p, e, film) = (&lv.p, &lv.eps, &lv.film);
+        let ey = lv.eps_y();
         let a = (p[c - 1] - p[c]) / hx2;
         let b = (p[c + 1] - p[c]) / hx2;
         let ay = (p[c - nx] - p[c]) / hy2;
         let by = (p[c + nx] - p[c]) / hy2;
-        // dL/d eps at (i-1, j), (i, j), (i+1, j).
-        let dle = [0.5 * a, 0.5 * (a + b + ay + by), 0.5 * b];
-        let f = Fields::new(p, film, e, &lv.rho);
+        // dL/d eps at (i-1, j), (i, j), (i+1, j); the y faces' share of the centre node scaled
+        // by eps_y/eps (1 unless rough anisotropic surfaces give y its own flow factor).
+        let centre = if lv.eps_along_y.is_empty() || e[c] <= 0.0 {
+            a + b + ay + by
+        } else {
+            a + b + (ay + by) * (ey[c] / e[c])
+        };
+        let dle = [0.5 * a, 0.5 * centre, 0.5 * b];
+        let f = Fields::new(p, film, e, &lv.rho, lv.wedge_film());
         let w = upwind(phys.second_order, i);
         let (g_h, mut local) = jacobian_x(&phys.fluid, f, c, w, lv.hx, dle);
         let g_y = [
-            0.5 * ay * deps_dh(e, film, c - nx),
-            0.5 * by * deps_dh(e, film, c + nx),
+            0.5 * ay * deps_dh(ey, film, c - nx),
+            0.5 * by * deps_dh(ey, film, c + nx),
         ];
         let fl = &phys.fluid;
         let mut local_y = [
-            0.5 * ay * deps_dp(fl, e, p, c - nx),
-            0.5 * by * deps_dp(fl, e, p, c + nx),
+            0.5 * ay * deps_dp(fl, ey, p, c - nx),
+            0.5 * by * deps_dp(fl, ey, p, c + nx),
         ];
         let exm = face(e, c - 1, c);
         let exp = face(e, c, c + 1);
-        let eym = face(e, c - nx, c);
-        let eyp = face(e, c, c + nx);
+        let eym = face(ey, c - nx, c);
+        let eyp = face(ey, c, c + nx);
         local[1] += exm / hx2;
         local[3] += exp / hx2;
         local[2] -= (exm + exp) / hx2 + (eym + eyp) / hy2;

@@ -19,6 +19,7 @@ use crate::discrete::point::domain::PointDomainParams;
 use crate::discrete::point::domain::BIAS_CAUTION;
 use crate::model::case::PointCase;
 use crate::solve::ladder::run_rungs;
+use crate::solve::mixed::{set_mixed_outputs, solve_mixed, MixedState};
 use crate::solve::params::{ContactParams, Method, Rung};
 pub use crate::solve::point::multigrid::PointMgParams;
 use crate::solve::point::multigrid::PointMultigrid;
@@ -106,12 +107,20 @@ pub fn point_outputs(mg: &PointMultigrid, info: &SolveInfo) -> Outputs {
 
 fn run(case: &PointCase, p: &PointMgParams, keep_fields: bool) -> Solution {
     let mut mg = PointMultigrid::new(case, p);
-    let info = mg.solve();
-    package(&mg, info, keep_fields)
+    let (info, mixed) = solve_mixed(&mut mg);
+    package(case, &mg, info, keep_fields, mixed.as_ref())
 }
 
-fn package(mg: &PointMultigrid, info: SolveInfo, keep_fields: bool) -> Solution {
-    let outputs = point_outputs(mg, &info);
+fn package(
+    case: &PointCase,
+    mg: &PointMultigrid,
+    info: SolveInfo,
+    keep_fields: bool,
+    mixed: Option<&MixedState>,
+) -> Solution {
+    let mut outputs = point_outputs(mg, &info);
+    let fine = mg.levels.last().expect("levels");
+    set_mixed_outputs(&mut outputs, &case.models, mixed, fine.load(), mg.phys.load);
     let fields = keep_fields.then(|| {
         let lv = mg.levels.last().expect("levels");
         PointFields {
@@ -119,6 +128,7 @@ fn package(mg: &PointMultigrid, info: SolveInfo, keep_fields: bool) -> Solution 
             y: lv.y.clone(),
             p: lv.p.clone(),
             h: lv.film.iter().map(|v| v * mg.phys.h_scale).collect(),
+            p_asperity: mixed.map(|m| m.asperity_pressure.clone()),
         }
     });
     Solution {
@@ -158,7 +168,7 @@ pub fn solve_point(case: &PointCase, params: &PointSolveParams) -> Solution {
         Method::Relax => {
             let mut mg = PointMultigrid::new(case, &single_level(&params.mg));
             let info = solve_relax(&mut mg, params.relax_max_sweeps, 10);
-            return package(&mg, info, params.keep_fields);
+            return package(case, &mg, info, params.keep_fields, None);
         }
     }
     run_rungs(&LADDER, &params.mg, params.fallback, |p| {

@@ -275,7 +275,7 @@ impl Contact for PointContact {
         let np = NewtonParams::coarsest_start(mg.params.newton_max_iter, mg.levels.len());
         let lv = &mut mg.levels[0];
         lv.f.fill(0.0);
-        lv.g = mg.phys.load;
+        lv.g = mg.phys.load * mg.phys.fluid_share;
         let out = newton_solve(lv, &mg.phys, &mut mg.h0, &np);
         mg.work_units += PointContact::newton_cost(mg, out.iterations);
         if !(out.converged || out.residual < 1e-6) {
@@ -335,7 +335,7 @@ impl Contact for PointContact {
         }
         fine.f.fill(0.0);
         fine.frozen.fill(false);
-        fine.g = mg.phys.load;
+        fine.g = mg.phys.load * mg.phys.fluid_share;
         fine.update_film(&mg.phys, mg.h0);
     }
 

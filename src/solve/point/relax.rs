@@ -252,12 +252,14 @@ fn local_film_update(
             for i in 1..nx - 1 {
                 let c = lv.at(i, jj);
                 (lv.rho[c], lv.eps[c], lv.divisor[c]) = law.at(lv.p[c], lv.film[c]);
+                lv.nodes.refresh_rough_at(&law, c);
             }
         } else {
             // The rows after it: only H changed.
             for i in 1..nx - 1 {
                 let c = lv.at(i, jj);
                 lv.eps[c] = law.eps_with(lv.rho[c], lv.film[c], lv.divisor[c]);
+                lv.nodes.refresh_rough_at(&law, c);
             }
         }
     }
