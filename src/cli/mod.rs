@@ -36,7 +36,7 @@ pub struct Cli {
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// Solve one contact and print its film thickness, pressure and convergence.
-    Solve(solve_args::SolveArgs),
+    Solve(Box<solve_args::SolveArgs>),
     /// Run a sweep spec (TOML) into a Parquet dataset: resumable, shardable.
     Sweep(sweep::SweepArgs),
     /// Fit a Moes-style film formula to sweep datasets; report, fit.json and charts.

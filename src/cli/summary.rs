@@ -86,10 +86,12 @@ pub fn summary(case: &Case, o: &Outputs, skipped_estimate: bool) -> String {
 /// The mixed-lubrication lines of a summary: the roughness, the film parameters, the asperity
 /// share of the load and the smooth case's films.
 fn mixed_lines(x: &MixedOutputs) -> String {
-    let orientation = match x.gamma {
-        g if g == 1.0 => "isotropic",
-        g if g < 1.0 => "transverse",
-        _ => "longitudinal",
+    let orientation = if x.gamma == 1.0 {
+        "isotropic"
+    } else if x.gamma < 1.0 {
+        "transverse"
+    } else {
+        "longitudinal"
     };
     let smooth = match (x.h_c_smooth, x.h_min_smooth) {
         (Some(c), Some(m)) => format!("H_c {c:.6}, H_min {m:.6}"),
