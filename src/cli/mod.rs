@@ -12,6 +12,7 @@ pub mod chart;
 pub mod error;
 pub mod fit;
 pub mod limits;
+pub mod mixed;
 pub mod output;
 pub mod solve;
 pub mod solve_args;
@@ -49,6 +50,8 @@ pub enum Command {
     Stability(bench::StabilityArgs),
     /// Charts: `regimes`, the regime map in Moes' (M, L) axes.
     Chart(chart::ChartArgs),
+    /// Mixed lubrication: film and asperity load against Lambda from datasets with a sigma axis.
+    Mixed(mixed::MixedArgs),
 }
 
 /// Parse the process's arguments and run the command; returns the exit code. A command-line
@@ -112,6 +115,7 @@ pub fn run(cli: &Cli) -> i32 {
         Command::Bench(a) => bench::run_bench(a),
         Command::Stability(a) => bench::run_stability(a),
         Command::Chart(a) => chart::run_chart(a),
+        Command::Mixed(a) => mixed::run_mixed(a),
     };
     match result {
         Ok(()) => error::EXIT_OK,

@@ -139,6 +139,14 @@ pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, FitError> {
         ..FitInput::default()
     };
     for row in by_id.values() {
+        if let Some(sigma) = row.sigma {
+            // The formula is the smooth-surface film: rough rows are the mixed map's.
+            input.excluded.push(format!(
+                "{}: rough surfaces (sigma = {sigma}): see ehlmap mixed",
+                row.case_id
+            ));
+            continue;
+        }
         let ok = row.status == RowStatus::Converged && row.valid;
         let point = match (row.h_c, row.h_min) {
             (Some(h_c), Some(h_min)) if ok && h_c > 0.0 && h_min > 0.0 => Some(FitPoint {

@@ -7,6 +7,7 @@ pub mod bench_charts;
 pub mod charts;
 pub mod charts_map;
 pub mod contour;
+pub mod mixed_map;
 pub mod pictures;
 pub mod regime_map;
 pub mod style;

@@ -19,6 +19,7 @@
 
 pub mod checks;
 pub mod markdown;
+pub mod mixed;
 
 pub use crate::fit::dataset::{FitInput, FitPoint};
 use crate::fit::error::FitError;

@@ -9,6 +9,7 @@
 
 use crate::model::case::{LineCase, Models, ParamError, PointCase};
 use crate::model::lubricant::{Density, Viscosity};
+use crate::model::roughness::Roughness;
 use crate::sweep::spec::{Contact, ContactSpec, Numerics, SpecError, SweepSpec, ViscositySpec};
 use std::collections::HashSet;
 use std::fmt;
@@ -91,6 +92,22 @@ impl Case {
         ) + &n
             .accuracy
             .map_or(String::new(), |a| format!(";accuracy={a:e}"))
+            + &self
+                .models
+                .roughness
+                .filter(|r| r.is_rough())
+                .map_or(String::new(), |r| {
+                    format!(
+                        ";sigma={:e};gamma={:e};slide_roll={:e};vr1={:e};ebs={:e};sb={:e};phe={:e}",
+                        r.sigma,
+                        r.gamma,
+                        r.slide_roll,
+                        r.variance_ratio_1,
+                        r.asperity.eta_beta_sigma,
+                        r.asperity.sigma_over_beta,
+                        r.ph_over_e
+                    )
+                })
     }
 
     /// The id as 16 lower-case hex digits (the `case_id` column).
@@ -183,12 +200,27 @@ pub fn plan(spec: &SweepSpec) -> Result<Vec<Case>, SpecError> {
                 return Err(spec.error("axes.D", "missing: point contacts need the axis D"))
             }
         };
+        // sigma = 0 is one smooth case whatever gamma: the duplicates go by their id.
+        let roughness: Vec<Option<Roughness>> = spec
+            .sigma
+            .iter()
+            .flat_map(|&s| {
+                spec.gamma.iter().map(move |&g| {
+                    (s > 0.0).then(|| Roughness {
+                        gamma: g,
+                        ..Roughness::isotropic(s)
+                    })
+                })
+            })
+            .collect();
         for &m in &cs.m {
             for &l in &cs.l {
                 for &d in &ds {
-                    let c = plan_case(spec, cs, m, l, d)?;
-                    if seen.insert(c.id) {
-                        cases.push(c);
+                    for &r in &roughness {
+                        let c = plan_case(spec, cs, m, l, d, r)?;
+                        if seen.insert(c.id) {
+                            cases.push(c);
+                        }
                     }
                 }
             }
@@ -205,6 +237,7 @@ fn plan_case(
     m: f64,
     l: f64,
     d: Option<f64>,
+    roughness: Option<Roughness>,
 ) -> Result<Case, SpecError> {
     let at = match d {
         Some(d) => format!("at M = {m}, L = {l}, D = {d}"),
@@ -228,7 +261,7 @@ fn plan_case(
         elasticity: spec.elasticity,
         viscosity,
         density: spec.density,
-        roughness: None,
+        roughness,
     };
     let mut c = Case {
         id: 0,
@@ -239,10 +272,11 @@ fn plan_case(
         models,
         eta0,
         numerics: cs.numerics,
+        // Rough surfaces: the fixed point's resumed solves and the smooth twin, about 3x.
         cost: match d {
             None => cost(m, l, &cs.numerics),
             Some(_) => point_cost(m, &cs.numerics),
-        },
+        } * if roughness.is_some() { 3.0 } else { 1.0 },
     };
     match d {
         None => c.line_case().map(|_| ()),

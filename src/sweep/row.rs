@@ -24,6 +24,7 @@ pub fn input_row(case: &Case, sweep: &str) -> CaseRow {
         Density::Incompressible => None,
         Density::DowsonHigginson { ph_pa } => Some(ph_pa),
     };
+    let rough = case.models.roughness.filter(|r| r.is_rough());
     CaseRow {
         case_id: case.id_hex(),
         sweep: sweep.to_string(),
@@ -39,6 +40,9 @@ pub fn input_row(case: &Case, sweep: &str) -> CaseRow {
         z,
         eta0: case.eta0,
         ph: ph_v.or(ph_d),
+        sigma: rough.map(|r| r.sigma),
+        gamma: rough.map(|r| r.gamma),
+        slide_roll: rough.map(|r| r.slide_roll),
         grid_requested: n.grid as i64,
         cycle: n.cycle,
         converge: n.converge,
@@ -185,6 +189,18 @@ fn build_row(case: &Case, sweep: &str, o: &Outputs, attempt: usize) -> CaseRow {
     row.wall_s = finite(o.wall_s, &mut valid);
     row.algebraic_error = o.algebraic_error.and_then(|a| finite(a, &mut valid));
     row.error_estimate = o.error_estimate.and_then(|e| finite(e, &mut valid));
+    if let Some(x) = &o.mixed {
+        row.sigma = Some(x.sigma);
+        row.gamma = Some(x.gamma);
+        row.slide_roll = Some(x.slide_roll);
+        row.lambda_min = finite(x.lambda_min, &mut valid);
+        row.lambda_c = finite(x.lambda_c, &mut valid);
+        row.asperity_load_fraction = finite(x.asperity_load_fraction, &mut valid);
+        row.p_asperity_max = finite(x.p_asperity_max, &mut valid);
+        row.h_c_smooth = x.h_c_smooth.and_then(|v| finite(v, &mut valid));
+        row.h_min_smooth = x.h_min_smooth.and_then(|v| finite(v, &mut valid));
+        row.mixed_iterations = Some(x.mixed_iterations as i64);
+    }
     row.valid = valid;
     row
 }

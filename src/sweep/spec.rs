@@ -115,7 +115,13 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
     let models = models::parse(&mut cx, root, &axes.l, &axes.l_span)?;
     let contacts_numerics = numerics::parse(&mut cx, root, axes.of_contact)?;
     let output = parse_output(&mut cx, root)?;
-    check_case_count(&cx, &contacts_numerics, axes.d.as_deref(), &axes.span)?;
+    check_case_count(
+        &cx,
+        &contacts_numerics,
+        axes.d.as_deref(),
+        axes.sigma.len() * axes.gamma.len(),
+        &axes.span,
+    )?;
     // Contact-specific rules, after every value has been checked.
     check_d_axis(&cx, &contacts, axes.d_span, &axes.span)?;
     Ok(SweepSpec {
@@ -127,6 +133,8 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
         m: axes.m,
         l: axes.l,
         d: axes.d,
+        sigma: axes.sigma,
+        gamma: axes.gamma,
         elasticity: models.elasticity,
         viscosity: models.viscosity,
         density: models.density,
@@ -186,6 +194,9 @@ struct Axes {
     m: Vec<f64>,
     l: Vec<f64>,
     d: Option<Vec<f64>>,
+    /// The roughness axes (`[0]` and `[1]` when not given).
+    sigma: Vec<f64>,
+    gamma: Vec<f64>,
     /// Each contact with its own M and L axes.
     of_contact: Vec<ContactAxes>,
     /// The spans of the `[axes]` table, of `L` and of `D`.
@@ -200,7 +211,11 @@ fn parse_axes(cx: &mut Ctx, root: &Table, contacts: &[Contact]) -> Result<Axes, 
         .get("axes")
         .ok_or_else(|| cx.err(&(0..0), "axes", "missing: an [axes] table with M and L"))?;
     let axes = cx.table(axes_v, "axes")?;
-    cx.keys(axes, "axes", &["M", "L", "D", "line", "point"])?;
+    cx.keys(
+        axes,
+        "axes",
+        &["M", "L", "D", "sigma", "gamma", "line", "point"],
+    )?;
     let need = |k: &str| {
         axes.get(k).ok_or_else(|| {
             cx.err(
@@ -220,10 +235,31 @@ fn parse_axes(cx: &mut Ctx, root: &Table, contacts: &[Contact]) -> Result<Axes, 
         })?),
         None => None,
     };
+    let sigma = match axes.get("sigma") {
+        Some(v) => cx.axis(v, "axes.sigma", &|x| {
+            (!(x >= 0.0)).then_some("the RMS roughness must be >= 0 (Moes film units)")
+        })?,
+        None => vec![0.0],
+    };
+    let gamma = match axes.get("gamma") {
+        Some(v) if axes.get("sigma").is_none() => {
+            return Err(cx.err(
+                &v.span(),
+                "axes.gamma",
+                "the roughness orientation needs the axis sigma",
+            ))
+        }
+        Some(v) => cx.axis(v, "axes.gamma", &|x| {
+            (!(x > 0.0)).then_some("the roughness orientation must be > 0")
+        })?,
+        None => vec![1.0],
+    };
     Ok(Axes {
         m,
         l,
         d,
+        sigma,
+        gamma,
         of_contact,
         span: axes_v.span(),
         l_span: lv.span(),
@@ -272,13 +308,15 @@ fn check_case_count(
     cx: &Ctx,
     contacts: &[ContactSpec],
     d: Option<&[f64]>,
+    roughness: usize,
     axes_span: &Range<usize>,
 ) -> Result<(), SpecError> {
     let n_d = d.map_or(1, |d| d.len());
-    let n_cases: usize = contacts
-        .iter()
-        .map(|c| c.m.len() * c.l.len() * if c.contact == Contact::Point { n_d } else { 1 })
-        .sum();
+    let n_cases: usize = roughness
+        * contacts
+            .iter()
+            .map(|c| c.m.len() * c.l.len() * if c.contact == Contact::Point { n_d } else { 1 })
+            .sum::<usize>();
     if n_cases > MAX_CASES {
         return Err(cx.err(
             axes_span,

@@ -17,8 +17,11 @@ use std::sync::Arc;
 /// Version of the row layout, stored in the footer as `ehlmap_schema`; no [`Column::since`] is
 /// larger. Schema 2 added `accuracy`, `model_used`, `level`, `error_estimate` (a float) and
 /// `warm_start`, and renamed schema 1's boolean `error_estimate` to `half_grid_estimate`.
-/// Schema 3 added `converge` (the stopping rule) and `algebraic_error`.
-pub const SCHEMA_VERSION: u32 = 3;
+/// Schema 3 added `converge` (the stopping rule) and `algebraic_error`. Schema 4 added the
+/// rough-surface inputs (`sigma`, `gamma`, `slide_roll`) and outputs (`Lambda`, `Lambda_c`,
+/// `asperity_load_fraction`, `P_asperity_max`, `H_c_smooth`, `H_min_smooth`,
+/// `mixed_iterations`), all null for smooth surfaces.
+pub const SCHEMA_VERSION: u32 = 4;
 
 /// How one column's values are taken from a row (`get`) and put into one (`set`). The variant
 /// fixes the Arrow type (Utf8, Float64, Int64, Boolean) and the nullability (`Opt*` columns are
@@ -208,6 +211,9 @@ pub static COLUMNS: &[Column] = &[
     col!("z", opt_f64, z),
     col!("eta0", opt_f64, eta0),
     col!("ph", opt_f64, ph),
+    col!("sigma", opt_f64, sigma, 4),
+    col!("gamma", opt_f64, gamma, 4),
+    col!("slide_roll", opt_f64, slide_roll, 4),
     col!("grid_requested", i64, grid_requested),
     col!("cycle", name, cycle),
     col!("max_cycles", i64, max_cycles),
@@ -237,6 +243,13 @@ pub static COLUMNS: &[Column] = &[
     col!("load_error", opt_f64, load_error),
     col!("H_c_err", opt_f64, h_c_err),
     col!("H_min_err", opt_f64, h_min_err),
+    col!("Lambda", opt_f64, lambda_min, 4),
+    col!("Lambda_c", opt_f64, lambda_c, 4),
+    col!("asperity_load_fraction", opt_f64, asperity_load_fraction, 4),
+    col!("P_asperity_max", opt_f64, p_asperity_max, 4),
+    col!("H_c_smooth", opt_f64, h_c_smooth, 4),
+    col!("H_min_smooth", opt_f64, h_min_smooth, 4),
+    col!("mixed_iterations", opt_i64, mixed_iterations, 4),
     col!("status", name, status),
     col!("reason", str, reason),
     col!("attempt", opt_i64, attempt),
@@ -275,6 +288,9 @@ mod tests {
             ("z", F, true),
             ("eta0", F, true),
             ("ph", F, true),
+            ("sigma", F, true),
+            ("gamma", F, true),
+            ("slide_roll", F, true),
             ("grid_requested", I, false),
             ("cycle", S, false),
             ("max_cycles", I, false),
@@ -304,6 +320,13 @@ mod tests {
             ("load_error", F, true),
             ("H_c_err", F, true),
             ("H_min_err", F, true),
+            ("Lambda", F, true),
+            ("Lambda_c", F, true),
+            ("asperity_load_fraction", F, true),
+            ("P_asperity_max", F, true),
+            ("H_c_smooth", F, true),
+            ("H_min_smooth", F, true),
+            ("mixed_iterations", I, true),
             ("status", S, false),
             ("reason", S, false),
             ("attempt", I, true),

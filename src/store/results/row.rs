@@ -142,6 +142,12 @@ pub struct CaseRow {
     pub eta0: Option<f64>,
     /// Hertzian pressure, Pa (Roelands and Dowson-Higginson).
     pub ph: Option<f64>,
+    /// Composite RMS roughness in Moes film units (null: smooth surfaces).
+    pub sigma: Option<f64>,
+    /// Roughness orientation gamma (null: smooth).
+    pub gamma: Option<f64>,
+    /// Slide-to-roll ratio (u1 - u2)/u_m of the rough case (null: smooth).
+    pub slide_roll: Option<f64>,
     /// Finest-grid points asked for in the spec (point: per direction).
     pub grid_requested: i64,
     /// V or W cycles (stored `v`, `w`).
@@ -204,6 +210,20 @@ pub struct CaseRow {
     pub h_c_err: Option<f64>,
     /// Relative error estimate of H_min, column `H_min_err`.
     pub h_min_err: Option<f64>,
+    /// The film parameter H_min/sigma, column `Lambda`.
+    pub lambda_min: Option<f64>,
+    /// H_c/sigma, column `Lambda_c`.
+    pub lambda_c: Option<f64>,
+    /// The share of the load the asperities carry.
+    pub asperity_load_fraction: Option<f64>,
+    /// The largest asperity pressure p_a/p_h, column `P_asperity_max`.
+    pub p_asperity_max: Option<f64>,
+    /// H_c of the same case with smooth surfaces, column `H_c_smooth`.
+    pub h_c_smooth: Option<f64>,
+    /// H_min of the same case with smooth surfaces, column `H_min_smooth`.
+    pub h_min_smooth: Option<f64>,
+    /// Re-solves of the asperity load's fixed point.
+    pub mixed_iterations: Option<i64>,
     /// How the solve ended.
     pub status: RowStatus,
     /// Why, and which fallback attempt was kept.
@@ -266,6 +286,16 @@ impl Default for CaseRow {
             load_error: None,
             h_c_err: None,
             h_min_err: None,
+            sigma: None,
+            gamma: None,
+            slide_roll: None,
+            lambda_min: None,
+            lambda_c: None,
+            asperity_load_fraction: None,
+            p_asperity_max: None,
+            h_c_smooth: None,
+            h_min_smooth: None,
+            mixed_iterations: None,
             status: RowStatus::default(),
             reason: String::new(),
             attempt: None,
@@ -340,6 +370,16 @@ pub(crate) fn sample(id: &str) -> CaseRow {
         load_error: Some(1e-8),
         h_c_err: None,
         h_min_err: None,
+        sigma: Some(0.5),
+        gamma: Some(1.0),
+        slide_roll: Some(0.2),
+        lambda_min: Some(7.8),
+        lambda_c: Some(10.4),
+        asperity_load_fraction: Some(1e-3),
+        p_asperity_max: Some(2e-3),
+        h_c_smooth: Some(5.1),
+        h_min_smooth: Some(3.8),
+        mixed_iterations: Some(4),
         status: RowStatus::Converged,
         reason: "ok".into(),
         attempt: Some(1),

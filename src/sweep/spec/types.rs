@@ -136,6 +136,10 @@ pub struct SweepSpec {
     pub l: Vec<f64>,
     /// D = Rx/Ry axis values of the point cases, in (0, 1]; `None` for a line-only spec.
     pub d: Option<Vec<f64>>,
+    /// Composite RMS roughness axis in Moes film units (`[0]`: smooth surfaces only).
+    pub sigma: Vec<f64>,
+    /// Roughness orientation axis gamma (`[1]`: isotropic), for the cases with sigma > 0.
+    pub gamma: Vec<f64>,
     /// Elastic or rigid surfaces, for every case.
     pub elasticity: Elasticity,
     /// Viscosity model, for every case.
