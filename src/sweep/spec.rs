@@ -237,7 +237,7 @@ fn parse_axes(cx: &mut Ctx, root: &Table, contacts: &[Contact]) -> Result<Axes, 
     };
     let sigma = match axes.get("sigma") {
         Some(v) => cx.axis(v, "axes.sigma", &|x| {
-            (!(x >= 0.0)).then_some("the RMS roughness must be >= 0 (Moes film units)")
+            (x < 0.0).then_some("the RMS roughness must be >= 0 (Moes film units)")
         })?,
         None => vec![0.0],
     };
@@ -250,7 +250,7 @@ fn parse_axes(cx: &mut Ctx, root: &Table, contacts: &[Contact]) -> Result<Axes, 
             ))
         }
         Some(v) => cx.axis(v, "axes.gamma", &|x| {
-            (!(x > 0.0)).then_some("the roughness orientation must be > 0")
+            (x <= 0.0).then_some("the roughness orientation must be > 0")
         })?,
         None => vec![1.0],
     };
