@@ -118,3 +118,68 @@ fn line_case_with_a_walther_oil() {
     assert!(String::from_utf8_lossy(&out.stderr).contains("contradictory"));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn a_case_with_roughness_is_solved_with_rough_surfaces_beside_the_smooth_one() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/sweeps/cases/example-7-1.toml");
+    let out = ehlmap(&["case", path, "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let smooth = &v["numerical"];
+    let rough = &v["mixed"];
+    assert_eq!(rough["status"], "converged");
+    // sigma = sqrt(2) x 0.1 um in Moes units: the smooth h_c (m) over H_c converts it.
+    let h_c_m = v["films"].as_array().unwrap()[0][2].as_f64().unwrap();
+    let um_per_moes = h_c_m / smooth["H_c"].as_f64().unwrap() * 1e6;
+    let sigma_um = rough["sigma"].as_f64().unwrap() * um_per_moes;
+    assert!(
+        (sigma_um / (2f64.sqrt() * 0.1) - 1.0).abs() < 1e-9,
+        "{sigma_um}"
+    );
+    assert_eq!(rough["H_c_smooth"], smooth["H_c"]);
+    assert_eq!(rough["slide_roll"], 0.0);
+    // Lambda about 2.2: the rough film is thicker (isotropic flow factors below 1).
+    let lam = rough["Lambda"].as_f64().unwrap();
+    assert!(lam > 1.0 && lam < 3.0, "{lam}");
+    assert!(rough["H_c"].as_f64().unwrap() > smooth["H_c"].as_f64().unwrap());
+    // --smooth-only skips it.
+    let out = ehlmap(&["case", path, "--json", "--smooth-only"]);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(v["mixed"].is_null());
+}
+
+#[test]
+fn a_roughness_orientation_needs_a_roughness() {
+    let dir = std::env::temp_dir().join(format!("ehlmap-case-gamma-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let base = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/sweeps/cases/example-7-1.toml"
+    ))
+    .unwrap();
+    let no_rq: String = base
+        .lines()
+        .filter(|l| !l.starts_with("rq"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    for (name, text, needle) in [
+        (
+            "a.toml",
+            format!("gamma = 3.0\n{no_rq}"),
+            "needs a roughness",
+        ),
+        ("b.toml", format!("gamma = 0.0\n{base}"), "gamma = 0"),
+    ] {
+        let f = dir.join(name);
+        std::fs::write(&f, text).unwrap();
+        let out = ehlmap(&["case", f.to_str().unwrap(), "--no-solve"]);
+        assert_eq!(out.status.code(), Some(2), "{name}");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(err.contains(needle), "{name}: {err}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -1,15 +1,22 @@
 //! A dimensional case, line or point contact: read and derived by
 //! [`crate::model::dimensional`], solved by [`crate::strategy::solve_case::solve`] (to the
 //! default 1 % accuracy target, or on the case's `grid` when it names one), and set beside the published formulas in engineering units, with the film parameter
-//! `Lambda = h_min/sigma`: `< 1` boundary, `1..3` mixed, `> 3` full film.
+//! `Lambda = h_min/sigma`: `< 1` boundary, `1..3` mixed, `> 3` full film. With a roughness
+//! (`rq` of a body) the case is also solved with rough surfaces (Patir-Cheng average flow,
+//! Greenwood-Tripp asperity contact; [`crate::solve::mixed`]): sigma = sqrt(Rq1^2 + Rq2^2), the
+//! orientation `gamma` of the file (default 1), the slide-to-roll ratio from the speeds, the
+//! share of the roughness on body 1 from the Rq, and p_h/E' from the Hertz solution.
 
+use crate::model::case::Case;
 use crate::model::case::Contact;
 pub use crate::model::case_file::{read_case, Body, CaseError, CaseSpec};
+use crate::model::dimensional::Derived;
 pub use crate::model::dimensional::Groups;
 use crate::model::lubricant::Viscosity;
+use crate::model::roughness::Roughness;
 use crate::solve::solution::{with_error, Outputs, PointFields, Profile};
 use crate::solve::Status;
-use crate::strategy::solve_case::{solve as solve_case, SolveParams};
+use crate::strategy::solve_case::{solve as solve_case, solve_rough_beside, SolveParams};
 use serde::Serialize;
 
 /// Everything derived from a case, and the results (SI units).
@@ -32,6 +39,9 @@ pub struct CaseReport {
     /// The reading of Lambda as text: boundary lubrication (`< 1`), mixed lubrication
     /// (`1..=3`) or full film (`> 3`).
     pub film_reading: Option<String>,
+    /// The solve with rough surfaces, when the case gives a roughness (films in Moes units;
+    /// `mixed` carries Lambda, the asperity share and the smooth films).
+    pub mixed: Option<Outputs>,
 }
 
 /// The solution fields of a case, for pictures.
@@ -42,16 +52,32 @@ pub enum CaseFields {
     Point(PointFields),
 }
 
+/// What [`run`] does besides deriving the groups.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RunOptions {
+    /// Solve the case numerically.
+    pub solve: bool,
+    /// Keep the solution's profile or fields (for pictures).
+    pub keep_fields: bool,
+    /// With a roughness in the file, also solve the case with rough surfaces.
+    pub rough: bool,
+}
+
 /// Validate a case file, derive its groups; with `solve`, also solve it numerically (keeping the
-/// profile or fields with `keep_fields`) and set the answer beside the published formulas.
+/// profile or fields with `keep_fields`) and set the answer beside the published formulas; with
+/// `rough` and a roughness in the file, solve it with rough surfaces too.
 pub fn run(
     spec: &CaseSpec,
-    solve: bool,
-    keep_fields: bool,
+    opts: RunOptions,
 ) -> Result<(CaseReport, Option<CaseFields>), CaseError> {
+    let RunOptions {
+        solve,
+        keep_fields,
+        rough: with_rough,
+    } = opts;
     let d = spec.derive()?;
     let mut films = d.films.clone();
-    let (mut numerical, mut p_max, mut fields) = (None, None, None);
+    let (mut numerical, mut p_max, mut fields, mut mixed) = (None, None, None, None);
     if solve {
         let params = SolveParams {
             grid: d.grid,
@@ -65,6 +91,18 @@ pub fn run(
             (_, Some(f)) => Some(CaseFields::Point(f)),
             _ => None,
         };
+        if let Some(r) = roughness(spec, &d).filter(|_| with_rough) {
+            let mut rough = d.case;
+            match &mut rough {
+                Case::Line(c) => c.models.roughness = Some(r),
+                Case::Point(c) => c.models.roughness = Some(r),
+            }
+            let params = SolveParams {
+                keep_fields: false,
+                ..params
+            };
+            mixed = Some(solve_rough_beside(&rough, &params, &s.outputs).outputs);
+        }
         numerical = Some(s.outputs);
     }
     let mut rep = CaseReport {
@@ -75,14 +113,36 @@ pub fn run(
         p_max,
         film_parameter: None,
         film_reading: None,
+        mixed,
     };
     film_parameter(spec, &mut rep);
     Ok((rep, fields))
 }
 
-/// Derive the groups; with `solve`, also solve numerically.
+/// The rough surfaces of a case file with a positive roughness (module docs).
+fn roughness(spec: &CaseSpec, d: &Derived) -> Option<Roughness> {
+    let sigma = spec.sigma().filter(|&s| s > 0.0)?;
+    let rq1 = spec.body1.rq.unwrap_or(0.0);
+    let u_m = 0.5 * (spec.u1 + spec.u2);
+    Some(Roughness {
+        sigma: sigma / d.to_h(1.0),
+        gamma: spec.gamma.unwrap_or(1.0),
+        slide_roll: (spec.u1 - spec.u2) / u_m,
+        variance_ratio_1: rq1 * rq1 / (sigma * sigma),
+        ph_over_e: d.groups.p_h / d.groups.e_reduced,
+        ..Roughness::isotropic(sigma)
+    })
+}
+
+/// Derive the groups; with `solve`, also solve numerically (and with rough surfaces when the
+/// file gives a roughness).
 pub fn report(spec: &CaseSpec, solve: bool) -> Result<CaseReport, CaseError> {
-    run(spec, solve, false).map(|r| r.0)
+    let opts = RunOptions {
+        solve,
+        keep_fields: false,
+        rough: true,
+    };
+    run(spec, opts).map(|r| r.0)
 }
 
 /// Put a converged numerical answer at the head of the film comparison (a failure is still
@@ -222,6 +282,34 @@ pub fn summary(r: &CaseReport) -> String {
         s.push_str(&format!(
             "film parameter Lambda = h_min/sigma = {l:.2}: {t}\n"
         ));
+    }
+    if let (Some(o), Some(x)) = (&r.mixed, r.mixed.as_ref().and_then(|o| o.mixed.as_ref())) {
+        // Moes film units to um: the smooth solve's ratio of h_c (m) to H_c.
+        let um = r
+            .films
+            .iter()
+            .find(|f| f.0.starts_with("ehlmap") && f.1 == "h_c")
+            .zip(r.numerical.as_ref())
+            .map(|(f, n)| f.2 / n.h_c * 1e6);
+        s.push_str(&format!(
+            "rough surfaces (Patir-Cheng flow factors, Greenwood-Tripp asperities; gamma = {}, \
+             slide-roll {:.3}): {} ({})\n",
+            x.gamma, x.slide_roll, o.status, o.reason
+        ));
+        if let (Some(um), true) = (um, o.status == Status::Converged) {
+            s.push_str(&format!(
+                "h_c    {:>9} um  ehlmap (rough)  ({:+.1} % vs smooth)\n\
+                 h_min  {:>9} um  ehlmap (rough)  ({:+.1} % vs smooth)\n\
+                 Lambda = h_min/sigma = {:.2} (rough film); asperities carry {:.2} % of the load\n",
+                with_error(o.h_c * um, o.h_c_err),
+                x.h_c_smooth.map_or(f64::NAN, |h| 100.0 * (o.h_c / h - 1.0)),
+                with_error(o.h_min * um, o.h_min_err),
+                x.h_min_smooth
+                    .map_or(f64::NAN, |h| 100.0 * (o.h_min / h - 1.0)),
+                x.lambda_min,
+                100.0 * x.asperity_load_fraction
+            ));
+        }
     }
     s
 }

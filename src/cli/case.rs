@@ -21,6 +21,9 @@ pub struct CaseArgs {
     /// Draw the pictures (PNG and SVG) of the solution into this directory.
     #[arg(long)]
     pub plot: Option<PathBuf>,
+    /// Skip the solve with rough surfaces that a roughness (rq) in the file asks for.
+    #[arg(long)]
+    pub smooth_only: bool,
 }
 
 /// Run `ehlmap case`.
@@ -49,8 +52,12 @@ pub fn run_case(a: &CaseArgs) -> Result<(), CliError> {
     if let Some(dir) = &a.plot {
         prepare_dir("--plot", dir)?;
     }
-    let (r, fields) = ehlmap::cases::run(&spec, !a.no_solve, a.plot.is_some())
-        .map_err(|e| input(format!("{path}: {e}")))?;
+    let opts = ehlmap::cases::RunOptions {
+        solve: !a.no_solve,
+        keep_fields: a.plot.is_some(),
+        rough: !a.smooth_only,
+    };
+    let (r, fields) = ehlmap::cases::run(&spec, opts).map_err(|e| input(format!("{path}: {e}")))?;
     let plotted = match (&a.plot, &r.numerical) {
         (Some(dir), Some(o)) => {
             let stem = a

@@ -84,6 +84,10 @@ pub struct CaseSpec {
     /// accuracy ladder of `ehlmap solve` picks the grid (1 % target on H_c and H_min).
     #[serde(default)]
     pub grid: Option<usize>,
+    /// The roughness orientation gamma of the mixed-lubrication solve (1 isotropic, the default;
+    /// < 1 transverse, > 1 longitudinal); with a roughness `rq`.
+    #[serde(default)]
+    pub gamma: Option<f64>,
     /// Roelands viscosity in the solve with this index z (default: Barus) ...
     #[serde(default)]
     pub roelands_z: Option<f64>,
@@ -140,6 +144,15 @@ impl CaseSpec {
                     rq >= 0.0,
                     "roughness must be >= 0 (m)",
                 )?;
+            }
+        }
+        if let Some(g) = self.gamma {
+            check("gamma", g, g > 0.0, "the roughness orientation must be > 0")?;
+            if self.sigma().is_none_or(|s| s <= 0.0) {
+                return Err(CaseError::invalid(
+                    "gamma = roughness orientation needs a roughness: give body1.rq or body2.rq (m)"
+                        .to_string(),
+                ));
             }
         }
         check(

@@ -2,7 +2,9 @@
 //!
 //! * `STEM-profile`: the centre-line (Y = 0) pressure P = p/p_h over X = x/b with the Hertz
 //!   pressure `sqrt(1 - X^2)` (dashed; exact on the centre line of an elliptic contact too) and the
-//!   pressure spike marked; below it the film H (Moes units) with H_c (X = 0) and H_min marked.
+//!   pressure spike marked, and on rough surfaces the asperity pressure P_a (red, scaled by a
+//!   power of 10 named in its label); below it the film H (Moes units) with H_c (X = 0) and H_min
+//!   marked.
 //! * point contacts also `STEM-film`: iso-lines of H (the horseshoe) by [`crate::render::contour`] at levels
 //!   from H_min to 2.5 H_c, with the Hertz ellipse `X^2 + (Y/k)^2 = 1`, H_c and H_min marked;
 //!   and `STEM-pressure`: a filled colour map of P/P_max (blue 0 to red 1) with the ellipse.
@@ -35,6 +37,8 @@ struct Line<'a> {
     x: &'a [f64],
     p: &'a [f64],
     h: &'a [f64],
+    /// The asperity pressure (rough surfaces).
+    pa: Option<&'a [f64]>,
     o: &'a Outputs,
     title: &'a str,
 }
@@ -78,6 +82,24 @@ fn profile<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, l: &Line) -> Res {
         .map_err(e)?
         .label("Hertz")
         .legend(|(x, y)| PathElement::new([(x, y), (x + 18, y)], BLACK.stroke_width(1)));
+    if let Some(pa) = l.pa {
+        // Scaled by a power of 10 so that its maximum reaches at least a tenth of the chart.
+        let (_, top) = range(pa);
+        if top > 0.0 {
+            let k = (0.1 * p_hi / top).log10().ceil().max(0.0);
+            let scale = 10f64.powf(k);
+            ch.draw_series(LineSeries::new(
+                l.x.iter()
+                    .zip(pa)
+                    .filter(|(x, _)| **x >= x0)
+                    .map(|(a, b)| (*a, b * scale)),
+                RED.stroke_width(2),
+            ))
+            .map_err(e)?
+            .label(format!("P_a asperities x {scale:.0}"))
+            .legend(|(x, y)| PathElement::new([(x, y), (x + 18, y)], RED.stroke_width(2)));
+        }
+    }
     if let Some(s) = l.o.spike {
         ch.draw_series([
             Circle::new((s.x, s.p), 6, RED.stroke_width(2)).into_dyn(),
@@ -163,6 +185,7 @@ pub fn draw_line(
         x: &prof.x,
         p: &prof.p,
         h: &prof.h,
+        pa: prof.p_asperity.as_deref(),
         o,
         title: "Line contact: centre-line pressure and film",
     };
@@ -336,10 +359,12 @@ pub fn draw_point(
         "Point contact D = {:.4}: centre line Y = 0",
         o.d.unwrap_or(1.0)
     );
+    let pa = f.p_asperity.as_ref().map(|pa| &pa[j0 * nx..(j0 + 1) * nx]);
     let l = Line {
         x: &f.x,
         p,
         h,
+        pa,
         o,
         title: &title,
     };

@@ -21,7 +21,7 @@ use crate::solve::params::Method;
 use crate::solve::params::{ContactParams, MgParams};
 use crate::solve::params::{Converge, CycleType};
 use crate::solve::point::{solve_point, PointSolveParams};
-use crate::solve::solution::Solution;
+use crate::solve::solution::{Outputs, Solution};
 use crate::solve::Observer;
 use crate::strategy::accuracy::{
     add_half_grid_estimate, point_truncation, solve_line_to_accuracy, solve_point_to_accuracy,
@@ -165,7 +165,6 @@ pub fn solve(case: &Case, params: &SolveParams) -> Solution {
         full_model: true,
         ..*params
     };
-    let mut s = solve_surfaces(case, params);
     let smooth = solve_surfaces(
         &smooth_case,
         &SolveParams {
@@ -173,10 +172,21 @@ pub fn solve(case: &Case, params: &SolveParams) -> Solution {
             ..*params
         },
     );
+    solve_rough_beside(case, params, &smooth.outputs)
+}
+
+/// Solve a case with rough surfaces by the full model, its mixed outputs carrying the films of
+/// `smooth` (the same case with smooth surfaces, solved by the caller) when it converged.
+pub fn solve_rough_beside(case: &Case, params: &SolveParams, smooth: &Outputs) -> Solution {
+    let params = &SolveParams {
+        full_model: true,
+        ..*params
+    };
+    let mut s = solve_surfaces(case, params);
     if let Some(m) = s.outputs.mixed.as_mut() {
-        let ok = smooth.outputs.status == crate::solve::Status::Converged;
-        m.h_c_smooth = ok.then_some(smooth.outputs.h_c);
-        m.h_min_smooth = ok.then_some(smooth.outputs.h_min);
+        let ok = smooth.status == crate::solve::Status::Converged;
+        m.h_c_smooth = ok.then_some(smooth.h_c);
+        m.h_min_smooth = ok.then_some(smooth.h_min);
     }
     s
 }

@@ -237,7 +237,8 @@ fn parse_axes(cx: &mut Ctx, root: &Table, contacts: &[Contact]) -> Result<Axes, 
     };
     let sigma = match axes.get("sigma") {
         Some(v) => cx.axis(v, "axes.sigma", &|x| {
-            (x < 0.0).then_some("the RMS roughness must be >= 0 (Moes film units)")
+            (!x.is_finite() || x < 0.0)
+                .then_some("the RMS roughness must be finite and >= 0 (Moes film units)")
         })?,
         None => vec![0.0],
     };
@@ -250,7 +251,8 @@ fn parse_axes(cx: &mut Ctx, root: &Table, contacts: &[Contact]) -> Result<Axes, 
             ))
         }
         Some(v) => cx.axis(v, "axes.gamma", &|x| {
-            (x <= 0.0).then_some("the roughness orientation must be > 0")
+            (!x.is_finite() || x <= 0.0)
+                .then_some("the roughness orientation must be finite and > 0")
         })?,
         None => vec![1.0],
     };

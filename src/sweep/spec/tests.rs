@@ -191,3 +191,44 @@ fn mixed_spec_errors_name_the_key() {
     ));
     assert_eq!(e.key, "numerics.point.error_estimate");
 }
+
+#[test]
+fn roughness_axes_parse_and_plan_one_smooth_case_per_point() {
+    let text =
+        "contact = \"line\"\n[axes]\nM = [20]\nL = [0]\nsigma = [0, 0.5, 1]\ngamma = [0.5, 1]\n";
+    let s = parse("t.toml", text, "t").unwrap();
+    assert_eq!(s.sigma, vec![0.0, 0.5, 1.0]);
+    assert_eq!(s.gamma, vec![0.5, 1.0]);
+    let cases = crate::sweep::plan::plan(&s).unwrap();
+    // sigma = 0 is one smooth case whatever gamma: 1 + 2 x 2.
+    assert_eq!(cases.len(), 5);
+    let smooth: Vec<_> = cases
+        .iter()
+        .filter(|c| c.models.roughness.is_none())
+        .collect();
+    assert_eq!(smooth.len(), 1);
+    // The smooth case keeps the id it has in a spec without roughness axes.
+    let plain = parse(
+        "t.toml",
+        "contact = \"line\"\n[axes]\nM = [20]\nL = [0]\n",
+        "t",
+    )
+    .unwrap();
+    let plain = crate::sweep::plan::plan(&plain).unwrap();
+    assert_eq!(smooth[0].id, plain[0].id);
+    let rough: Vec<_> = cases.iter().filter_map(|c| c.models.roughness).collect();
+    assert!(rough.iter().any(|r| r.sigma == 1.0 && r.gamma == 0.5));
+}
+
+#[test]
+fn roughness_axes_reject_bad_values() {
+    let base = "contact = \"line\"\n[axes]\nM = [20]\nL = [0]\n";
+    let e = err(&format!("{base}sigma = [0, -1]\n"));
+    assert_eq!((e.line, e.key.as_str()), (5, "axes.sigma"));
+    let e = err(&format!("{base}sigma = [1]\ngamma = [0]\n"));
+    assert_eq!((e.line, e.key.as_str()), (6, "axes.gamma"));
+    let e = err(&format!("{base}gamma = [2]\n"));
+    assert!(e.key == "axes.gamma" && e.message.contains("sigma"), "{e}");
+    let e = err(&format!("{base}sigma = [nan]\n"));
+    assert_eq!(e.key, "axes.sigma");
+}
