@@ -4,7 +4,8 @@
 //!
 //! Files of every schema are read. The schema of a file is its footer's `ehlmap_schema`; a file
 //! without it (re-saved from a notebook without the footer) is of schema 1 when its
-//! `error_estimate` column is boolean, else of the latest schema whose columns it all holds. In a
+//! `error_estimate` column is boolean, else of the latest schema whose columns it all holds (when
+//! none, the latest whose own new columns it holds, so that an error names the column it lost). In a
 //! file of schema 1, `error_estimate` is today's `half_grid_estimate`, the columns introduced
 //! later (`since` > 1) keep the [`CaseRow::default`] value (`model_used = "full"`, the rest
 //! null), and `error_estimate` is derived by [`larger_error`] from `H_c_err` and `H_min_err`.
@@ -65,10 +66,19 @@ fn schema_of(b: &RecordBatch, footer: Option<u32>) -> u32 {
             .filter(|c| c.since <= v)
             .all(|c| b.column_by_name(name_in(c, v)).is_some())
     };
+    // No version complete: the newest whose own columns are there (a file of that version that
+    // lost another column), so that the error names the column it lost.
+    let holds_own = |v: u32| {
+        COLUMNS
+            .iter()
+            .filter(|c| c.since == v)
+            .all(|c| b.column_by_name(name_in(c, v)).is_some())
+    };
     (2..=SCHEMA_VERSION)
         .rev()
         .find(|&v| holds_all(v))
-        .unwrap_or(SCHEMA_VERSION)
+        .or_else(|| (2..=SCHEMA_VERSION).rev().find(|&v| holds_own(v)))
+        .unwrap_or(1)
 }
 
 /// The name of column `c` in a file of schema `schema`.
