@@ -7,6 +7,7 @@
 //! orientation `gamma` of the file (default 1), the slide-to-roll ratio from the speeds, the
 //! share of the roughness on body 1 from the Rq, and p_h/E' from the Hertz solution.
 
+use crate::model::asperity::AsperityParams;
 use crate::model::case::Case;
 use crate::model::case::Contact;
 pub use crate::model::case_file::{read_case, Body, CaseError, CaseSpec};
@@ -124,12 +125,17 @@ fn roughness(spec: &CaseSpec, d: &Derived) -> Option<Roughness> {
     let sigma = spec.sigma().filter(|&s| s > 0.0)?;
     let rq1 = spec.body1.rq.unwrap_or(0.0);
     let u_m = 0.5 * (spec.u1 + spec.u2);
+    let summits = AsperityParams::default();
     Some(Roughness {
         sigma: sigma / d.to_h(1.0),
         gamma: spec.gamma.unwrap_or(1.0),
         slide_roll: (spec.u1 - spec.u2) / u_m,
         variance_ratio_1: rq1 * rq1 / (sigma * sigma),
         ph_over_e: d.groups.p_h / d.groups.e_reduced,
+        asperity: AsperityParams {
+            eta_beta_sigma: spec.eta_beta_sigma.unwrap_or(summits.eta_beta_sigma),
+            sigma_over_beta: spec.sigma_over_beta.unwrap_or(summits.sigma_over_beta),
+        },
         ..Roughness::isotropic(sigma)
     })
 }

@@ -5,6 +5,7 @@
 use crate::cli::error::{input, CliError};
 use crate::cli::output::note;
 use clap::ValueEnum;
+use ehlmap::model::asperity::AsperityParams;
 use ehlmap::model::case::{Case, Contact, Elasticity, LineCase, Models, ParamError, PointCase};
 use ehlmap::model::error::num;
 use ehlmap::model::lubricant::{Density, Viscosity};
@@ -118,6 +119,13 @@ pub struct SolveArgs {
     /// --sigma.
     #[arg(long, allow_hyphen_values = true)]
     pub ph_over_e: Option<f64>,
+    /// Greenwood-Tripp summit density x summit radius x sigma, eta_s beta sigma > 0 (default
+    /// 0.04); with --sigma.
+    #[arg(long, allow_hyphen_values = true)]
+    pub eta_beta_sigma: Option<f64>,
+    /// Greenwood-Tripp sigma over the summit radius, sigma/beta > 0 (default 1e-3); with --sigma.
+    #[arg(long, allow_hyphen_values = true)]
+    pub sigma_over_beta: Option<f64>,
     /// Solver: full multigrid, or the baselines (dense Newton, single-grid relaxation).
     #[arg(long, value_enum, default_value = "multigrid")]
     pub method: MethodArg,
@@ -308,6 +316,8 @@ fn roughness(a: &SolveArgs) -> Result<Option<Roughness>, CliError> {
             (a.slide_roll.is_some(), "--slide-roll"),
             (a.rough_surface.is_some(), "--rough-surface"),
             (a.ph_over_e.is_some(), "--ph-over-e"),
+            (a.eta_beta_sigma.is_some(), "--eta-beta-sigma"),
+            (a.sigma_over_beta.is_some(), "--sigma-over-beta"),
         ] {
             if given {
                 return Err(input(format!("{name} needs --sigma (the RMS roughness)")));
@@ -325,15 +335,26 @@ fn roughness(a: &SolveArgs) -> Result<Option<Roughness>, CliError> {
             Some(RoughSurfaceArg::Two) => 0.0,
         },
         ph_over_e: a.ph_over_e.unwrap_or(base.ph_over_e),
+        asperity: AsperityParams {
+            eta_beta_sigma: a.eta_beta_sigma.unwrap_or(base.asperity.eta_beta_sigma),
+            sigma_over_beta: a.sigma_over_beta.unwrap_or(base.asperity.sigma_over_beta),
+        },
         ..base
     };
     r.validate().map_err(|e| {
         let flag = |s: &str| format!("--{}", s.replace('_', "-"));
         let msg = e.to_string();
-        let named = ["sigma", "gamma", "slide_roll", "ph_over_e"]
-            .into_iter()
-            .find(|n| msg.contains(n))
-            .map(flag);
+        let named = [
+            "sigma_over_beta",
+            "eta_beta_sigma",
+            "sigma",
+            "gamma",
+            "slide_roll",
+            "ph_over_e",
+        ]
+        .into_iter()
+        .find(|n| msg.contains(n))
+        .map(flag);
         input(match named {
             Some(f) => format!("{f}: {msg}"),
             None => msg,

@@ -88,6 +88,13 @@ pub struct CaseSpec {
     /// < 1 transverse, > 1 longitudinal); with a roughness `rq`.
     #[serde(default)]
     pub gamma: Option<f64>,
+    /// Greenwood-Tripp summit statistics of the mixed-lubrication solve: eta_s beta sigma
+    /// (default 0.04); with a roughness `rq`.
+    #[serde(default)]
+    pub eta_beta_sigma: Option<f64>,
+    /// sigma/beta (default 1e-3); with a roughness `rq`.
+    #[serde(default)]
+    pub sigma_over_beta: Option<f64>,
     /// Roelands viscosity in the solve with this index z (default: Barus) ...
     #[serde(default)]
     pub roelands_z: Option<f64>,
@@ -146,13 +153,17 @@ impl CaseSpec {
                 )?;
             }
         }
-        if let Some(g) = self.gamma {
-            check("gamma", g, g > 0.0, "the roughness orientation must be > 0")?;
+        for (key, v) in [
+            ("gamma", self.gamma),
+            ("eta_beta_sigma", self.eta_beta_sigma),
+            ("sigma_over_beta", self.sigma_over_beta),
+        ] {
+            let Some(v) = v else { continue };
+            check(key, v, v > 0.0, "must be > 0")?;
             if self.sigma().is_none_or(|s| s <= 0.0) {
-                return Err(CaseError::invalid(
-                    "gamma = roughness orientation needs a roughness: give body1.rq or body2.rq (m)"
-                        .to_string(),
-                ));
+                return Err(CaseError::invalid(format!(
+                    "{key} = {v}: a roughness input needs a roughness: give body1.rq or body2.rq (m)"
+                )));
             }
         }
         check(
