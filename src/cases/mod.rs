@@ -136,7 +136,6 @@ fn roughness(spec: &CaseSpec, d: &Derived) -> Option<Roughness> {
             eta_beta_sigma: spec.eta_beta_sigma.unwrap_or(summits.eta_beta_sigma),
             sigma_over_beta: spec.sigma_over_beta.unwrap_or(summits.sigma_over_beta),
         },
-        ..Roughness::isotropic(sigma)
     })
 }
 
