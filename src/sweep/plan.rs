@@ -206,9 +206,10 @@ pub fn plan(spec: &SweepSpec) -> Result<Vec<Case>, SpecError> {
             .iter()
             .flat_map(|&s| {
                 spec.gamma.iter().map(move |&g| {
-                    (s > 0.0).then(|| Roughness {
+                    (s > 0.0).then_some(Roughness {
+                        sigma: s,
                         gamma: g,
-                        ..Roughness::isotropic(s)
+                        ..spec.roughness
                     })
                 })
             })

@@ -5,7 +5,9 @@
 //! [`Settings`] is an ordered list of `key=value` pairs: `models.elasticity`,
 //! `models.viscosity`, `models.z`, `models.eta0`, `models.ph`, `models.density`, then per contact
 //! of the spec (line first) `<contact>.grid`, `.cycle`, `.converge`, `.max_cycles`, `.fallback`,
-//! `.tol_load`, `.tol_h`, `.error_estimate` and `.accuracy` (floats in Rust's shortest
+//! `.tol_load`, `.tol_h`, `.error_estimate` and `.accuracy`, and for a spec with rough cases
+//! (an axis sigma with a value > 0) `models.slide_roll`, `models.variance_ratio_1`,
+//! `models.ph_over_e`, `models.eta_beta_sigma`, `models.sigma_over_beta` (floats in Rust's shortest
 //! round-trip `{:e}` form, `-` for a value not given). Not in it: the axes' values (adding axis
 //! values only adds cases), the sweep's name, `[output]`, threads and shards. Its text is stored
 //! in every part file's footer as `spec_settings`, its 64-bit FNV-1a hash as `spec_hash`.
@@ -107,6 +109,14 @@ impl Settings {
             ph_v.or(ph_d),
             spec.density.name(),
         );
+        if spec.sigma.iter().any(|&x| x > 0.0) {
+            let r = &spec.roughness;
+            s.push("models.slide_roll", float(r.slide_roll));
+            s.push("models.variance_ratio_1", float(r.variance_ratio_1));
+            s.push("models.ph_over_e", float(r.ph_over_e));
+            s.push("models.eta_beta_sigma", float(r.asperity.eta_beta_sigma));
+            s.push("models.sigma_over_beta", float(r.asperity.sigma_over_beta));
+        }
         for contact in [Contact::Line, Contact::Point] {
             if let Some(n) = spec.numerics(contact) {
                 s.contact(contact, n);

@@ -10,6 +10,8 @@
 //! M = [5, 20, 100, 500]
 //! L = { from = 0, to = 10, count = 3 }                 # scale = "linear" (default) or "log"
 //! # D = { from = 0.05, to = 1, count = 6, scale = "log" } (point contacts: required, in (0, 1])
+//! # sigma = [0, 1, 2]            # rough surfaces: RMS roughness in Moes film units, >= 0
+//! # gamma = [0.333, 1, 3]        # their orientation, > 0 (with sigma)
 //!
 //! [models]                       # all optional; defaults shown
 //! elasticity = "elastic"         # or "rigid"
@@ -18,6 +20,8 @@
 //! # ph = 1.0e9                   # Hertzian pressure, Pa
 //! # eta0 = 0.05                  # ambient viscosity, Pa s (Roelands z derived per case)
 //! # z = 0.6                      # Roelands pressure-viscosity index
+//! # slide_roll = 0.0             # rough cases only: (u1 - u2)/u_m; also rough_surface,
+//! #                              # ph_over_e, eta_beta_sigma, sigma_over_beta (models.rs)
 //!
 //! [numerics]                     # all optional; defaults shown
 //! grid = 2049                    # a fixed finest grid (the solver rounds up to 2^k n0 + 1), 33..=1048577
@@ -112,7 +116,8 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
         None => None,
     };
     let axes = parse_axes(&mut cx, root, &contacts)?;
-    let models = models::parse(&mut cx, root, &axes.l, &axes.l_span)?;
+    let rough = axes.sigma.iter().any(|&s| s > 0.0);
+    let models = models::parse(&mut cx, root, &axes.l, &axes.l_span, rough)?;
     let contacts_numerics = numerics::parse(&mut cx, root, axes.of_contact)?;
     let output = parse_output(&mut cx, root)?;
     check_case_count(
@@ -135,6 +140,7 @@ pub fn parse(file: &str, text: &str, default_name: &str) -> Result<SweepSpec, Sp
         d: axes.d,
         sigma: axes.sigma,
         gamma: axes.gamma,
+        roughness: models.roughness,
         elasticity: models.elasticity,
         viscosity: models.viscosity,
         density: models.density,

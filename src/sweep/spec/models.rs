@@ -2,12 +2,17 @@
 //! (elastic, Barus, incompressible). Roelands needs the Hertzian pressure `ph` and exactly one
 //! of `eta0` (then ln(eta0) + 9.67 > 0 and no L = 0 on the L axis, as z is derived per case) or
 //! `z`; Dowson-Higginson needs `ph`; `eta0`, `z` and `ph` are errors where no model uses them.
+//! The rough surfaces of the cases with sigma > 0 take `slide_roll` (in [-2, 2], default 0),
+//! `rough_surface` ("both", "1" or "2": which body carries the roughness, default both),
+//! `ph_over_e` (in (0, 1), default 1 GPa on steel), `eta_beta_sigma` and `sigma_over_beta` (> 0,
+//! defaults 0.04 and 1e-3); each is an error in a spec without such cases.
 
 use super::ctx::{Ctx, Table};
 use super::error::SpecError;
 use super::types::ViscositySpec;
 use crate::model::case::Elasticity;
 use crate::model::lubricant::Density;
+use crate::model::roughness::Roughness;
 use std::ops::Range;
 
 /// The models of a spec.
@@ -15,6 +20,8 @@ pub(super) struct Models {
     pub elasticity: Elasticity,
     pub viscosity: ViscositySpec,
     pub density: Density,
+    /// The rough surfaces' inputs besides sigma and gamma (sigma 0 here: the axes give it).
+    pub roughness: Roughness,
 }
 
 /// A positive number of the table and the span of its value.
@@ -53,11 +60,13 @@ pub(super) fn parse(
     root: &Table,
     l: &[f64],
     l_span: &Range<usize>,
+    rough: bool,
 ) -> Result<Models, SpecError> {
     let mut models = Models {
         elasticity: Elasticity::Elastic,
         viscosity: ViscositySpec::Barus,
         density: Density::Incompressible,
+        roughness: Roughness::isotropic(0.0),
     };
     let Some(mv) = root.get("models") else {
         return Ok(models);
@@ -66,8 +75,21 @@ pub(super) fn parse(
     cx.keys(
         t,
         "models",
-        &["elasticity", "viscosity", "density", "ph", "eta0", "z"],
+        &[
+            "elasticity",
+            "viscosity",
+            "density",
+            "ph",
+            "eta0",
+            "z",
+            "slide_roll",
+            "rough_surface",
+            "ph_over_e",
+            "eta_beta_sigma",
+            "sigma_over_beta",
+        ],
     )?;
+    models.roughness = roughness(cx, t, rough)?;
     if let Some(v) = t.get("elasticity") {
         if cx.choice(v, "models.elasticity", &["elastic", "rigid"])? == "rigid" {
             models.elasticity = Elasticity::Rigid;
@@ -106,6 +128,54 @@ pub(super) fn parse(
         ));
     }
     Ok(models)
+}
+
+/// The rough surfaces' inputs of the `[models]` table `t` (module docs); `rough`: the spec has
+/// cases with sigma > 0.
+fn roughness(cx: &Ctx, t: &Table, rough: bool) -> Result<Roughness, SpecError> {
+    let mut r = Roughness::isotropic(0.0);
+    let keys = [
+        "slide_roll",
+        "rough_surface",
+        "ph_over_e",
+        "eta_beta_sigma",
+        "sigma_over_beta",
+    ];
+    for k in keys {
+        let Some(v) = t.get(k) else { continue };
+        let key = format!("models.{k}");
+        if !rough {
+            return Err(cx.err(
+                &v.span(),
+                &key,
+                "applies to rough surfaces only: give the axis sigma a value > 0",
+            ));
+        }
+        if k == "rough_surface" {
+            r.variance_ratio_1 = match cx.choice(v, &key, &["both", "1", "2"])? {
+                "1" => 1.0,
+                "2" => 0.0,
+                _ => 0.5,
+            };
+            continue;
+        }
+        let x = cx.number(v, &key)?;
+        let (ok, why) = match k {
+            "slide_roll" => ((-2.0..=2.0).contains(&x), "must be in [-2, 2]"),
+            "ph_over_e" => (x > 0.0 && x < 1.0, "must be in (0, 1)"),
+            _ => (x > 0.0 && x.is_finite(), "must be > 0"),
+        };
+        if !ok {
+            return Err(cx.err(&v.span(), &key, format!("{k} = {x} is invalid: {why}")));
+        }
+        match k {
+            "slide_roll" => r.slide_roll = x,
+            "ph_over_e" => r.ph_over_e = x,
+            "eta_beta_sigma" => r.asperity.eta_beta_sigma = x,
+            _ => r.asperity.sigma_over_beta = x,
+        }
+    }
+    Ok(r)
 }
 
 /// The number `models.<k>` with its span when given; an error naming `why` unless it is > 0.

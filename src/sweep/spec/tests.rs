@@ -232,3 +232,36 @@ fn roughness_axes_reject_bad_values() {
     let e = err(&format!("{base}sigma = [nan]\n"));
     assert_eq!(e.key, "axes.sigma");
 }
+
+#[test]
+fn roughness_models_reach_the_rough_cases_and_need_a_sigma_axis() {
+    let text = "contact = \"line\"\n[axes]\nM = [20]\nL = [0]\nsigma = [1]\n[models]\n\
+                slide_roll = 0.5\nrough_surface = \"1\"\nph_over_e = 0.01\n\
+                eta_beta_sigma = 0.05\nsigma_over_beta = 0.002\n";
+    let s = parse("t.toml", text, "t").unwrap();
+    let cases = crate::sweep::plan::plan(&s).unwrap();
+    let r = cases[0].models.roughness.expect("rough");
+    assert_eq!((r.sigma, r.slide_roll, r.variance_ratio_1), (1.0, 0.5, 1.0));
+    assert_eq!((r.ph_over_e, r.asperity.eta_beta_sigma), (0.01, 0.05));
+    assert_eq!(r.asperity.sigma_over_beta, 0.002);
+    let settings = crate::sweep::settings::Settings::of_spec(&s);
+    assert_eq!(settings.get("models.ph_over_e"), Some("1e-2"));
+    // Without rough cases the keys are errors naming themselves; out of range too.
+    let e = err("contact = \"line\"\n[axes]\nM = [20]\nL = [0]\n[models]\nslide_roll = 0.5\n");
+    assert_eq!((e.line, e.key.as_str()), (6, "models.slide_roll"));
+    assert!(e.message.contains("sigma"), "{e}");
+    let e = err(
+        "contact = \"line\"\n[axes]\nM = [20]\nL = [0]\nsigma = [0, 1]\n[models]\nph_over_e = 2\n",
+    );
+    assert_eq!(e.key, "models.ph_over_e");
+    // A smooth spec's settings hold no roughness key.
+    let plain = parse(
+        "t.toml",
+        "contact = \"line\"\n[axes]\nM = [20]\nL = [0]\n",
+        "t",
+    )
+    .unwrap();
+    assert!(crate::sweep::settings::Settings::of_spec(&plain)
+        .get("models.slide_roll")
+        .is_none());
+}

@@ -140,6 +140,8 @@ pub struct SweepSpec {
     pub sigma: Vec<f64>,
     /// Roughness orientation axis gamma (`[1]`: isotropic), for the cases with sigma > 0.
     pub gamma: Vec<f64>,
+    /// The rough cases' other inputs (`[models]`; its sigma and gamma are the axes').
+    pub roughness: crate::model::roughness::Roughness,
     /// Elastic or rigid surfaces, for every case.
     pub elasticity: Elasticity,
     /// Viscosity model, for every case.
