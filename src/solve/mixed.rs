@@ -143,8 +143,19 @@ where
             omega *= 0.5;
         }
         last_residual = residual;
-        for (pa, &t) in state.asperity_pressure.iter_mut().zip(&target) {
-            *pa += omega * (t - *pa);
+        // The fluid gives up to the asperities what they take at each node, so that the total
+        // pressure, and with it the film and the load, stay as they were: the resumed solve
+        // starts from a state off only in its Reynolds residual.
+        let mut p_resume = mg.levels[top].p().to_vec();
+        for ((pa, &t), p) in state
+            .asperity_pressure
+            .iter_mut()
+            .zip(&target)
+            .zip(&mut p_resume)
+        {
+            let step = omega * (t - *pa);
+            *pa += step;
+            *p = (*p - step).max(0.0);
         }
         let asperity_load = area * state.asperity_pressure.iter().sum::<f64>();
         state.asperity_load_fraction = asperity_load / total;
@@ -166,7 +177,7 @@ where
         }
         mg.levels[top].nodes_mut().asperity_gap.clone_from(&gap);
         mg.resume = Some(Resume {
-            p: mg.levels[top].p().to_vec(),
+            p: p_resume,
             h0: mg.h0,
             g: total * share,
         });
