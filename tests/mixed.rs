@@ -23,12 +23,7 @@ fn params(case: &Case) -> SolveParams {
 }
 
 fn with(case: &Case, roughness: Option<Roughness>) -> Case {
-    let mut c = *case;
-    match &mut c {
-        Case::Line(l) => l.models.roughness = roughness,
-        Case::Point(p) => p.models.roughness = roughness,
-    }
-    c
+    case.with_roughness(roughness)
 }
 
 fn run(case: &Case) -> Outputs {

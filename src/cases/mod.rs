@@ -8,7 +8,6 @@
 //! share of the roughness on body 1 from the Rq, and p_h/E' from the Hertz solution.
 
 use crate::model::asperity::AsperityParams;
-use crate::model::case::Case;
 use crate::model::case::Contact;
 pub use crate::model::case_file::{read_case, Body, CaseError, CaseSpec};
 use crate::model::dimensional::Derived;
@@ -93,11 +92,7 @@ pub fn run(
             _ => None,
         };
         if let Some(r) = roughness(spec, &d).filter(|_| with_rough) {
-            let mut rough = d.case;
-            match &mut rough {
-                Case::Line(c) => c.models.roughness = Some(r),
-                Case::Point(c) => c.models.roughness = Some(r),
-            }
+            let rough = d.case.with_roughness(Some(r));
             let params = SolveParams {
                 keep_fields: false,
                 ..params

@@ -4,7 +4,7 @@
 //! cannot be read: the datasets are the input), exit 1 when the report cannot be written.
 
 use crate::cli::error::{input, io, CliError};
-use crate::cli::output::{note, outln, prepare_dir};
+use crate::cli::output::{beside_dataset, note, outln, prepare_dir};
 use ehlmap::fit::dataset::load_fit_input;
 use ehlmap::fit::dataset::FitInput;
 use ehlmap::render::charts::write_charts;
@@ -45,7 +45,7 @@ pub fn fit_datasets(
     json: bool,
     limit_solves: bool,
 ) -> Result<(), CliError> {
-    let out = out.unwrap_or_else(|| default_out(&datasets[0]));
+    let out = out.unwrap_or_else(|| beside_dataset(&datasets[0], "report"));
     if let Some(d) = datasets.iter().find(|d| same_dir(d, &out)) {
         return Err(input(format!(
             "--out {}: is the dataset {} (a dataset folder holds only Parquet parts)",
@@ -97,15 +97,6 @@ fn same_dir(a: &Path, b: &Path) -> bool {
         (Ok(x), Ok(y)) => x == y,
         _ => false,
     }
-}
-
-/// DATASET-report beside the dataset, outside it: the dataset folder holds only Parquet parts
-/// (polars' scan_parquet on the folder fails on anything else).
-fn default_out(dataset: &Path) -> PathBuf {
-    let name = dataset
-        .file_name()
-        .map_or("dataset".into(), |n| n.to_string_lossy().into_owned());
-    dataset.with_file_name(format!("{name}-report"))
 }
 
 /// The charts of each fitted contact (point ones prefixed `point_`); returns their stems.

@@ -4,7 +4,7 @@
 //! dataset cannot be read or holds no rough row, 1 when the report cannot be written.
 
 use crate::cli::error::{input, io, CliError};
-use crate::cli::output::{note, outln, prepare_dir};
+use crate::cli::output::{beside_dataset, note, outln, prepare_dir};
 use ehlmap::render::mixed_map::mixed_chart;
 use ehlmap::report::mixed::{mixed_map, mixed_markdown};
 use ehlmap::store::results::read_dataset;
@@ -36,13 +36,10 @@ pub fn run_mixed(a: &MixedArgs) -> Result<(), CliError> {
             a.datasets[0].display()
         )));
     }
-    let out = a.out.clone().unwrap_or_else(|| {
-        let d = &a.datasets[0];
-        let name = d
-            .file_name()
-            .map_or("dataset".into(), |n| n.to_string_lossy().into_owned());
-        d.with_file_name(format!("{name}-mixed"))
-    });
+    let out = a
+        .out
+        .clone()
+        .unwrap_or_else(|| beside_dataset(&a.datasets[0], "mixed"));
     prepare_dir("--out", &out)?;
     let map = mixed_map(&rows);
     let mut md = mixed_markdown(&map);

@@ -118,3 +118,12 @@ pub fn report_plot(
         Err(e) => Err(io(format!("--plot {}: no pictures: {e}", dir.display()))),
     }
 }
+
+/// `DATASET-<suffix>` beside the dataset, outside it: a dataset folder holds only Parquet parts
+/// (polars' scan_parquet on the folder fails on anything else).
+pub fn beside_dataset(dataset: &Path, suffix: &str) -> PathBuf {
+    let name = dataset
+        .file_name()
+        .map_or("dataset".into(), |n| n.to_string_lossy().into_owned());
+    dataset.with_file_name(format!("{name}-{suffix}"))
+}

@@ -341,24 +341,10 @@ fn roughness(a: &SolveArgs) -> Result<Option<Roughness>, CliError> {
         },
         ..base
     };
-    r.validate().map_err(|e| {
-        let flag = |s: &str| format!("--{}", s.replace('_', "-"));
-        let msg = e.to_string();
-        let named = [
-            "sigma_over_beta",
-            "eta_beta_sigma",
-            "sigma",
-            "gamma",
-            "slide_roll",
-            "ph_over_e",
-        ]
-        .into_iter()
-        .find(|n| msg.contains(n))
-        .map(flag);
-        input(match named {
-            Some(f) => format!("{f}: {msg}"),
-            None => msg,
-        })
+    // Every input of Roughness::validate is an option of the same name.
+    r.validate().map_err(|e| match &e {
+        ParamError::Invalid { name, .. } => input(format!("--{}: {e}", name.replace('_', "-"))),
+        _ => input(e.to_string()),
     })?;
     Ok(r.is_rough().then_some(r))
 }

@@ -4,6 +4,7 @@
 
 use ehlmap::model::case::Case;
 use ehlmap::model::error::num;
+use ehlmap::model::roughness::orientation;
 use ehlmap::solve::solution::{with_error, MixedOutputs, ModelUsed, Outputs};
 
 /// The readable summary of a solve, line or point contact (`skipped_estimate`: the half-grid
@@ -86,13 +87,7 @@ pub fn summary(case: &Case, o: &Outputs, skipped_estimate: bool) -> String {
 /// The mixed-lubrication lines of a summary: the roughness, the film parameters, the asperity
 /// share of the load and the smooth case's films.
 fn mixed_lines(x: &MixedOutputs) -> String {
-    let orientation = if x.gamma == 1.0 {
-        "isotropic"
-    } else if x.gamma < 1.0 {
-        "transverse"
-    } else {
-        "longitudinal"
-    };
+    let orientation = orientation(x.gamma);
     let smooth = match (x.h_c_smooth, x.h_min_smooth) {
         (Some(c), Some(m)) => format!("H_c {c:.6}, H_min {m:.6}"),
         _ => "not converged".to_string(),

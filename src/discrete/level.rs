@@ -110,12 +110,6 @@ impl NodeFields {
         }
     }
 
-    /// The asperity deformation at node `c` (0 without asperity contact).
-    #[inline]
-    pub fn asperity_gap_at(&self, c: usize) -> f64 {
-        self.asperity_gap.get(c).copied().unwrap_or(0.0)
-    }
-
     /// Recompute rho and eps from P and the current H by the coefficient law `law`.
     pub fn update_coefficients(&mut self, law: Coefficients) {
         law.update(

@@ -470,6 +470,15 @@ impl Case {
             Case::Point(c) => c.models,
         }
     }
+
+    /// The same case with the surfaces `roughness` (`None`: smooth).
+    pub fn with_roughness(mut self, roughness: Option<Roughness>) -> Case {
+        match &mut self {
+            Case::Line(c) => c.models.roughness = roughness,
+            Case::Point(c) => c.models.roughness = roughness,
+        }
+        self
+    }
 }
 
 impl From<LineCase> for Case {

@@ -117,6 +117,28 @@ impl Roughness {
     }
 }
 
+/// The orientation in words: isotropic (gamma = 1), transverse (< 1) or longitudinal (> 1).
+pub fn orientation(gamma: f64) -> &'static str {
+    if gamma == 1.0 {
+        "isotropic"
+    } else if gamma < 1.0 {
+        "transverse"
+    } else {
+        "longitudinal"
+    }
+}
+
+/// gamma for labels: `1/n` for the reciprocal of an integer n (the table rows 1/3, 1/6, 1/9),
+/// else its shortest decimal.
+pub fn gamma_label(gamma: f64) -> String {
+    let inv = 1.0 / gamma;
+    if gamma < 1.0 && (inv - inv.round()).abs() < 1e-9 {
+        format!("1/{}", inv.round())
+    } else {
+        format!("{gamma}")
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -3,6 +3,7 @@
 //! against Lambda = H_min/sigma, below the asperity share of the load against Lambda; one colour
 //! per roughness orientation gamma (log Lambda axes). At most [`COLUMNS`] cases per row.
 
+use crate::model::roughness::{gamma_label, orientation};
 use crate::render::style::{e, ensure_font, RenderError, COLORS};
 use crate::report::mixed::{MixedCurve, MixedMap};
 use plotters::coord::Shift;
@@ -55,21 +56,8 @@ fn case_name(c: &MixedCurve) -> String {
     format!("{} M={} L={}{d}", c.contact, c.m, c.l)
 }
 
-fn orientation(gamma: f64) -> String {
-    let inv = 1.0 / gamma;
-    let g = if gamma < 1.0 && (inv - inv.round()).abs() < 1e-9 {
-        format!("1/{}", inv.round())
-    } else {
-        format!("{gamma}")
-    };
-    let word = if gamma == 1.0 {
-        "isotropic"
-    } else if gamma < 1.0 {
-        "transverse"
-    } else {
-        "longitudinal"
-    };
-    format!("gamma={g} {word}")
+fn orientation_label(gamma: f64) -> String {
+    format!("gamma={} {}", gamma_label(gamma), orientation(gamma))
 }
 
 fn film_panel(
@@ -100,7 +88,7 @@ fn film_panel(
         let hm: Vec<(f64, f64)> = c.points.iter().map(|p| (p.lambda, p.h_min_ratio)).collect();
         ch.draw_series(LineSeries::new(hc.clone(), col.stroke_width(2)))
             .map_err(e)?
-            .label(orientation(c.gamma))
+            .label(orientation_label(c.gamma))
             .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], col.stroke_width(2)));
         ch.draw_series(hc.iter().map(|&p| Circle::new(p, 3, col.filled())))
             .map_err(e)?;

@@ -8,6 +8,7 @@
 //! counted as left out, with the reason. Output: a [`MixedMap`] of curves, each sorted by
 //! decreasing Lambda, and its Markdown ([`mixed_markdown`]). Pure: no files, no printing.
 
+use crate::model::roughness::gamma_label;
 use crate::store::results::{CaseRow, RowStatus};
 use serde::Serialize;
 
@@ -47,12 +48,7 @@ impl MixedCurve {
     /// A short label: `line M=100 L=10 gamma=1`.
     pub fn label(&self) -> String {
         let d = self.d.map_or(String::new(), |d| format!(" D={d}"));
-        let inv = 1.0 / self.gamma;
-        let gamma = if self.gamma < 1.0 && (inv - inv.round()).abs() < 1e-9 {
-            format!("1/{}", inv.round())
-        } else {
-            format!("{}", self.gamma)
-        };
+        let gamma = gamma_label(self.gamma);
         format!(
             "{} M={} L={}{d} gamma={gamma}",
             self.contact, self.m, self.l

@@ -193,13 +193,8 @@ pub fn solve_rough_beside(case: &Case, params: &SolveParams, smooth: &Outputs) -
 
 /// The case with smooth surfaces, when `case` has rough ones.
 pub fn smooth_twin(case: &Case) -> Option<Case> {
-    let mut twin = *case;
-    let models = match &mut twin {
-        Case::Line(c) => &mut c.models,
-        Case::Point(c) => &mut c.models,
-    };
-    models.roughness.take().filter(|r| r.is_rough())?;
-    Some(twin)
+    case.models().roughness.filter(|r| r.is_rough())?;
+    Some(case.with_roughness(None))
 }
 
 /// [`solve`] of the case's own surfaces, smooth or rough.

@@ -190,9 +190,6 @@ fn build_row(case: &Case, sweep: &str, o: &Outputs, attempt: usize) -> CaseRow {
     row.algebraic_error = o.algebraic_error.and_then(|a| finite(a, &mut valid));
     row.error_estimate = o.error_estimate.and_then(|e| finite(e, &mut valid));
     if let Some(x) = &o.mixed {
-        row.sigma = Some(x.sigma);
-        row.gamma = Some(x.gamma);
-        row.slide_roll = Some(x.slide_roll);
         row.lambda_min = finite(x.lambda_min, &mut valid);
         row.lambda_c = finite(x.lambda_c, &mut valid);
         row.asperity_load_fraction = finite(x.asperity_load_fraction, &mut valid);

@@ -88,12 +88,13 @@ impl LineLevel {
         } else {
             self.work.fill(0.0);
         }
+        // Mixed lubrication: the asperity deformation joins the fluid's.
+        let nodes = &mut self.nodes;
+        for (w, &a) in nodes.work.iter_mut().zip(&nodes.asperity_gap) {
+            *w += a;
+        }
         for i in 0..n {
             self.film[i] = h0 + 0.5 * self.x[i] * self.x[i] + self.work[i];
-        }
-        let nodes = &mut self.nodes;
-        for (f, &a) in nodes.film.iter_mut().zip(&nodes.asperity_gap) {
-            *f += a;
         }
         self.update_coefficients(phys);
     }

@@ -197,7 +197,7 @@ impl PointLevel {
     }
 
     /// The deformation sum c K*P (no H0, no gap) into `work` (the FFT product on the rayon pool
-    /// for a `parallel` level).
+    /// for a `parallel` level), plus the asperity deformation in mixed lubrication.
     pub fn deformation(&mut self, phys: &PointPhysics) {
         if phys.elastic {
             if self.direct_deformation {
@@ -221,6 +221,10 @@ impl PointLevel {
             });
         } else {
             self.work.fill(0.0);
+        }
+        let nodes = &mut self.nodes;
+        for (w, &a) in nodes.work.iter_mut().zip(&nodes.asperity_gap) {
+            *w += a;
         }
     }
 
@@ -291,16 +295,7 @@ impl PointLevel {
                 }
                 law.update(p, film, rho, eps, divisor);
             });
-        if !nodes.asperity_gap.is_empty() {
-            // Mixed lubrication (serial; never on the smooth path): the asperity deformation,
-            // then the coefficients again from the full film.
-            for (f, &a) in nodes.film.iter_mut().zip(&nodes.asperity_gap) {
-                *f += a;
-            }
-            nodes.update_coefficients(law);
-        } else {
-            nodes.refresh_rough(&law);
-        }
+        nodes.refresh_rough(&law);
     }
 
     /// Recompute H (by the fast product) from P and H0, nothing else.
@@ -308,10 +303,6 @@ impl PointLevel {
         self.deformation(phys);
         for c in 0..self.len() {
             self.film[c] = h0 + self.gap[c] + self.work[c];
-        }
-        let nodes = &mut self.nodes;
-        for (f, &a) in nodes.film.iter_mut().zip(&nodes.asperity_gap) {
-            *f += a;
         }
     }
 
