@@ -136,3 +136,113 @@ fn selection_bench_measures_the_saving_at_the_target() {
     let md = selection::summary(&pairs, target, "sel.toml");
     assert!(md.contains("within the target in 6 of 6"), "{md}");
 }
+
+#[test]
+fn the_box_map_records_status_attempt_work_and_time_limit_per_case() {
+    use ehlmap::bench::box_map::{box_summary, run_box, BoxCase};
+    use ehlmap::{Case, LineCase, PointCase};
+    // An easy line case meets the default target; a hard point corner with a tenth of a second
+    // reaches its limit and says so.
+    let cases = [
+        BoxCase {
+            case: Case::Line(LineCase::new(10.0, 0.0).unwrap()),
+            panel: 0,
+        },
+        BoxCase {
+            case: Case::Point(PointCase::new(3e4, 30.0, 1.0).unwrap()),
+            panel: 1,
+        },
+    ];
+    let cells = run_box(&cases, 0.1, &|_| {});
+    let (easy, hard) = (&cells[0], &cells[1]);
+    assert_eq!(easy.status, "converged", "{}", easy.reason);
+    assert!(easy.accuracy_met && !easy.timed_out, "{easy:?}");
+    assert_eq!((easy.attempt, easy.contact.as_str()), (1, "line"));
+    assert!(easy.work_units > 0.0 && easy.error_estimate.unwrap() <= 0.01);
+    assert!(hard.timed_out && !hard.accuracy_met, "{hard:?}");
+    assert_eq!(hard.status, "max-iterations", "{}", hard.reason);
+    assert_eq!((hard.d, hard.l), (1.0, 30.0));
+    let s = box_summary(&cells);
+    assert_eq!(s[0].1..=s[0].4, 1..=1, "{s:?}");
+    assert_eq!((s[1].1, s[1].3, s[1].4), (0, 1, 1), "{s:?}");
+}
+
+#[test]
+fn stability_box_writes_its_table_chart_and_summary() {
+    use arrow_array::{Array, BooleanArray, StringArray};
+    use parquet::arrow::arrow_reader::ParquetRecordBatchReaderBuilder;
+    let dir = std::env::temp_dir().join(format!("ehlmap-box-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_ehlmap"))
+        .args([
+            "stability",
+            "--box",
+            "--quick",
+            "--time-limit",
+            "0.2",
+            "--out",
+        ])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let file = std::fs::File::open(dir.join("stability.parquet")).unwrap();
+    let mut rows = 0;
+    for batch in ParquetRecordBatchReaderBuilder::try_new(file)
+        .unwrap()
+        .build()
+        .unwrap()
+    {
+        let b = batch.unwrap();
+        let status = b.column_by_name("status").unwrap();
+        let status = status.as_any().downcast_ref::<StringArray>().unwrap();
+        let timed = b.column_by_name("timed_out").unwrap();
+        let timed = timed.as_any().downcast_ref::<BooleanArray>().unwrap();
+        for i in 0..b.num_rows() {
+            let st = status.value(i);
+            assert!(
+                [
+                    "converged",
+                    "diverged",
+                    "stalled",
+                    "max-iterations",
+                    "under-resolved"
+                ]
+                .contains(&st),
+                "{st}"
+            );
+            // A timed-out case is a result, never a crash or a null.
+            assert!(!timed.is_null(i));
+        }
+        for name in [
+            "M",
+            "L",
+            "D",
+            "attempt",
+            "grid",
+            "work_units",
+            "wall_s",
+            "reason",
+        ] {
+            assert!(b.column_by_name(name).is_some(), "{name}");
+        }
+        rows += b.num_rows();
+    }
+    // 2 model sets x (3 x 2 line + 3 D x 3 x 2 point).
+    assert_eq!(rows, 48);
+    assert!(dir.join("stability.png").exists());
+    let md = std::fs::read_to_string(dir.join("stability.md")).unwrap();
+    assert!(md.contains("| point D = 0.01, Roelands + DH |"), "{md}");
+    // Flags that do not apply with --box are refused before any solve.
+    let bad = std::process::Command::new(env!("CARGO_BIN_EXE_ehlmap"))
+        .args(["stability", "--box", "--grid", "257", "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("--grid 257"));
+}

@@ -53,7 +53,7 @@ pub enum CaseFields {
 }
 
 /// What [`run`] does besides deriving the groups.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RunOptions {
     /// Solve the case numerically.
     pub solve: bool,
@@ -61,6 +61,8 @@ pub struct RunOptions {
     pub keep_fields: bool,
     /// With a roughness in the file, also solve the case with rough surfaces.
     pub rough: bool,
+    /// Seconds all solves together may take ([`SolveParams::time_limit`]; `None`: no limit).
+    pub time_limit: Option<f64>,
 }
 
 /// Validate a case file, derive its groups; with `solve`, also solve it numerically (keeping the
@@ -74,6 +76,7 @@ pub fn run(
         solve,
         keep_fields,
         rough: with_rough,
+        time_limit,
     } = opts;
     let d = spec.derive()?;
     let mut films = d.films.clone();
@@ -83,7 +86,8 @@ pub fn run(
             grid: d.grid,
             keep_fields,
             ..SolveParams::default()
-        };
+        }
+        .time_limit(time_limit);
         let s = solve_case(&d.case, &params);
         p_max = add_numerical(&mut films, &s.outputs, |h| d.to_h(h), d.groups.p_h);
         fields = match (s.profile, s.fields) {
@@ -141,6 +145,7 @@ pub fn report(spec: &CaseSpec, solve: bool) -> Result<CaseReport, CaseError> {
         solve,
         keep_fields: false,
         rough: true,
+        time_limit: None,
     };
     run(spec, opts).map(|r| r.0)
 }

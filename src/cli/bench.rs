@@ -5,6 +5,8 @@
 use crate::cli::error::{input, io, CliError};
 use crate::cli::limits::{check_memory, estimate, Solver};
 use crate::cli::output::{note, out, outln, prepare_dir};
+use crate::cli::solve_args::time_limit_arg;
+use ehlmap::bench::box_map;
 use ehlmap::bench::selection;
 use ehlmap::bench::speed::{self, BenchCase, BenchRow};
 use ehlmap::bench::stability::{self, Cell};
@@ -45,10 +47,10 @@ pub struct StabilityArgs {
     /// Output directory for stability.parquet, stability.md and stability.png.
     #[arg(long, default_value = "outputs/stability")]
     pub out: PathBuf,
-    /// Finest grid of the multigrid runs: line 33 to 1048577 points; with --point-D 17 to
-    /// 1025 per direction.
-    #[arg(long, default_value_t = 1025)]
-    pub grid: usize,
+    /// Finest grid of the multigrid runs (default 1025): line 33 to 1048577 points; with
+    /// --point-D 17 to 1025 per direction. Not with --box.
+    #[arg(long)]
+    pub grid: Option<usize>,
     /// A 5 x 3 map (M x L) instead of 8 x 5.
     #[arg(long)]
     pub quick: bool,
@@ -56,7 +58,21 @@ pub struct StabilityArgs {
     /// (`--grid` then counts points per direction; give e.g. 129).
     #[arg(long = "point-D", allow_hyphen_values = true)]
     pub point_d: Option<f64>,
+    /// Map the whole box instead, as a user's default solve would run it (the full model to the
+    /// 1 % target, the accuracy and fallback ladders): line M 0.01-1e5 x L 0-40, point M
+    /// 0.01-3e4 x L 0-30 x D 1, 0.1, 0.01, each with Barus/incompressible and Roelands/
+    /// Dowson-Higginson; one case per thread (see --threads of the sweep runner: the rayon pool,
+    /// RAYON_NUM_THREADS). With --quick the corners and the middle only.
+    #[arg(long = "box")]
+    pub box_map: bool,
+    /// With --box: seconds each case may take (default 20); a case that reaches it ends with
+    /// status max-iterations and says so.
+    #[arg(long, allow_hyphen_values = true)]
+    pub time_limit: Option<f64>,
 }
+
+/// The default --time-limit of `ehlmap stability --box`, s.
+const BOX_TIME_LIMIT: f64 = 20.0;
 
 /// Most timed repeats `--repeats` takes.
 const MAX_REPEATS: usize = 1000;
@@ -285,6 +301,16 @@ fn run_selection(a: &BenchArgs, spec_path: &Path) -> Result<(), CliError> {
 
 /// Run `ehlmap stability`.
 pub fn run_stability(a: &StabilityArgs) -> Result<(), CliError> {
+    if a.box_map {
+        return run_box(a);
+    }
+    if let Some(t) = a.time_limit {
+        return Err(input(format!(
+            "--time-limit {} applies to --box only",
+            num(t)
+        )));
+    }
+    let grid = a.grid.unwrap_or(1025);
     let (contact, (lo, hi)) = match a.point_d {
         Some(d) if !(d > 0.0 && d <= 1.0) => {
             return Err(input(format!(
@@ -295,23 +321,23 @@ pub fn run_stability(a: &StabilityArgs) -> Result<(), CliError> {
         Some(_) => (Contact::Point, (17, 1025)),
         None => (Contact::Line, Contact::Line.grid_range()),
     };
-    if !(lo..=hi).contains(&a.grid) {
+    if !(lo..=hi).contains(&grid) {
         return Err(input(match a.point_d {
             Some(d) => format!(
                 "--grid {} with --point-D {}: give {lo} to {hi} points per direction",
-                a.grid,
+                grid,
                 num(d)
             ),
             None => format!(
                 "--grid {} is invalid: give {lo} to {hi} points (line contacts)",
-                a.grid
+                grid
             ),
         }));
     }
     check_memory(
-        &format!("--grid {}", a.grid),
+        &format!("--grid {}", grid),
         &format!("a {contact} solve on this grid"),
-        estimate(contact, a.grid, Solver::Multigrid),
+        estimate(contact, grid, Solver::Multigrid),
     )?;
     prepare_dir("--out", &a.out)?;
     let (ms, ls): (Vec<f64>, Vec<f64>) = if a.quick {
@@ -324,8 +350,8 @@ pub fn run_stability(a: &StabilityArgs) -> Result<(), CliError> {
     };
     let mut log = |s: &str| note!("{s}");
     let cells = match a.point_d {
-        Some(d) => stability::run_point(&ms, &ls, d, a.grid, &mut log),
-        None => stability::run(&ms, &ls, a.grid, &mut log),
+        Some(d) => stability::run_point(&ms, &ls, d, grid, &mut log),
+        None => stability::run(&ms, &ls, grid, &mut log),
     };
     write_table(
         &a.out.join("stability.parquet"),
@@ -352,6 +378,130 @@ pub fn run_stability(a: &StabilityArgs) -> Result<(), CliError> {
     let mut md = String::from("| method | converged | of |\n|---|---|---|\n");
     for (n, ok, all) in stability::summary(&cells) {
         let _ = writeln!(md, "| {n} | {ok} | {all} |");
+    }
+    std::fs::write(a.out.join("stability.md"), &md).map_err(|e| out_err(&a.out, &e))?;
+    outln!("{md}")
+}
+
+/// Run `ehlmap stability --box`.
+fn run_box(a: &StabilityArgs) -> Result<(), CliError> {
+    if let Some(d) = a.point_d {
+        return Err(input(format!(
+            "--point-D {} does not apply with --box (the box maps D = 1, 0.1 and 0.01)",
+            num(d)
+        )));
+    }
+    if let Some(g) = a.grid {
+        return Err(input(format!(
+            "--grid {g} does not apply with --box (the accuracy ladder picks each case's grid)"
+        )));
+    }
+    let limit = match a.time_limit {
+        None => BOX_TIME_LIMIT,
+        Some(t) => time_limit_arg(t)?,
+    };
+    for contact in [Contact::Line, Contact::Point] {
+        let g = ehlmap::strategy::solve_case::default_max_grid(contact);
+        check_memory(
+            &format!("--box ({contact} contacts up to {g} points)"),
+            &format!("a {contact} solve on the largest grid"),
+            estimate(contact, g, Solver::Multigrid),
+        )?;
+    }
+    prepare_dir("--out", &a.out)?;
+    let cases = box_map::box_cases(a.quick);
+    note!(
+        "stability --box: {} cases, at most {limit} s each, on {} threads",
+        cases.len(),
+        rayon::current_num_threads()
+    );
+    let cells = box_map::run_box(&cases, limit, &|s: &str| note!("{s}"));
+    write_table(
+        &a.out.join("stability.parquet"),
+        vec![
+            Column::Str("panel", cells.iter().map(|c| c.panel.clone()).collect()),
+            Column::Str("contact", cells.iter().map(|c| c.contact.clone()).collect()),
+            Column::F64("M", cells.iter().map(|c| c.m).collect()),
+            Column::F64("L", cells.iter().map(|c| c.l).collect()),
+            Column::F64("D", cells.iter().map(|c| c.d).collect()),
+            Column::Str("status", cells.iter().map(|c| c.status.clone()).collect()),
+            Column::I64("attempt", cells.iter().map(|c| c.attempt as i64).collect()),
+            Column::I64("grid", cells.iter().map(|c| c.grid as i64).collect()),
+            Column::F64("work_units", cells.iter().map(|c| c.work_units).collect()),
+            Column::F64("wall_s", cells.iter().map(|c| c.wall_s).collect()),
+            Column::Bool(
+                "accuracy_met",
+                cells.iter().map(|c| c.accuracy_met).collect(),
+            ),
+            Column::F64(
+                "error_estimate",
+                cells
+                    .iter()
+                    .map(|c| c.error_estimate.unwrap_or(f64::NAN))
+                    .collect(),
+            ),
+            Column::Bool("timed_out", cells.iter().map(|c| c.timed_out).collect()),
+            Column::Str("reason", cells.iter().map(|c| c.reason.clone()).collect()),
+        ],
+        &[],
+    )
+    .map_err(|e| out_err(&a.out, &e))?;
+    let map: Vec<MapCell> = cells
+        .iter()
+        .map(|c| MapCell {
+            method: c.panel.clone(),
+            m: c.m,
+            l: c.l,
+            outcome: match (c.status.as_str(), c.accuracy_met, c.attempt) {
+                ("converged", true, 1) => Outcome::Converged,
+                ("converged", true, _) => Outcome::ConvergedFallback,
+                ("converged", false, _) => Outcome::TargetMissed,
+                ("diverged", ..) => Outcome::Diverged,
+                ("stalled", ..) => Outcome::Stalled,
+                _ => Outcome::Other,
+            },
+        })
+        .collect();
+    let ((lm, ll), (pm, pl)) = box_map::box_axes(a.quick);
+    let ms: Vec<f64> = lm.iter().chain(&pm).copied().collect();
+    let (m_lo, m_hi) = (
+        ms.iter().copied().fold(f64::INFINITY, f64::min),
+        ms.iter().copied().fold(0.0, f64::max),
+    );
+    let l_hi = ll.iter().chain(&pl).copied().fold(0.0, f64::max);
+    bench_charts::stability_chart(
+        &a.out.join("stability.png"),
+        &box_map::panel_names(),
+        &map,
+        &[m_lo, m_hi],
+        &[0.0, l_hi],
+    )
+    .map_err(|e| out_err(&a.out, &e))?;
+    let mut md = format!(
+        "Default solve (full model, 1 % target), at most {limit} s per case.\n\n\
+         | panel | converged, target met | converged | time limit | cases |\n|---|---|---|---|---|\n"
+    );
+    for (name, met, ok, timed, all) in box_map::box_summary(&cells) {
+        let _ = writeln!(md, "| {name} | {met} | {ok} | {timed} | {all} |");
+    }
+    md.push_str("\nCases not converged with the target met:\n\n| panel | M | L | status | grid | attempt | WU | s | reason |\n|---|---|---|---|---|---|---|---|---|\n");
+    for c in cells
+        .iter()
+        .filter(|c| !(c.status == "converged" && c.accuracy_met))
+    {
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {} | {} | {} | {:.0} | {:.1} | {} |",
+            c.panel,
+            num(c.m),
+            num(c.l),
+            c.status,
+            c.grid,
+            c.attempt,
+            c.work_units,
+            c.wall_s,
+            c.reason.replace('|', "/")
+        );
     }
     std::fs::write(a.out.join("stability.md"), &md).map_err(|e| out_err(&a.out, &e))?;
     outln!("{md}")

@@ -5,6 +5,7 @@
 use crate::cli::error::{input, CliError};
 use crate::cli::limits::{check_memory, estimate, Solver};
 use crate::cli::output::{note, out, outln, prepare_dir, report_plot};
+use crate::cli::solve_args::time_limit_arg;
 use ehlmap::strategy::solve_case::default_max_grid;
 use std::path::PathBuf;
 
@@ -24,6 +25,11 @@ pub struct CaseArgs {
     /// Skip the solve with rough surfaces that a roughness (rq) in the file asks for.
     #[arg(long)]
     pub smooth_only: bool,
+    /// Stop solving after this many seconds (all solves together): an unconverged solve ends
+    /// with status max-iterations, the accuracy ladder with the finest grid solved by then;
+    /// the reason says so. Default: no limit.
+    #[arg(long, allow_hyphen_values = true)]
+    pub time_limit: Option<f64>,
 }
 
 /// Run `ehlmap case`.
@@ -49,6 +55,7 @@ pub fn run_case(a: &CaseArgs) -> Result<(), CliError> {
             estimate(contact, grid, Solver::Multigrid),
         )?;
     }
+    let time_limit = a.time_limit.map(time_limit_arg).transpose()?;
     if let Some(dir) = &a.plot {
         prepare_dir("--plot", dir)?;
     }
@@ -56,6 +63,7 @@ pub fn run_case(a: &CaseArgs) -> Result<(), CliError> {
         solve: !a.no_solve,
         keep_fields: a.plot.is_some(),
         rough: !a.smooth_only,
+        time_limit,
     };
     let (r, fields) = ehlmap::cases::run(&spec, opts).map_err(|e| input(format!("{path}: {e}")))?;
     let plotted = match (&a.plot, &r.numerical) {

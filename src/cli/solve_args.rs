@@ -171,6 +171,11 @@ pub struct SolveArgs {
     /// 4096 (default: one thread, Gauss-Seidel row order); not with --method newton.
     #[arg(long)]
     pub threads: Option<usize>,
+    /// Stop solving after this many seconds: an unconverged solve ends with status
+    /// max-iterations, the accuracy ladder with the finest grid solved by then; the reason says
+    /// so. Default: no limit.
+    #[arg(long, allow_hyphen_values = true)]
+    pub time_limit: Option<f64>,
     /// Print every multigrid cycle (level, cycle, residual, load error, H_c, work units) to
     /// stderr; --method multigrid only.
     #[arg(long)]
@@ -473,6 +478,18 @@ fn accuracy_arg(t: f64) -> Result<f64, CliError> {
     }
 }
 
+/// A valid --time-limit: seconds, positive and finite.
+pub(crate) fn time_limit_arg(t: f64) -> Result<f64, CliError> {
+    if t.is_finite() && t > 0.0 {
+        Ok(t)
+    } else {
+        Err(input(format!(
+            "--time-limit {} is invalid: give the seconds a solve may take, > 0",
+            num(t)
+        )))
+    }
+}
+
 /// A valid --max-grid for the contact (with --accuracy).
 fn max_grid_arg(g: usize, contact: Contact) -> Result<usize, CliError> {
     let ((lo, hi), what) = match contact {
@@ -495,6 +512,7 @@ fn max_grid_arg(g: usize, contact: Contact) -> Result<usize, CliError> {
 /// The solve's parameters from the command line.
 pub(crate) fn params_arg(a: &SolveArgs, case: &Case) -> Result<SolveParams, CliError> {
     let point = matches!(case, Case::Point(_));
+    let time_limit = a.time_limit.map(time_limit_arg).transpose()?;
     Ok(SolveParams {
         method: match a.method {
             MethodArg::Multigrid => Method::Multigrid,
@@ -528,7 +546,8 @@ pub(crate) fn params_arg(a: &SolveArgs, case: &Case) -> Result<SolveParams, CliE
         parallel: point && a.threads.is_some(),
         observer: a.trace.then_some(Observer(print_cycle)),
         ..SolveParams::default()
-    })
+    }
+    .time_limit(time_limit))
 }
 
 /// Print one multigrid cycle (`--trace`).

@@ -146,7 +146,9 @@ pub enum Outcome {
     Stalled,
     /// Converged, but far slower than the default multigrid.
     TooSlow,
-    /// Anything else (max-iterations).
+    /// Converged, but its accuracy target was not met.
+    TargetMissed,
+    /// Anything else (max-iterations, a time limit, an under-resolved film).
     Other,
 }
 
@@ -163,8 +165,8 @@ pub struct MapCell {
     pub outcome: Outcome,
 }
 
-/// The stability map: one panel per method in `names`, each cell coloured by its outcome, over
-/// the (M, L) values `ms`, `ls`.
+/// The stability map: one panel per method in `names` (two per row), each cell coloured by its
+/// outcome, over the (M, L) values `ms`, `ls`.
 pub fn stability_chart(
     path: &Path,
     names: &[String],
@@ -173,17 +175,22 @@ pub fn stability_chart(
     ls: &[f64],
 ) -> Result<(), RenderError> {
     ensure_font();
-    let root = BitMapBackend::new(path, (1000, 760)).into_drawing_area();
+    let rows = names.len().div_ceil(2).max(1);
+    let root = BitMapBackend::new(path, (1000, 30 + 380 * rows as u32)).into_drawing_area();
     root.fill(&WHITE).map_err(e)?;
-    let panels = root.split_evenly((2, 2));
+    let body = root
+        .titled(
+            "green converged (light green: by the fallback ladder), purple converged but the \
+             target missed, blue too slow, red diverged, orange stalled, grey max-iterations",
+            ("sans-serif", 14),
+        )
+        .map_err(e)?;
+    let panels = body.split_evenly((rows, 2));
     let (m0, m1) = (ms[0] * 0.7, ms[ms.len() - 1] * 1.4);
     let l1 = ls[ls.len() - 1].max(1.0) * 1.1;
     for (panel, name) in panels.iter().zip(names) {
         let mut ch = ChartBuilder::on(panel)
-            .caption(
-                format!("{name}: green converged, blue too slow, red diverged, orange stalled, grey max-iter"),
-                ("sans-serif", 13),
-            )
+            .caption(name, ("sans-serif", 14))
             .margin(8)
             .x_label_area_size(30)
             .y_label_area_size(36)
@@ -201,6 +208,7 @@ pub fn stability_chart(
                 Outcome::Diverged => RGBColor(214, 39, 40),
                 Outcome::Stalled => RGBColor(255, 127, 14),
                 Outcome::TooSlow => RGBColor(31, 119, 180),
+                Outcome::TargetMissed => RGBColor(148, 103, 189),
                 Outcome::Other => RGBColor(150, 150, 150),
             };
             Circle::new((c.m, c.l), 8, col.filled())

@@ -38,6 +38,19 @@ pub struct FmgControl {
     /// (1: 4 fmg_cycles everywhere). Point contacts use 2: a coarse cycle costs a quarter of the
     /// next finer one, and a load balance settled on the coarse levels saves fine cycles.
     pub coarse_budget_growth: usize,
+    /// Stop once this instant has passed ([`crate::solve::params::MgParams::deadline`]).
+    pub deadline: Option<Instant>,
+}
+
+/// The reason of a solve stopped by its deadline after cycle `k` (0-based) of level `l`, if
+/// the deadline has passed.
+pub(crate) fn time_limit(c: &FmgControl, l: usize, k: usize) -> Option<String> {
+    crate::solve::params::past(c.deadline).then(|| {
+        format!(
+            "time limit reached at cycle {} of level {l}, not converged",
+            k + 1
+        )
+    })
 }
 
 /// What the FMG driver needs from a multilevel solver.
@@ -152,8 +165,10 @@ pub fn fmg_solve<S: Fas>(s: &mut S) -> SolveInfo {
         if !warm {
             start_level(s, l, &h0_end);
         }
-        if let Err(reason) = run_level(s, &c, l, top, &mut d) {
-            return s.finish(start, Status::Diverged, reason, d.history);
+        match run_level(s, &c, l, top, &mut d) {
+            Err(reason) => return s.finish(start, Status::Diverged, reason, d.history),
+            Ok(Some(reason)) => return s.finish(start, Status::MaxIterations, reason, d.history),
+            Ok(None) => {}
         }
         h0_end.push(s.h0());
     }
@@ -218,14 +233,14 @@ fn level_budget(c: &FmgControl, l: usize, top: usize) -> (f64, usize) {
 /// Cycle level `l` until its load error is below the tolerance with P settled (on the finest
 /// level also H_c steady; there the outcome goes to `d`), the load error stalls on the finest
 /// level, or the budget is spent; a secant step on H0 each time P has settled. `Err` holds the
-/// reason of a divergence.
+/// reason of a divergence, `Ok(Some)` that of a deadline passed before convergence.
 fn run_level<S: Fas>(
     s: &mut S,
     c: &FmgControl,
     l: usize,
     top: usize,
     d: &mut Driver,
-) -> Result<(), String> {
+) -> Result<Option<String>, String> {
     d.lb.reset();
     let final_level = l == top;
     let (tol_e, max) = level_budget(c, l, top);
@@ -251,6 +266,9 @@ fn run_level<S: Fas>(
             }
             break;
         }
+        if let Some(why) = time_limit(c, l, k) {
+            return Ok(Some(why));
+        }
         if settled {
             if final_level && stalled(&rec, &mut settled_h, tol_e, d) {
                 break;
@@ -261,7 +279,7 @@ fn run_level<S: Fas>(
             settling.prev = Some(rec);
         }
     }
-    Ok(())
+    Ok(None)
 }
 
 /// Cycle `k` of level `l`: one FAS cycle and its record (sent to the observer, if any).

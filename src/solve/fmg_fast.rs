@@ -38,7 +38,7 @@
 //! ch. 4 and 7.
 
 use crate::solve::fmg::{
-    check_divergence, cycle_once, secant_step, single_level, start_level, Fas,
+    check_divergence, cycle_once, secant_step, single_level, start_level, time_limit, Fas,
 };
 use crate::solve::load_balance::LoadBalance;
 use crate::solve::{CycleRecord, SolveInfo, Status};
@@ -308,6 +308,13 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
                     };
                 }
                 break;
+            }
+            if let Some(why) = time_limit(&c, l, k) {
+                return with_errors(
+                    s.finish(start, Status::MaxIterations, why, history),
+                    e_a,
+                    e_d,
+                );
             }
             if s.coarse_load_failed() {
                 // H0 did not move with the cycle: a secant step of the load balance instead.

@@ -5,7 +5,7 @@
 //! not an answer: its status becomes [`Status::UnderResolved`] (the grid does not resolve the
 //! film).
 
-use crate::solve::params::{FinerCoarsest, MgParams, Rung};
+use crate::solve::params::{past, FinerCoarsest, MgParams, Rung};
 use crate::solve::solution::{Outputs, Solution};
 use crate::solve::{SolveInfo, Status};
 
@@ -28,8 +28,13 @@ fn final_residual(info: &SolveInfo) -> f64 {
         .abs()
 }
 
-/// Run `run(k)` for k = 0..names.len() (stopping at the first converged one) and annotate.
-pub fn run_ladder<S: Attempt>(names: &[&str], mut run: impl FnMut(usize) -> S) -> S {
+/// Run `run(k)` for k = 0..names.len() (stopping at the first converged one, or once
+/// `deadline` has passed) and annotate.
+pub fn run_ladder<S: Attempt>(
+    names: &[&str],
+    deadline: Option<std::time::Instant>,
+    mut run: impl FnMut(usize) -> S,
+) -> S {
     let total = names.len();
     let mut best: Option<S> = None;
     let (mut spent_wu, mut spent_s) = (0.0, 0.0);
@@ -46,7 +51,7 @@ pub fn run_ladder<S: Attempt>(names: &[&str], mut run: impl FnMut(usize) -> S) -
         {
             best = Some(s);
         }
-        if ok {
+        if ok || past(deadline) {
             break;
         }
     }
@@ -98,7 +103,7 @@ pub fn run_rungs<D: Copy + PartialEq + FinerCoarsest, S: Attempt>(
         }
     }
     let names: Vec<&str> = settings.iter().map(|(r, _)| r.name()).collect();
-    run_ladder(&names, |k| run(&settings[k].1))
+    run_ladder(&names, p.deadline, |k| run(&settings[k].1))
 }
 
 impl Attempt for Solution {

@@ -265,6 +265,7 @@ impl<C: Contact> Multigrid<C> {
                     NewtonParams::default().max_iter
                 },
                 stall_window: MULTIGRID_STALL_WINDOW,
+                deadline: self.params.deadline,
                 ..NewtonParams::default()
             };
             let mut h0 = self.h0;

@@ -31,6 +31,8 @@ pub struct NewtonParams {
     /// multigrid's coarsest-level solves have a fallback for a failed solve, and a damped
     /// semi-smooth Newton that crawls rarely converges within its iteration budget.
     pub stall_window: usize,
+    /// Stop iterating once this instant has passed (the solve's deadline; `None`: no limit).
+    pub deadline: Option<std::time::Instant>,
 }
 
 impl NewtonParams {
@@ -57,6 +59,7 @@ impl Default for NewtonParams {
             tol: 1e-10,
             fix_h0: false,
             stall_window: 0,
+            deadline: None,
         }
     }
 }
@@ -262,6 +265,9 @@ pub fn newton_solve<T: NewtonLevel>(
             break;
         }
         merits.push(lin.merit);
+        if crate::solve::params::past(np.deadline) {
+            break;
+        }
         if np.stall_window > 0
             && it >= np.stall_window
             && lin.merit > 0.5 * merits[it - np.stall_window]

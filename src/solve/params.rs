@@ -182,6 +182,11 @@ pub struct MgParams<D> {
     pub parallel: bool,
     /// Receives every cycle of the solve.
     pub observer: Option<crate::solve::Observer>,
+    /// Stop at this instant: the cycle running then is the last, the fallback and accuracy
+    /// ladders try nothing further, and an unconverged solve ends with status max-iterations
+    /// and a reason naming the time limit (`None`: no limit). A solve that meets its limit
+    /// depends on the machine's speed; one that ends before it does not.
+    pub deadline: Option<std::time::Instant>,
 }
 
 impl<D> MgParams<D> {
@@ -212,6 +217,7 @@ impl<D> MgParams<D> {
             direct_deformation: false,
             parallel: false,
             observer: None,
+            deadline: None,
         }
     }
 
@@ -227,8 +233,14 @@ impl<D> MgParams<D> {
             max_algebraic: self.max_algebraic,
             load_factor: self.load_factor,
             coarse_budget_growth,
+            deadline: self.deadline,
         }
     }
+}
+
+/// Whether the instant `deadline` (if any) has passed.
+pub fn past(deadline: Option<std::time::Instant>) -> bool {
+    deadline.is_some_and(|d| std::time::Instant::now() >= d)
 }
 
 /// A domain rule whose coarsest grid can be made finer (a rung of the fallback ladder).

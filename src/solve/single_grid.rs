@@ -14,7 +14,7 @@ use std::time::Instant;
 /// Run single-grid relaxation on a one-level solver (a [`crate::solve::line::multigrid::LineMultigrid`]
 /// built with `coarse_intervals` equal to the finest interval count, or a
 /// [`crate::solve::point::multigrid::PointMultigrid`] whose coarsest grid is the finest).
-/// `max_sweeps` bounds the work.
+/// `max_sweeps` (and the deadline of the solver's controls) bound the work.
 pub fn solve_relax<S: Fas>(mg: &mut S, max_sweeps: usize, sweeps_per_check: usize) -> SolveInfo {
     let start = Instant::now();
     mg.initialise();
@@ -51,6 +51,10 @@ pub fn solve_relax<S: Fas>(mg: &mut S, max_sweeps: usize, sweeps_per_check: usiz
                 "load error {:.1e} and H_c change {dh:.1e} after {sweeps} sweeps",
                 rec.load_error
             );
+            break;
+        }
+        if crate::solve::params::past(c.deadline) {
+            reason = format!("time limit reached after {sweeps} sweeps, not converged");
             break;
         }
         if settled {

@@ -1,9 +1,9 @@
 //! Writing Parquet: [`write_batch_file`] is the one place that sets the writer properties (zstd,
 //! footer key-value metadata headed by `ehlmap_version`); [`write_table`] builds a small columnar
-//! table (f64, i64, string; NaN stored as null) for profiles, bench and stability results.
+//! table (f64, i64, bool, string; NaN stored as null) for profiles, bench and stability results.
 
 use crate::store::error::StoreError;
-use arrow_array::{ArrayRef, Float64Array, Int64Array, RecordBatch, StringArray};
+use arrow_array::{ArrayRef, BooleanArray, Float64Array, Int64Array, RecordBatch, StringArray};
 use arrow_schema::{DataType, Field, Schema};
 use parquet::arrow::ArrowWriter;
 use parquet::basic::{Compression, ZstdLevel};
@@ -19,6 +19,8 @@ pub enum Column {
     F64(&'static str, Vec<f64>),
     /// Integers.
     I64(&'static str, Vec<i64>),
+    /// Booleans.
+    Bool(&'static str, Vec<bool>),
     /// Strings.
     Str(&'static str, Vec<String>),
 }
@@ -42,6 +44,10 @@ pub fn write_table(
             Column::I64(n, v) => {
                 fields.push(Field::new(n, DataType::Int64, false));
                 arrays.push(Arc::new(Int64Array::from(v)));
+            }
+            Column::Bool(n, v) => {
+                fields.push(Field::new(n, DataType::Boolean, false));
+                arrays.push(Arc::new(BooleanArray::from(v)));
             }
             Column::Str(n, v) => {
                 fields.push(Field::new(n, DataType::Utf8, false));

@@ -78,12 +78,14 @@ pub const COARSE_LADDER_CYCLES: usize = 20;
 /// lost to a coarse grid's cheap attempt. Returns the finest solution with `error_estimate` and
 /// `accuracy_met` set, or, when the finest allowed grid does not converge even with its
 /// fallback ladder, the finest converged solution that has an estimate (target not met, the
-/// reason naming the grids that failed); the cost of all grids is counted.
+/// reason naming the grids that failed); the cost of all grids is counted. Once `deadline` has
+/// passed, the grid just solved is the last (the reason says so).
 pub fn refine_to_accuracy<S: Attempt>(
     start: usize,
     max_grid: usize,
     target: f64,
     order: f64,
+    deadline: Option<std::time::Instant>,
     mut solve: impl FnMut(usize, bool) -> S,
 ) -> S {
     let mut grid = start;
@@ -99,9 +101,12 @@ pub fn refine_to_accuracy<S: Attempt>(
         wall += si.wall_s;
     };
     loop {
-        let last = 2 * (grid - 1) + 1 > max_grid;
-        let mut s = solve(grid, last);
+        let finest = 2 * (grid - 1) + 1 > max_grid;
+        let mut s = solve(grid, finest);
         count(&mut s);
+        // The time limit makes this grid the last one.
+        let timed_out = !finest && crate::solve::params::past(deadline);
+        let last = finest || timed_out;
         let converged = s.info().status == Status::Converged;
         if converged && prev.is_none() && failed_grids.last() == Some(&coarser_grid(grid)) {
             let mut again = solve(coarser_grid(grid), true);
@@ -129,10 +134,15 @@ pub fn refine_to_accuracy<S: Attempt>(
                 let note = format!(
                     "; accuracy target {target:.1e} NOT met: estimate {:.1e} on {} points, the \
                      finest grid that converged (not converged on the finer grids {:?}, the \
-                     last with its fallback ladder: {})",
+                     last {}: {})",
                     bo.error_estimate.unwrap_or(f64::NAN),
                     bo.grid,
                     failed_grids.iter().chain([&so.grid]).collect::<Vec<_>>(),
+                    if timed_out {
+                        "stopped by the time limit"
+                    } else {
+                        "with its fallback ladder"
+                    },
                     so.status
                 );
                 for (r, w, t) in [
@@ -151,8 +161,18 @@ pub fn refine_to_accuracy<S: Attempt>(
                 Some(e) if e <= target => {
                     format!("; accuracy {e:.1e} <= target {target:.1e} on {} points", so.grid)
                 }
+                Some(e) if timed_out => format!(
+                    "; accuracy target {target:.1e} NOT met: estimate {e:.1e} on {} points when \
+                     the time limit was reached",
+                    so.grid
+                ),
                 Some(e) => format!(
                     "; accuracy target {target:.1e} NOT met: estimate {e:.1e} at the finest allowed grid ({} points)",
+                    so.grid
+                ),
+                None if timed_out => format!(
+                    "; accuracy target {target:.1e} NOT met: no error estimate when the time \
+                     limit was reached on {} points",
                     so.grid
                 ),
                 None => format!(
@@ -321,18 +341,25 @@ fn refine<D: Copy>(
     max_grid: usize,
     solve: impl Fn(&ContactParams<D>) -> Solution,
 ) -> Solution {
-    refine_to_accuracy(start, max_grid, target, order, |grid, last| {
-        let mut p = *params;
-        p.mg.grid = grid;
-        p.fallback = params.fallback && last;
-        if !last {
-            p.mg.max_cycles = p.mg.max_cycles.min(COARSE_LADDER_CYCLES);
-        }
-        // Two solves' algebraic errors enter the estimate: each may use a small part of the
-        // target only.
-        p.mg.max_algebraic = p.mg.max_algebraic.min(LADDER_ALGEBRAIC_FRACTION * target);
-        solve(&p)
-    })
+    refine_to_accuracy(
+        start,
+        max_grid,
+        target,
+        order,
+        params.mg.deadline,
+        |grid, last| {
+            let mut p = *params;
+            p.mg.grid = grid;
+            p.fallback = params.fallback && last;
+            if !last {
+                p.mg.max_cycles = p.mg.max_cycles.min(COARSE_LADDER_CYCLES);
+            }
+            // Two solves' algebraic errors enter the estimate: each may use a small part of the
+            // target only.
+            p.mg.max_algebraic = p.mg.max_algebraic.min(LADDER_ALGEBRAIC_FRACTION * target);
+            solve(&p)
+        },
+    )
 }
 
 #[cfg(test)]
@@ -419,7 +446,7 @@ mod tests {
         let h = |g: usize| 1.0 - 1.0 / g as f64;
         let ladder = |target: f64, fail_from: usize| {
             let mut asked = vec![];
-            let s = refine_to_accuracy(257, 1025, target, 2.0, |g, full| {
+            let s = refine_to_accuracy(257, 1025, target, 2.0, None, |g, full| {
                 asked.push((g, full));
                 let status = if g >= fail_from {
                     Status::Diverged
@@ -452,7 +479,7 @@ mod tests {
         // 513 fails its cheap attempt and 1025 converges: 513 is solved again with its
         // fallback ladder, and the estimate comes from the pair.
         let mut asked = vec![];
-        let s = refine_to_accuracy(257, 1025, 1e-4, 2.0, |g, full| {
+        let s = refine_to_accuracy(257, 1025, 1e-4, 2.0, None, |g, full| {
             asked.push((g, full));
             let status = if g == 513 && !full {
                 Status::Diverged
@@ -468,6 +495,33 @@ mod tests {
         let e = (h(1025) - h(513)) / (3.0 * h(1025));
         assert!((s.outputs.error_estimate.unwrap() - e).abs() < 1e-15);
         assert_eq!(s.outputs.accuracy_met, Some(false));
+    }
+
+    #[test]
+    fn a_passed_deadline_makes_the_grid_just_solved_the_last() {
+        let h = |g: usize| 1.0 - 1.0 / g as f64;
+        let past = Some(std::time::Instant::now());
+        // The target needs 1025; the deadline stops the ladder after 257, which has no estimate.
+        let mut asked = vec![];
+        let s = refine_to_accuracy(257, 1025, 1e-5, 2.0, past, |g, full| {
+            asked.push((g, full));
+            fake(g, h(g), Status::Converged)
+        });
+        assert_eq!(asked, vec![(257, false)]);
+        assert_eq!((s.outputs.grid, s.outputs.accuracy_met), (257, Some(false)));
+        assert!(
+            s.outputs.reason.contains("time limit"),
+            "{}",
+            s.outputs.reason
+        );
+        // A deadline far away changes nothing.
+        let later = Some(std::time::Instant::now() + std::time::Duration::from_secs(3600));
+        let mut asked = vec![];
+        refine_to_accuracy(257, 1025, 1e-5, 2.0, later, |g, full| {
+            asked.push((g, full));
+            fake(g, h(g), Status::Converged)
+        });
+        assert_eq!(asked, vec![(257, false), (513, false), (1025, true)]);
     }
 
     #[test]

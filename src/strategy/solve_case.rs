@@ -84,6 +84,11 @@ pub struct SolveParams {
     pub line_domain: DomainParams,
     /// Point contacts: the domain rule.
     pub point_domain: PointDomainParams,
+    /// Stop all work at this instant ([`MgParams::deadline`]): an unconverged solve then ends
+    /// with status max-iterations, the accuracy ladder with the finest grid solved by then, its
+    /// reason naming the time limit. `None` (default): no limit. See
+    /// [`SolveParams::time_limit`].
+    pub deadline: Option<std::time::Instant>,
 }
 
 impl Default for SolveParams {
@@ -107,11 +112,21 @@ impl Default for SolveParams {
             observer: None,
             line_domain: line.mg.domain,
             point_domain: PointSolveParams::default().mg.domain,
+            deadline: None,
         }
     }
 }
 
 impl SolveParams {
+    /// These parameters with a deadline `seconds` from now (`None`: no limit).
+    pub fn time_limit(self, seconds: Option<f64>) -> Self {
+        SolveParams {
+            deadline: seconds
+                .map(|t| std::time::Instant::now() + std::time::Duration::from_secs_f64(t)),
+            ..self
+        }
+    }
+
     /// A contact's solve parameters: its defaults with these controls over them and `domain`.
     pub fn contact_params<D: Copy>(&self, domain: D) -> ContactParams<D>
     where
@@ -128,6 +143,7 @@ impl SolveParams {
         p.mg.domain = domain;
         p.mg.observer = self.observer;
         p.mg.parallel = self.parallel;
+        p.mg.deadline = self.deadline;
         if let Some(g) = self.grid {
             p.mg.grid = g;
         }

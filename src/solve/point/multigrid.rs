@@ -272,7 +272,10 @@ impl Contact for PointContact {
         lv.update_film(&mg.phys, mg.h0);
     }
     fn start_coarse(mg: &mut PointMultigrid, with_slope: bool) -> NewtonOutcome {
-        let np = NewtonParams::coarsest_start(mg.params.newton_max_iter, mg.levels.len());
+        let np = NewtonParams {
+            deadline: mg.params.deadline,
+            ..NewtonParams::coarsest_start(mg.params.newton_max_iter, mg.levels.len())
+        };
         let lv = &mut mg.levels[0];
         lv.f.fill(0.0);
         lv.g = mg.phys.load * mg.phys.fluid_share;
