@@ -65,6 +65,7 @@ fn main() {
             solve: true,
             keep_fields: false,
             rough: false,
+            time_limit: None,
         };
         let (r, _) = ehlmap::cases::run(&spec, opts).expect("a valid case");
         r.numerical.expect("a numerical solve")

@@ -324,6 +324,8 @@ fn table() -> Vec<Bad> {
         input("--L", "solve --M 20 --L ten"),
         input("--grid 9", "solve --M 20 --grid 9"),
         input("--time-limit 0", "solve --M 20 --time-limit 0"),
+        input("--far-field", "solve --M 20 --far-field"),
+        input("--far-field", "stability --far-field --out {dir}/st"),
         input("--time-limit -2", "solve --M 20 --time-limit -2"),
         input("--time-limit inf", "solve --M 20 --time-limit inf"),
         input("--time-limit", "solve --M 20 --time-limit soon"),

@@ -153,7 +153,7 @@ fn the_box_map_records_status_attempt_work_and_time_limit_per_case() {
             panel: 1,
         },
     ];
-    let cells = run_box(&cases, 0.1, &|_| {});
+    let cells = run_box(&cases, 0.1, false, &|_| {});
     let (easy, hard) = (&cells[0], &cells[1]);
     assert_eq!(easy.status, "converged", "{}", easy.reason);
     assert!(easy.accuracy_met && !easy.timed_out, "{easy:?}");

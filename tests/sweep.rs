@@ -465,3 +465,33 @@ batch = 1
         .collect();
     assert!(stray.is_empty(), "{stray:?}");
 }
+
+#[test]
+fn a_case_time_limit_stores_timed_out_cases_as_results() {
+    // A limit no case can meet: every case is stored, with status max-iterations and a reason
+    // naming the limit; the sweep itself completes.
+    let dir = scratch("case-limit");
+    let spec = write(&dir, "small.toml", SMALL);
+    let out_dir = dir.join("out");
+    let out = ehlmap(&[
+        "sweep",
+        spec.to_str().unwrap(),
+        "--out",
+        out_dir.to_str().unwrap(),
+        "--progress",
+        "none",
+        "--case-time-limit",
+        "1e-9",
+    ]);
+    ok(&out);
+    let rows = read_dataset(&out_dir.join("small")).unwrap();
+    assert_eq!(rows.len(), 6);
+    for r in &rows {
+        assert_eq!(r.status.as_str(), "max-iterations", "{}", r.reason);
+        assert!(r.reason.contains("time limit"), "{}", r.reason);
+    }
+    // A bad limit is refused before any solve.
+    let bad = ehlmap(&["sweep", spec.to_str().unwrap(), "--case-time-limit", "0"]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("--case-time-limit 0"));
+}

@@ -99,7 +99,7 @@ fn sweep_rows_count_the_warm_start_chain() {
         Status::Converged,
         "one cycle should not converge"
     );
-    let row = solve_case(&failing, "w");
+    let row = solve_case(&failing, "w", None);
     assert_eq!(row.status, c.info.status.as_str());
     assert_eq!(row.warm_start, None);
     // The cost is the cold ladder's plus the whole chain's (recomputed here: deterministic).
@@ -117,7 +117,7 @@ fn sweep_rows_count_the_warm_start_chain() {
 
     let fine = spec(60);
     let c = cold(&fine);
-    let row = solve_case(&fine, "w");
+    let row = solve_case(&fine, "w", None);
     assert_eq!(row.status, "converged");
     assert_eq!(row.warm_start, None);
     assert_eq!(row.work_units, Some(c.info.work_units));

@@ -155,20 +155,27 @@ pub struct BoxCell {
     pub reason: String,
 }
 
-/// Solve every case with the default target and `time_limit` seconds each, in parallel on the
-/// current rayon pool; `log` receives a line per finished case (in finishing order).
-pub fn run_box(cases: &[BoxCase], time_limit: f64, log: &(dyn Fn(&str) + Sync)) -> Vec<BoxCell> {
+/// Solve every case with the default target and `time_limit` seconds each (point contacts with
+/// the asymptotic far field when `far_field`), in parallel on the current rayon pool; `log`
+/// receives a line per finished case (in finishing order).
+pub fn run_box(
+    cases: &[BoxCase],
+    time_limit: f64,
+    far_field: bool,
+    log: &(dyn Fn(&str) + Sync),
+) -> Vec<BoxCell> {
     let names = panel_names();
     let done = std::sync::atomic::AtomicUsize::new(0);
     cases
         .par_iter()
         .with_max_len(1)
         .map(|bc| {
-            let params = SolveParams {
+            let mut params = SolveParams {
                 full_model: true,
                 ..SolveParams::default()
             }
             .time_limit(Some(time_limit));
+            params.point_domain.far_field = far_field;
             let s = solve(&bc.case, &params);
             let o = &s.outputs;
             let (contact, d) = match &bc.case {

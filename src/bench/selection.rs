@@ -48,8 +48,8 @@ pub fn run(cases: &[Case], sweep: &str, target: f64) -> Vec<Pair> {
             full.numerics.accuracy = None;
             full.numerics.error_estimate = false;
             Pair {
-                selected: solve_case(&sel, sweep),
-                full: solve_case(&full, sweep),
+                selected: solve_case(&sel, sweep, None),
+                full: solve_case(&full, sweep, None),
             }
         })
         .collect()

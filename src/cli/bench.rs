@@ -69,6 +69,10 @@ pub struct StabilityArgs {
     /// status max-iterations and says so.
     #[arg(long, allow_hyphen_values = true)]
     pub time_limit: Option<f64>,
+    /// With --box: point contacts with the asymptotic far field on the domain's boundary
+    /// (`ehlmap solve --far-field`).
+    #[arg(long)]
+    pub far_field: bool,
 }
 
 /// The default --time-limit of `ehlmap stability --box`, s.
@@ -310,6 +314,12 @@ pub fn run_stability(a: &StabilityArgs) -> Result<(), CliError> {
             num(t)
         )));
     }
+    if a.far_field {
+        return Err(input(
+            "--far-field applies to --box only (the method maps run the point solver's domain \
+             as it is)",
+        ));
+    }
     let grid = a.grid.unwrap_or(1025);
     let (contact, (lo, hi)) = match a.point_d {
         Some(d) if !(d > 0.0 && d <= 1.0) => {
@@ -398,7 +408,7 @@ fn run_box(a: &StabilityArgs) -> Result<(), CliError> {
     }
     let limit = match a.time_limit {
         None => BOX_TIME_LIMIT,
-        Some(t) => time_limit_arg(t)?,
+        Some(t) => time_limit_arg("--time-limit", t)?,
     };
     for contact in [Contact::Line, Contact::Point] {
         let g = ehlmap::strategy::solve_case::default_max_grid(contact);
@@ -415,7 +425,7 @@ fn run_box(a: &StabilityArgs) -> Result<(), CliError> {
         cases.len(),
         rayon::current_num_threads()
     );
-    let cells = box_map::run_box(&cases, limit, &|s: &str| note!("{s}"));
+    let cells = box_map::run_box(&cases, limit, a.far_field, &|s: &str| note!("{s}"));
     write_table(
         &a.out.join("stability.parquet"),
         vec![
@@ -477,8 +487,13 @@ fn run_box(a: &StabilityArgs) -> Result<(), CliError> {
         &[0.0, l_hi],
     )
     .map_err(|e| out_err(&a.out, &e))?;
+    let far = if a.far_field {
+        ", point contacts with the far field"
+    } else {
+        ""
+    };
     let mut md = format!(
-        "Default solve (full model, 1 % target), at most {limit} s per case.\n\n\
+        "Default solve (full model, 1 % target{far}), at most {limit} s per case.\n\n\
          | panel | converged, target met | converged | time limit | cases |\n|---|---|---|---|---|\n"
     );
     for (name, met, ok, timed, all) in box_map::box_summary(&cells) {

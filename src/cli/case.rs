@@ -55,7 +55,10 @@ pub fn run_case(a: &CaseArgs) -> Result<(), CliError> {
             estimate(contact, grid, Solver::Multigrid),
         )?;
     }
-    let time_limit = a.time_limit.map(time_limit_arg).transpose()?;
+    let time_limit = a
+        .time_limit
+        .map(|t| time_limit_arg("--time-limit", t))
+        .transpose()?;
     if let Some(dir) = &a.plot {
         prepare_dir("--plot", dir)?;
     }

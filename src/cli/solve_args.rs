@@ -5,6 +5,7 @@
 use crate::cli::error::{input, CliError};
 use crate::cli::output::note;
 use clap::ValueEnum;
+use ehlmap::discrete::point::domain::PointDomainParams;
 use ehlmap::model::asperity::AsperityParams;
 use ehlmap::model::case::{Case, Contact, Elasticity, LineCase, Models, ParamError, PointCase};
 use ehlmap::model::error::num;
@@ -171,6 +172,11 @@ pub struct SolveArgs {
     /// 4096 (default: one thread, Gauss-Seidel row order); not with --method newton.
     #[arg(long)]
     pub threads: Option<usize>,
+    /// Point contacts: the asymptotic far field on the domain's boundary (boundary values and
+    /// the load beyond the domain from the r^-3 decay of the pressure) instead of P = 0: removes
+    /// the truncated domain's bias of rigid-like cases (M below about 20).
+    #[arg(long)]
+    pub far_field: bool,
     /// Stop solving after this many seconds: an unconverged solve ends with status
     /// max-iterations, the accuracy ladder with the finest grid solved by then; the reason says
     /// so. Default: no limit.
@@ -288,6 +294,12 @@ pub(crate) fn check_flags(a: &SolveArgs) -> Result<(), CliError> {
                 "--max-cycles {n} is invalid: give 1 to {MAX_CYCLES}"
             )));
         }
+    }
+    if a.far_field && a.contact == ContactArg::Line {
+        return Err(input(
+            "--far-field applies to point contacts only (a line contact's domain rule has no \
+             truncation bias to remove)",
+        ));
     }
     if let Some(n) = a.threads {
         if !(1..=MAX_THREADS).contains(&n) {
@@ -478,13 +490,13 @@ fn accuracy_arg(t: f64) -> Result<f64, CliError> {
     }
 }
 
-/// A valid --time-limit: seconds, positive and finite.
-pub(crate) fn time_limit_arg(t: f64) -> Result<f64, CliError> {
+/// A valid time limit given by option `flag`: seconds, positive and finite.
+pub(crate) fn time_limit_arg(flag: &str, t: f64) -> Result<f64, CliError> {
     if t.is_finite() && t > 0.0 {
         Ok(t)
     } else {
         Err(input(format!(
-            "--time-limit {} is invalid: give the seconds a solve may take, > 0",
+            "{flag} {} is invalid: give the seconds a solve may take, > 0",
             num(t)
         )))
     }
@@ -512,7 +524,10 @@ fn max_grid_arg(g: usize, contact: Contact) -> Result<usize, CliError> {
 /// The solve's parameters from the command line.
 pub(crate) fn params_arg(a: &SolveArgs, case: &Case) -> Result<SolveParams, CliError> {
     let point = matches!(case, Case::Point(_));
-    let time_limit = a.time_limit.map(time_limit_arg).transpose()?;
+    let time_limit = a
+        .time_limit
+        .map(|t| time_limit_arg("--time-limit", t))
+        .transpose()?;
     Ok(SolveParams {
         method: match a.method {
             MethodArg::Multigrid => Method::Multigrid,
@@ -545,6 +560,10 @@ pub(crate) fn params_arg(a: &SolveArgs, case: &Case) -> Result<SolveParams, CliE
         keep_fields: a.profile.is_some() || a.fields.is_some() || a.plot.is_some(),
         parallel: point && a.threads.is_some(),
         observer: a.trace.then_some(Observer(print_cycle)),
+        point_domain: PointDomainParams {
+            far_field: a.far_field,
+            ..PointDomainParams::default()
+        },
         ..SolveParams::default()
     }
     .time_limit(time_limit))

@@ -20,6 +20,7 @@
 use crate::cli::error::{input, io, CliError};
 use crate::cli::limits::{check_memory, estimate, human, Solver};
 use crate::cli::output::{note, out, write_stderr};
+use crate::cli::solve_args::time_limit_arg;
 use clap::ValueEnum;
 use ehlmap::store::results;
 use ehlmap::sweep::executor::{self, Progress, RunOptions};
@@ -57,6 +58,12 @@ pub struct SweepArgs {
     /// <out>/<name>.old-<hash>/ (a run into such a dataset refuses otherwise).
     #[arg(long)]
     pub new_dataset: bool,
+    /// Seconds each case may take (all its solves together, > 0): a case that reaches it is
+    /// stored with status max-iterations and a reason naming the limit, and the sweep goes on.
+    /// Default: no limit. Not a setting of the dataset (a case that ends before its limit is
+    /// the same without one), so a resumed run may change it.
+    #[arg(long, allow_hyphen_values = true)]
+    pub case_time_limit: Option<f64>,
     /// Print the planned cases and exit without solving.
     #[arg(long)]
     pub dry_run: bool,
@@ -121,6 +128,10 @@ pub fn run_sweep(args: &SweepArgs) -> Result<(), CliError> {
     let cases = plan::plan(&spec).map_err(|e| input(e.to_string()))?;
     let shard = resolve_shard(args.shard.as_deref())?;
     let threads = resolve_threads(args.threads)?;
+    let case_time_limit = args
+        .case_time_limit
+        .map(|t| time_limit_arg("--case-time-limit", t))
+        .transpose()?;
     let (base, flag) = match &args.out {
         Some(o) => (o.clone(), "--out"),
         None => (spec.output.dir.clone(), "the spec's output.dir"),
@@ -184,6 +195,7 @@ pub fn run_sweep(args: &SweepArgs) -> Result<(), CliError> {
             ProgressArg::None => Progress::None,
         },
         new_dataset: args.new_dataset,
+        case_time_limit,
     };
     match executor::execute(&spec, &cases, &opts) {
         Ok(r) => {

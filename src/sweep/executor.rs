@@ -92,6 +92,10 @@ pub struct RunOptions {
     /// Start a new dataset: move the parts of other settings aside instead of refusing
     /// ([`crate::sweep::dataset`]).
     pub new_dataset: bool,
+    /// Seconds each case may take (all its solves together): a case that reaches it is stored
+    /// with status max-iterations and a reason naming the limit (`None`: no limit). Not a
+    /// setting of the dataset: a case that ends before its limit is the same without one.
+    pub case_time_limit: Option<f64>,
 }
 
 /// What a run did.
@@ -289,7 +293,8 @@ pub fn execute(
     let failure = std::thread::scope(|ts| {
         let (stop, todo, pool) = (&stop, &todo, &pool);
         let sweep = spec.name.as_str();
-        ts.spawn(move || solve_all(pool, threads, todo, sweep, stop, tx));
+        let limit = opts.case_time_limit;
+        ts.spawn(move || solve_all(pool, threads, todo, sweep, limit, stop, tx));
         let sink = Sink {
             report: &mut report,
             reporter: &mut reporter,
@@ -357,12 +362,14 @@ fn part_metadata(
 }
 
 /// Solve `todo` on `pool`: `threads` workers take the next case in order and send its row to
-/// `tx`, until no case is left, `stop` is set or the receiver is gone.
+/// `tx`, until no case is left, `stop` is set or the receiver is gone; each case at most
+/// `time_limit` seconds.
 fn solve_all(
     pool: &rayon::ThreadPool,
     threads: usize,
     todo: &[&Case],
     sweep: &str,
+    time_limit: Option<f64>,
     stop: &AtomicBool,
     tx: mpsc::Sender<CaseRow>,
 ) {
@@ -377,7 +384,7 @@ fn solve_all(
                 }
                 let i = next.fetch_add(1, Ordering::Relaxed);
                 let Some(case) = todo.get(i) else { break };
-                if tx.send(solve_guarded(case, sweep)).is_err() {
+                if tx.send(solve_guarded(case, sweep, time_limit)).is_err() {
                     break;
                 }
             });

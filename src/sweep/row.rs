@@ -79,8 +79,9 @@ pub fn solve_params(case: &Case, grid: usize) -> SolveParams {
 /// `grid` and, with `error_estimate`, on its half grid ([`estimate_fixed`], after a warm start
 /// where one ran): `H_c_err`, `H_min_err` hold relative error estimates (Richardson with the
 /// conservative order of the accuracy targets plus both solves' algebraic errors, the estimate
-/// `ehlmap solve` reports); `work_units`, `wall_s` are the cost of every solve.
-pub fn solve_case(case: &Case, sweep: &str) -> CaseRow {
+/// `ehlmap solve` reports); `work_units`, `wall_s` are the cost of every solve. All the solves
+/// of the case together take at most `time_limit` seconds ([`SolveParams::time_limit`]).
+pub fn solve_case(case: &Case, sweep: &str, time_limit: Option<f64>) -> CaseRow {
     let c = match case.case() {
         Ok(c) => c,
         Err(e) => return invalid_row(case, sweep, e),
@@ -91,7 +92,8 @@ pub fn solve_case(case: &Case, sweep: &str) -> CaseRow {
         accuracy: n.accuracy,
         max_grid: Some(n.grid),
         ..solve_params(case, n.grid)
-    };
+    }
+    .time_limit(time_limit);
     let mut s = solve(&c, &params);
     // D and k are inputs (k from the exact Hertz ellipse, set by input_row); a solver that
     // reports them must agree.
@@ -202,8 +204,9 @@ fn build_row(case: &Case, sweep: &str, o: &Outputs, attempt: usize) -> CaseRow {
     row
 }
 
-pub(crate) fn solve_guarded(case: &Case, sweep: &str) -> CaseRow {
-    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| solve_case(case, sweep))) {
+pub(crate) fn solve_guarded(case: &Case, sweep: &str, time_limit: Option<f64>) -> CaseRow {
+    let solve = || solve_case(case, sweep, time_limit);
+    match std::panic::catch_unwind(std::panic::AssertUnwindSafe(solve)) {
         Ok(r) => r,
         Err(p) => {
             let msg = p
@@ -231,7 +234,7 @@ mod tests {
         let spec = crate::sweep::spec::parse("p.toml", text, "p").unwrap();
         let cases = crate::sweep::plan::plan(&spec).unwrap();
         for c in &cases {
-            let row = solve_case(c, "p");
+            let row = solve_case(c, "p", None);
             assert_eq!(row.contact, "point");
             assert_eq!(row.d, c.d);
             let k = row.k.unwrap();
@@ -260,7 +263,7 @@ mod tests {
             "l",
         )
         .unwrap();
-        let row = solve_case(&crate::sweep::plan::plan(&line).unwrap()[0], "l");
+        let row = solve_case(&crate::sweep::plan::plan(&line).unwrap()[0], "l", None);
         assert_eq!((row.d, row.k, row.y_min), (None, None, None));
         assert_eq!(row.status, "converged");
     }

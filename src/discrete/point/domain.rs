@@ -32,7 +32,10 @@
 //! node of every level (Y = 0 is one by symmetry).
 //!
 //! **Truncation estimate.** A rigid-like contact's pressure decays slowly into the inlet and the
-//! sides, so a truncated domain carries less load at a given film and H comes out low.
+//! sides, so a truncated domain (P = 0 on its boundary) carries less load at a given film and H
+//! comes out low; the asymptotic far field ([`PointDomainParams::far_field`],
+//! [`crate::discrete::point::far_field`]) removes most of the bias, and the estimates below
+//! then use its own measured constants.
 //! [`PointDomain::bias`] = [`DOMAIN_BIAS_PER_W`] w estimates the rise of H_c and H_min when the
 //! inlet and side extents are doubled, and [`PointDomain::truncation_error`] =
 //! [`TRUNCATION_OVER_BIAS`] times the bias the total error of the default domain. A point
@@ -47,6 +50,17 @@ use crate::model::formulas::{nvm_point_asymptotes, nvm_point_hc};
 /// doubled: the slope of the doubling measurements in docs/known-limits.md (used by
 /// [`PointDomain::bias`]).
 pub const DOMAIN_BIAS_PER_W: f64 = 0.25;
+
+/// The largest [`PointDomain::bias`] with the asymptotic far field on the boundary
+/// ([`PointDomainParams::far_field`]): doubling the domain at equal spacing changed H_c and
+/// H_min by 0.08 % at (M, D) = (1, 1) and (3, 0.25), 0.06 % at (10, 0.25) and 0.19 % and 0.27 %
+/// at (5, 1) (L = 0, tight convergence; tests/far_field.rs); 0.3 % bounds them.
+pub const FAR_FIELD_BIAS: f64 = 0.003;
+
+/// [`TRUNCATION_OVER_BIAS`] with the far field: the second doubling at (5, 1) moved the film
+/// by 0.016 % and 0.022 %, a tenth of the first, so all later doublings add about 1.1 times the
+/// first; 1.5 covers them.
+pub const FAR_FIELD_TRUNCATION_OVER_BIAS: f64 = 1.5;
 
 /// [`PointDomain::bias`] from which a point solve's reason carries a caution ("rigid-like case").
 pub const BIAS_CAUTION: f64 = 0.01;
@@ -72,6 +86,9 @@ pub struct PointDomainParams {
     pub side_lh: f64,
     /// Intervals per direction of the coarsest grid.
     pub n0: usize,
+    /// The asymptotic far field on the boundary ([`crate::discrete::point::far_field`]):
+    /// boundary values and the load beyond the domain from the r^-3 decay instead of P = 0.
+    pub far_field: bool,
 }
 
 impl Default for PointDomainParams {
@@ -83,6 +100,7 @@ impl Default for PointDomainParams {
             side: 2.0,
             side_lh: 3.0,
             n0: 16,
+            far_field: false,
         }
     }
 }
@@ -103,6 +121,8 @@ pub struct PointDomain {
     pub h_estimate: f64,
     /// Weight w of the rigid-isoviscous regime (1 for rigid surfaces).
     pub rigid_weight: f64,
+    /// Whether the boundary carries the asymptotic far field ([`PointDomainParams::far_field`]).
+    pub far_field: bool,
 }
 
 impl PointDomain {
@@ -156,20 +176,32 @@ impl PointDomain {
             n0,
             h_estimate: h_e,
             rigid_weight: w,
+            far_field: p.far_field,
         }
     }
 
-    /// Estimated relative rise of H_c and H_min when the domain is doubled,
-    /// [`DOMAIN_BIAS_PER_W`] times the rigid weight: a lower bound of how far the truncated
-    /// domain biases H low.
+    /// Estimated relative change of H_c and H_min when the domain is doubled:
+    /// [`DOMAIN_BIAS_PER_W`] times the rigid weight (a lower bound of how far the truncated
+    /// domain biases H low), with the far field at most [`FAR_FIELD_BIAS`].
     pub fn bias(&self) -> f64 {
-        DOMAIN_BIAS_PER_W * self.rigid_weight
+        let truncated = DOMAIN_BIAS_PER_W * self.rigid_weight;
+        if self.far_field {
+            truncated.min(FAR_FIELD_BIAS)
+        } else {
+            truncated
+        }
     }
 
-    /// Estimated relative error of H_c and H_min from the truncation of the domain (H is low by
-    /// about this much): [`TRUNCATION_OVER_BIAS`] times [`PointDomain::bias`].
+    /// Estimated relative error of H_c and H_min from the truncation of the domain:
+    /// [`TRUNCATION_OVER_BIAS`] times [`PointDomain::bias`] ([`FAR_FIELD_TRUNCATION_OVER_BIAS`]
+    /// with the far field).
     pub fn truncation_error(&self) -> f64 {
-        TRUNCATION_OVER_BIAS * self.bias()
+        let over = if self.far_field {
+            FAR_FIELD_TRUNCATION_OVER_BIAS
+        } else {
+            TRUNCATION_OVER_BIAS
+        };
+        over * self.bias()
     }
 
     /// The domain of a point case with the domain constants `p`.

@@ -16,6 +16,7 @@
 
 use crate::discrete::level::{deref_nodes, NodeFields};
 use crate::discrete::physics::Physics;
+use crate::discrete::point::far_field::FarField;
 use crate::discrete::point::kernel::{direct_product2d, kernel2d, DeformPlan2d};
 use crate::discrete::stencil::{flux_difference, upwind, wedge};
 use crate::model::case::PointCase;
@@ -126,6 +127,11 @@ pub struct PointLevel {
     /// Compute the film, the coefficients and the residual on the rayon pool (the same values
     /// to the bit as the serial loops, whatever the number of threads).
     pub parallel: bool,
+    /// The asymptotic far field ([`FarField`]): boundary values and the load beyond the domain
+    /// from the r^-3 decay; `None`: P = 0 on the boundary.
+    pub far: Option<FarField>,
+    /// H0 of the last film update (the far field's rigid film).
+    pub h0: f64,
 }
 
 deref_nodes!(PointLevel);
@@ -166,6 +172,35 @@ impl PointLevel {
             gap,
             direct_deformation: false,
             parallel: false,
+            far: None,
+            h0: 0.0,
+        }
+    }
+
+    /// Use the asymptotic far field on this level ([`FarField`]) for the ellipticity `d`, with
+    /// the coarsest grid's spacing `coarse` = (hx, hy).
+    pub fn with_far_field(mut self, d: f64, coarse: (f64, f64)) -> Self {
+        self.far = Some(FarField::new(&self.x, &self.y, d, coarse));
+        self
+    }
+
+    /// Set the boundary values of the far field for H0 = `h0` (nothing without one), with their
+    /// density and eta lambda.
+    fn apply_far_field(&mut self, phys: &PointPhysics, h0: f64) {
+        self.h0 = h0;
+        let Some(far) = &self.far else { return };
+        let nodes = &mut self.nodes;
+        far.apply(&mut nodes.p, &self.gap, h0);
+        let law = phys.coefficients();
+        for b in far.boundary() {
+            let r = b..b + 1;
+            law.update(
+                &nodes.p[r.clone()],
+                &nodes.film[r.clone()],
+                &mut nodes.rho[r.clone()],
+                &mut nodes.eps[r.clone()],
+                &mut nodes.divisor[r],
+            );
         }
     }
 
@@ -277,6 +312,7 @@ impl PointLevel {
     /// the same to the bit, whatever the number of threads.
     fn update_film_parallel(&mut self, phys: &PointPhysics, h0: f64) {
         use rayon::prelude::*;
+        self.apply_far_field(phys, h0);
         self.deformation(phys);
         let law = phys.coefficients();
         let nodes = &mut self.nodes;
@@ -300,6 +336,7 @@ impl PointLevel {
 
     /// Recompute H (by the fast product) from P and H0, nothing else.
     fn film_only(&mut self, phys: &PointPhysics, h0: f64) {
+        self.apply_far_field(phys, h0);
         self.deformation(phys);
         for c in 0..self.len() {
             self.film[c] = h0 + self.gap[c] + self.work[c];
@@ -362,9 +399,14 @@ impl PointLevel {
         }
     }
 
-    /// hx hy sum P.
+    /// hx hy sum P, with the far field's edge weights and tail beyond the domain when it has
+    /// one.
     pub fn load(&self) -> f64 {
-        self.hx * self.hy * self.p.iter().sum::<f64>()
+        let tail = self
+            .far
+            .as_ref()
+            .map_or(0.0, |f| f.load_correction(&self.p, &self.gap, self.h0));
+        self.hx * self.hy * self.p.iter().sum::<f64>() + tail
     }
 }
 

@@ -21,7 +21,7 @@ use crate::model::case::LineCase;
 use crate::solve::line::relax::{relax, LineScratch};
 use crate::solve::multilevel::{grid_level, Contact, DomainRule, Multigrid};
 use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
-use crate::solve::params::{FinerCoarsest, MgParams};
+use crate::solve::params::{past, FinerCoarsest, MgParams};
 use std::f64::consts::PI;
 
 /// Multigrid settings of a line solve.
@@ -261,7 +261,8 @@ impl Contact for LineContact {
         let out = newton_solve(lv, &mg.phys, &mut mg.h0, &np);
         let first = out;
         mg.work_units += (out.iterations * lv.len()) as f64 / mg.extra.fine_intervals as f64;
-        if !(out.converged || out.residual < 1e-6) {
+        // (Not after the deadline: the solve stops at its first cycle anyway.)
+        if !(out.converged || out.residual < 1e-6) && !past(mg.params.deadline) {
             // Relaxation with a gentle H0 update (the classic coarse-grid load balance).
             lv.update_film(&mg.phys, mg.h0);
             for _ in 0..20 * mg.params.coarse_sweeps {

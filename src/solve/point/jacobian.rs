@@ -11,6 +11,7 @@
 //! dL/dH0 = sum of all film weights, since dH/dH0 = 1. Any entry costs O(1). The x-direction terms
 //! are those of the line contact, computed by the same functions ([`crate::discrete::stencil`]).
 
+use crate::discrete::point::far_field::{FarField, Slave};
 use crate::discrete::point::operator::{PointLevel, PointPhysics};
 use crate::discrete::stencil::{deps_dh, deps_dp, face, jacobian_x, upwind, Fields};
 use crate::solve::newton::{dense_jacobian, newton_level_common, NewtonLevel};
@@ -261,12 +262,53 @@ impl NewtonLevel for PointLevel {
         debug_assert_eq!(unknowns.len(), (nx - 2) * (ny - 2));
         let row = |c| PointJacRow::new(self, phys, c % nx, c / nx);
         let fill = |r: &PointJacRow, out: &mut [f64]| r.dense_row(&self.kernel, nx, ny, out);
-        dense_jacobian(unknowns, self.hx * self.hy, row, fill, PointJacRow::d_h0)
+        let mut jac = dense_jacobian(unknowns, self.hx * self.hy, row, fill, PointJacRow::d_h0);
+        if let Some(far) = &self.far {
+            self.fold_far_field(far, phys, unknowns, &mut jac);
+        }
+        jac
     }
     fn residual_at(&self, phys: &PointPhysics, c: usize) -> f64 {
         self.f[c] - self.reynolds(phys, c % self.nx, c / self.nx)
     }
     newton_level_common!(PointPhysics);
+}
+
+impl PointLevel {
+    /// Add the far field's boundary values (functions of interior pressures) to the Jacobian
+    /// by the chain rule, and its load weights to the load row.
+    fn fold_far_field(
+        &self,
+        far: &FarField,
+        phys: &PointPhysics,
+        unknowns: &[usize],
+        jac: &mut DMatrix<f64>,
+    ) {
+        let nx = self.nx;
+        let m = unknowns.len();
+        let col = |c: usize| (c / nx - 1) * (nx - 2) + (c % nx - 1);
+        let slaves: Vec<Slave> = far.slaves(&self.gap, self.h0).collect();
+        for (r, &c) in unknowns.iter().enumerate() {
+            let row = PointJacRow::new(self, phys, c % nx, c / nx);
+            for s in &slaves {
+                let v = row.entry(&self.kernel, nx, s.node % nx, s.node / nx);
+                if v != 0.0 {
+                    for &(q, a) in &s.links {
+                        jac[(r, col(q))] += v * a;
+                    }
+                }
+            }
+        }
+        let cell = self.hx * self.hy;
+        let mut d_h0 = 0.0;
+        for s in &slaves {
+            for &(q, a) in &s.links {
+                jac[(m, col(q))] += (cell + s.load_extra) * a;
+            }
+            d_h0 += s.d_load_extra_dh * self.p[s.node];
+        }
+        jac[(m, m)] += d_h0;
+    }
 }
 
 #[cfg(test)]

@@ -17,7 +17,7 @@ use crate::discrete::point::operator::{for_each_row, PointLevel, PointPhysics};
 use crate::model::case::{Elasticity, PointCase};
 use crate::solve::multilevel::{grid_level, Contact, DomainRule, Multigrid};
 use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
-use crate::solve::params::{FinerCoarsest, MgParams};
+use crate::solve::params::{past, FinerCoarsest, MgParams};
 use crate::solve::point::relax::{point_line_sweep, PointScratch};
 
 /// With [`MgParams::parallel`], the levels of at least this many rows per direction relax in
@@ -65,6 +65,13 @@ impl Multigrid<PointContact> {
         let mut n = domain.n0;
         loop {
             let mut lv = PointLevel::new(&phys, domain.x_in, domain.x_out, domain.y_half, n, n);
+            if params.domain.far_field {
+                let coarse = (
+                    (domain.x_out - domain.x_in) / domain.n0 as f64,
+                    2.0 * domain.y_half / domain.n0 as f64,
+                );
+                lv = lv.with_far_field(phys.d, coarse);
+            }
             lv.direct_deformation = params.direct_deformation;
             // Zebra rows on the rayon pool only where a level has enough rows to share.
             lv.parallel = params.parallel && n + 1 >= PARALLEL_MIN_ROWS;
@@ -281,7 +288,8 @@ impl Contact for PointContact {
         lv.g = mg.phys.load * mg.phys.fluid_share;
         let out = newton_solve(lv, &mg.phys, &mut mg.h0, &np);
         mg.work_units += PointContact::newton_cost(mg, out.iterations);
-        if !(out.converged || out.residual < 1e-6) {
+        // (Not after the deadline: the solve stops at its first cycle anyway.)
+        if !(out.converged || out.residual < 1e-6) && !past(mg.params.deadline) {
             mg.levels[0].update_film(&mg.phys, mg.h0);
             for _ in 0..20 * mg.params.coarse_sweeps {
                 mg.relax_level(0);

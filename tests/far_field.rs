@@ -1,0 +1,148 @@
+//! The asymptotic far field of point contacts (`PointDomainParams::far_field`,
+//! src/discrete/point/far_field.rs): the film no longer depends on where the domain is cut.
+//! References: the rigid circular contact's constants M^2 H_c = 35.5 and M^2 H_pm = 45.0
+//! (known by extrapolating truncated domains enlarged 2, 4 and 8 times: issue 22), and, for the
+//! elastic cases, the same solve on a domain twice as large at equal spacing.
+
+use ehlmap::model::case::{Elasticity, Models, PointCase};
+use ehlmap::solve::params::Converge;
+use ehlmap::solve::point::{solve_point, PointSolveParams};
+use ehlmap::{solve, Case, SolveParams, Status};
+
+/// A solve on `grid` points per direction, with or without the far field, on the default
+/// domain scaled by `scale` (every extent of the domain rule).
+fn run(case: &PointCase, grid: usize, far: bool, scale: f64) -> ehlmap::Outputs {
+    run_with(case, grid, far, scale, Converge::Fast)
+}
+
+/// [`run`] with the stopping rule `converge` (tight for references).
+fn run_with(
+    case: &PointCase,
+    grid: usize,
+    far: bool,
+    scale: f64,
+    converge: Converge,
+) -> ehlmap::Outputs {
+    let mut p = PointSolveParams::default();
+    p.mg.grid = grid;
+    p.mg.converge = converge;
+    let d = &mut p.mg.domain;
+    d.far_field = far;
+    d.inlet_lh *= scale;
+    d.outlet_lh *= scale;
+    d.side_lh *= scale;
+    d.inlet_elastic *= scale;
+    d.side *= scale;
+    let o = solve_point(case, &p).outputs;
+    assert_eq!(
+        o.status,
+        Status::Converged,
+        "{case:?} far {far} x{scale}: {}",
+        o.reason
+    );
+    o
+}
+
+#[test]
+fn rigid_circular_contact_meets_the_published_constants_in_one_solve() {
+    let rigid = Models {
+        elasticity: Elasticity::Rigid,
+        ..Models::default()
+    };
+    let case = PointCase::with_models(1.0, 0.0, 1.0, rigid).unwrap();
+    let o = run(&case, 257, true, 1.0);
+    assert!((o.h_c - 35.5).abs() <= 0.3, "M^2 H_c = {}", o.h_c);
+    assert!(
+        (o.h_c_pmax - 45.0).abs() <= 0.4,
+        "M^2 H_pm = {}",
+        o.h_c_pmax
+    );
+    // The truncated domain of the same size is 30 % low.
+    let cut = run(&case, 257, false, 1.0);
+    assert!(cut.h_c < 0.75 * o.h_c, "{} vs {}", cut.h_c, o.h_c);
+}
+
+#[test]
+fn doubling_the_domain_leaves_the_far_field_film_unchanged() {
+    // L = 0 where the rigid-like pressure spreads far: the truncated domain's film rises by
+    // 2-20 % when the domain doubles (docs/known-limits.md); with the far field it moves by
+    // less than 0.3 %, and the next doubling far less (below), so the default domain is within
+    // the issue's 0.5 % of the unbounded one. Equal spacing: 129 points on the default domain,
+    // 257 on the doubled one (cases whose extents are all set by the hydrodynamic length, so
+    // they double exactly).
+    for (m, d) in [(1.0, 1.0), (3.0, 0.25), (5.0, 1.0), (10.0, 0.25)] {
+        let case = PointCase::new(m, 0.0, d).unwrap();
+        // Tight convergence: no algebraic error in the comparison.
+        let tight = |grid, scale| run_with(&case, grid, true, scale, Converge::Tight);
+        let (a, b) = (tight(129, 1.0), tight(257, 2.0));
+        let (dc, dm) = (b.h_c / a.h_c - 1.0, b.h_min / a.h_min - 1.0);
+        eprintln!("M {m} D {d}: far field doubling H_c {dc:+.2e} H_min {dm:+.2e}");
+        assert!(dc.abs() < 3e-3 && dm.abs() < 3e-3, "M {m} D {d}: {dc} {dm}");
+        if m == 5.0 {
+            // The largest first change (measured 0.19 % and 0.27 %): the second doubling moves
+            // the film by a tenth of it.
+            let c = tight(513, 4.0);
+            let (dc2, dm2) = (c.h_c / b.h_c - 1.0, c.h_min / b.h_min - 1.0);
+            eprintln!("M {m} D {d}: second doubling H_c {dc2:+.2e} H_min {dm2:+.2e}");
+            assert!(dc2.abs() < 5e-4 && dm2.abs() < 5e-4, "{dc2} {dm2}");
+        }
+        let (ta, tb) = (run(&case, 129, false, 1.0), run(&case, 257, false, 2.0));
+        let cut = tb.h_c / ta.h_c - 1.0;
+        assert!(
+            cut > 0.02,
+            "M {m} D {d}: the truncated domain moved by {cut} only"
+        );
+        // The far-field film lies above the truncated one by more than the first doubling
+        // raises the latter: the bias that the later doublings would still add.
+        assert!(a.h_c > tb.h_c, "M {m} D {d}: {} vs {}", a.h_c, tb.h_c);
+    }
+}
+
+#[test]
+fn the_far_field_costs_no_more_than_twice_the_truncated_domain() {
+    // Work units are deterministic: the same on every machine.
+    for m in [1.0, 3.0, 5.0, 10.0, 20.0, 100.0] {
+        let case = PointCase::new(m, 0.0, 1.0).unwrap();
+        let (far, cut) = (run(&case, 129, true, 1.0), run(&case, 129, false, 1.0));
+        eprintln!(
+            "M {m}: {:.1} WU against {:.1}",
+            far.work_units, cut.work_units
+        );
+        assert!(
+            far.work_units <= 2.0 * cut.work_units,
+            "M {m}: {} WU against {}",
+            far.work_units,
+            cut.work_units
+        );
+    }
+}
+
+#[test]
+fn with_the_far_field_the_default_target_is_met_at_m_10() {
+    // Circular M = 10, L = 0: the truncated domain's estimate (3.9 %) breaks the 1 % target;
+    // with the far field the estimate is the discretisation's and meets it.
+    let case = Case::Point(PointCase::new(10.0, 0.0, 1.0).unwrap());
+    let mut params = SolveParams::default();
+    params.point_domain.far_field = true;
+    let s = solve(&case, &params);
+    let o = &s.outputs;
+    assert_eq!(o.status, Status::Converged, "{}", o.reason);
+    assert_eq!(o.accuracy_met, Some(true), "{}", o.reason);
+    assert!(o.error_estimate.unwrap() <= 0.01);
+    assert!(!o.reason.contains("rigid-like"), "{}", o.reason);
+    // Within its estimate of the far-field film on a finer grid.
+    let fine = run(
+        &PointCase::new(10.0, 0.0, 1.0).unwrap(),
+        2 * (o.grid - 1) + 1,
+        true,
+        1.0,
+    );
+    let err = (o.h_c / fine.h_c - 1.0)
+        .abs()
+        .max((o.h_min / fine.h_min - 1.0).abs());
+    assert!(
+        err <= o.error_estimate.unwrap(),
+        "{err} vs {:?}",
+        o.error_estimate
+    );
+}
