@@ -51,9 +51,12 @@ pub fn model_sets() -> [(Viscosity, Density, &'static str); 2] {
 /// The ellipticities of the point panels.
 pub const POINT_D: [f64; 3] = [1.0, 0.1, 0.01];
 
+/// The M and L values of one contact's box.
+pub type Axes = (Vec<f64>, Vec<f64>);
+
 /// The (M, L) values of the line and point boxes; `quick` gives the corners and the middle
 /// only (for tests).
-pub fn box_axes(quick: bool) -> ((Vec<f64>, Vec<f64>), (Vec<f64>, Vec<f64>)) {
+pub fn box_axes(quick: bool) -> (Axes, Axes) {
     if quick {
         return (
             (vec![0.01, 10.0, 1e5], vec![0.0, 40.0]),

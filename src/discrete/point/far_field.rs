@@ -29,10 +29,10 @@
 //! (P_b ds d_n for a = 0). So the load is hx hy sum P + sum_b P_b (w_b + t_b - hx hy), w_b the
 //! trapezoidal weight (hx hy/2 on an edge, hx hy/4 at a corner), t_b the tail weight.
 //!
-//! Invariants: the interpolation uses interior nodes only; the factors lie in (0, 1); P >= 0 in
-//! gives P_b >= 0. Not modelled: the deformation by the pressure beyond the domain (small where
-//! the far field matters: rigid-like contacts). Reference: the r^-3 law of the rigid point
-//! contact's far field (PHYSICS.md, known numerical traps; docs/physics.md).
+//! Invariants: the interpolation uses interior nodes only; P >= 0 in gives P_b >= 0; the same
+//! relation on every level of a hierarchy. Not modelled: the deformation by the pressure beyond
+//! the domain (small where the far field matters: rigid-like contacts). Reference: the far-field
+//! law of docs/physics.md section 6c; measurements in docs/validation.md ("Far field").
 
 /// One boundary node's slave relation and load weight.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -206,7 +206,7 @@ impl FarField {
     /// while the film does not give R^2 + a^2 > 0).
     fn tail_weight(&self, n: &FarNode, hb: f64) -> f64 {
         let r2a2 = hb / n.c;
-        if !(r2a2 > 0.0) {
+        if r2a2.is_nan() || r2a2 <= 0.0 {
             return n.ds_dn;
         }
         let a2 = r2a2 - n.r * n.r;
