@@ -45,7 +45,7 @@ pub struct FmgControl {
 /// The reason of a solve stopped by its deadline after cycle `k` (0-based) of level `l`, if
 /// the deadline has passed.
 pub(crate) fn time_limit(c: &FmgControl, l: usize, k: usize) -> Option<String> {
-    crate::solve::params::past(c.deadline).then(|| {
+    crate::solve::deadline::past(c.deadline).then(|| {
         format!(
             "time limit reached at cycle {} of level {l}, not converged",
             k + 1

@@ -5,7 +5,8 @@
 //! not an answer: its status becomes [`Status::UnderResolved`] (the grid does not resolve the
 //! film).
 
-use crate::solve::params::{past, FinerCoarsest, MgParams, Rung};
+use crate::solve::deadline::past;
+use crate::solve::params::{FinerCoarsest, MgParams, Rung};
 use crate::solve::solution::{Outputs, Solution};
 use crate::solve::{SolveInfo, Status};
 

@@ -2,6 +2,7 @@
 //! the cost (work units, wall time). Numerical failure is a result, never a panic.
 
 pub mod banded;
+pub mod deadline;
 pub mod film;
 pub mod fmg;
 pub mod fmg_fast;

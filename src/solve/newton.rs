@@ -265,7 +265,7 @@ pub fn newton_solve<T: NewtonLevel>(
             break;
         }
         merits.push(lin.merit);
-        if crate::solve::params::past(np.deadline) {
+        if crate::solve::deadline::past(np.deadline) {
             break;
         }
         if np.stall_window > 0

@@ -238,11 +238,6 @@ impl<D> MgParams<D> {
     }
 }
 
-/// Whether the instant `deadline` (if any) has passed.
-pub fn past(deadline: Option<std::time::Instant>) -> bool {
-    deadline.is_some_and(|d| std::time::Instant::now() >= d)
-}
-
 /// A domain rule whose coarsest grid can be made finer (a rung of the fallback ladder).
 pub trait FinerCoarsest {
     /// Halve the coarsest grid's spacing.

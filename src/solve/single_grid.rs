@@ -53,7 +53,7 @@ pub fn solve_relax<S: Fas>(mg: &mut S, max_sweeps: usize, sweeps_per_check: usiz
             );
             break;
         }
-        if crate::solve::params::past(c.deadline) {
+        if crate::solve::deadline::past(c.deadline) {
             reason = format!("time limit reached after {sweeps} sweeps, not converged");
             break;
         }

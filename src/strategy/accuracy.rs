@@ -105,7 +105,7 @@ pub fn refine_to_accuracy<S: Attempt>(
         let mut s = solve(grid, finest);
         count(&mut s);
         // The time limit makes this grid the last one.
-        let timed_out = !finest && crate::solve::params::past(deadline);
+        let timed_out = !finest && crate::solve::deadline::past(deadline);
         let last = finest || timed_out;
         let converged = s.info().status == Status::Converged;
         if converged && prev.is_none() && failed_grids.last() == Some(&coarser_grid(grid)) {

@@ -18,10 +18,11 @@
 use crate::discrete::line::domain::{DomainParams, LineDomain};
 use crate::discrete::line::operator::{LineLevel, LinePhysics};
 use crate::model::case::LineCase;
+use crate::solve::deadline::past;
 use crate::solve::line::relax::{relax, LineScratch};
 use crate::solve::multilevel::{grid_level, Contact, DomainRule, Multigrid};
 use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
-use crate::solve::params::{past, FinerCoarsest, MgParams};
+use crate::solve::params::{FinerCoarsest, MgParams};
 use std::f64::consts::PI;
 
 /// Multigrid settings of a line solve.

@@ -15,9 +15,10 @@ use crate::discrete::point::domain::PointDomain;
 use crate::discrete::point::domain::PointDomainParams;
 use crate::discrete::point::operator::{for_each_row, PointLevel, PointPhysics};
 use crate::model::case::{Elasticity, PointCase};
+use crate::solve::deadline::past;
 use crate::solve::multilevel::{grid_level, Contact, DomainRule, Multigrid};
 use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
-use crate::solve::params::{past, FinerCoarsest, MgParams};
+use crate::solve::params::{FinerCoarsest, MgParams};
 use crate::solve::point::relax::{point_line_sweep, PointScratch};
 
 /// With [`MgParams::parallel`], the levels of at least this many rows per direction relax in
