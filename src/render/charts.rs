@@ -6,7 +6,7 @@
 //! Point charts are drawn at D = 1 (curves, contours) or over all D (parity, error map).
 
 use crate::render::charts_map::{error_map, regime_map};
-use crate::render::style::{both, e, log_grid, Ctx, RenderError, Res};
+use crate::render::style::{both, e, log_grid, series_legend, Ctx, RenderError, Res};
 use crate::report::{Film, FitPoint, FittedModel};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -52,12 +52,7 @@ fn parity<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, c: &Ctx) -> Res {
     .map_err(e)?
     .label(c.published_name())
     .legend(|(x, y)| Cross::new((x, y), 3, RED.stroke_width(1)));
-    ch.configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()
-        .map_err(e)?;
+    series_legend(&mut ch, SeriesLabelPosition::UpperLeft)?;
     Ok(())
 }
 
@@ -117,12 +112,7 @@ fn curves<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, c: &Ctx) -> Res {
         )
         .map_err(e)?;
     }
-    ch.configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()
-        .map_err(e)?;
+    series_legend(&mut ch, SeriesLabelPosition::UpperRight)?;
     let mut ch = ChartBuilder::on(&areas[1])
         .caption(
             "fit (solid) and its asymptotes (dashed)",
@@ -184,12 +174,7 @@ fn curves<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, c: &Ctx) -> Res {
             )
         });
     }
-    ch.configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()
-        .map_err(e)?;
+    series_legend(&mut ch, SeriesLabelPosition::UpperRight)?;
     Ok(())
 }
 

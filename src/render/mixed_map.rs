@@ -4,7 +4,7 @@
 //! per roughness orientation gamma (log Lambda axes). At most [`COLUMNS`] cases per row.
 
 use crate::model::roughness::{gamma_label, orientation};
-use crate::render::style::{e, ensure_font, RenderError, COLORS};
+use crate::render::style::{e, ensure_font, series_legend, RenderError, COLORS};
 use crate::report::mixed::{MixedCurve, MixedMap};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -95,12 +95,7 @@ fn film_panel(
         ch.draw_series(DashedLineSeries::new(hm, 6, 4, col.stroke_width(1)))
             .map_err(e)?;
     }
-    ch.configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()
-        .map_err(e)
+    series_legend(&mut ch, SeriesLabelPosition::UpperRight)
 }
 
 fn share_panel(

@@ -9,7 +9,7 @@
 //!   from H_min to 2.5 H_c, with the Hertz ellipse `X^2 + (Y/k)^2 = 1`, H_c and H_min marked;
 //!   and `STEM-pressure`: a filled colour map of P/P_max (blue 0 to red 1) with the ellipse.
 
-use crate::render::style::{e, RenderError, Res};
+use crate::render::style::{e, series_legend, RenderError, Res};
 use crate::solve::point::PointFields;
 use crate::solve::solution::{Outputs, Profile};
 use plotters::coord::Shift;
@@ -112,12 +112,7 @@ fn profile<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, l: &Line) -> Res {
         ])
         .map_err(e)?;
     }
-    ch.configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()
-        .map_err(e)?;
+    series_legend(&mut ch, SeriesLabelPosition::UpperLeft)?;
     // film: show up to 4 H_c so the contact region is readable
     let (h_lo, h_all) = range(l.h);
     let h_hi = (4.0 * l.o.h_c).min(h_all).max(1.5 * l.o.h_c);

@@ -1,7 +1,8 @@
 //! The style and drawing helpers shared by the chart modules: the bundled DejaVu Sans font
 //! (registered once as "sans-serif" by [`ensure_font`], so nothing is needed from the system),
 //! PNG plus SVG output of one drawing (`both`), the error type of drawing (`Res`, `e`), what a
-//! fit chart draws (`Ctx`) and log-spaced sampling (`log_grid`); these are crate-private.
+//! fit chart draws (`Ctx`), the legend box (`series_legend`) and log-spaced sampling
+//! (`log_grid`); these are crate-private.
 
 use crate::model::formulas::{moes_line_hc, nvm_point_hc};
 use crate::report::{FitPoint, FittedModel};
@@ -127,6 +128,24 @@ impl Ctx<'_> {
             FittedModel::Point(_) => format!(", point contact, D = {}", self.d),
         }
     }
+}
+
+/// Draw the series labels of `ch` at `position` on a translucent white box with a black border
+/// (the legend of every chart that has one).
+pub(crate) fn series_legend<'a, DB, CT>(
+    ch: &mut ChartContext<'a, DB, CT>,
+    position: SeriesLabelPosition,
+) -> Res
+where
+    DB: DrawingBackend + 'a,
+    CT: CoordTranslate,
+{
+    ch.configure_series_labels()
+        .position(position)
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()
+        .map_err(e)
 }
 
 /// Log-spaced grid of n + 1 values from lo to hi.
