@@ -22,6 +22,7 @@ expect = {
     "status": pl.String, "reason": pl.String, "valid": pl.Boolean, "grid": pl.Int64, "wall_s": pl.Float64,
     "contact": pl.String, "D": pl.Float64, "model_used": pl.String, "level": pl.Int64,
     "error_estimate": pl.Float64, "warm_start": pl.String, "half_grid_estimate": pl.Boolean,
+    "far_field": pl.Boolean,
 }
 df = pl.scan_parquet(dataset).collect()  # the directory layout, as a notebook opens it
 for col, ty in expect.items():

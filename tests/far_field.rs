@@ -122,8 +122,9 @@ fn with_the_far_field_the_default_target_is_met_at_m_10() {
     // Circular M = 10, L = 0: the truncated domain's estimate (3.9 %) breaks the 1 % target;
     // with the far field the estimate is the discretisation's and meets it.
     let case = Case::Point(PointCase::new(10.0, 0.0, 1.0).unwrap());
-    let mut params = SolveParams::default();
-    params.point_domain.far_field = true;
+    // The library default (the far field is on by default).
+    let params = SolveParams::default();
+    assert!(params.point_domain.far_field);
     let s = solve(&case, &params);
     let o = &s.outputs;
     assert_eq!(o.status, Status::Converged, "{}", o.reason);
@@ -145,4 +146,26 @@ fn with_the_far_field_the_default_target_is_met_at_m_10() {
         "{err} vs {:?}",
         o.error_estimate
     );
+}
+
+#[test]
+fn the_fast_rule_stops_near_the_tight_solution_with_the_far_field() {
+    // The fast stopping rule against the tight solution on the same grid (257^2), on the two
+    // cases tests/point_contact.rs checks on the truncated domain. With the far field the
+    // algebraic estimate is low by up to 2.5x here (measured 2026-11-26: (1, 0, 0.5) 9.4e-5
+    // against 5.1e-5, (7.2, 20, 1) 6.9e-4 against 2.8e-4; the load carried by the far field
+    // settles at about 0.7 per cycle while H_c hardly moves, docs/known-limits.md), so this
+    // bound is 3x the estimate where the truncated domain's is 1x; both stay below 1e-3, a
+    // tenth of the 1 % target.
+    for (m, l, d) in [(1.0, 0.0, 0.5), (7.2, 20.0, 1.0)] {
+        let case = PointCase::new(m, l, d).unwrap();
+        let fast = run(&case, 257, true, 1.0);
+        let tight = run_with(&case, 257, true, 1.0, Converge::Tight);
+        let alg = fast.algebraic_error.expect("an estimate");
+        for (f, t) in [(fast.h_c, tight.h_c), (fast.h_min, tight.h_min)] {
+            let e = (f / t - 1.0).abs();
+            eprintln!("({m}, {l}, {d}): fast {f} tight {t}: {e:.1e}, estimate {alg:.1e}");
+            assert!(e < 1e-3 && e <= 3.0 * alg, "{e} vs {alg}");
+        }
+    }
 }

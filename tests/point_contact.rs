@@ -1,6 +1,8 @@
 //! Point contacts against independent references: the Hertz ellipsoid (dry limit), the classic
 //! FMG code's grid-converged circular case (PHYSICS.md section 6), second-order grid convergence,
-//! load conservation and P >= 0, and honest statuses on extreme input.
+//! load conservation and P >= 0, and honest statuses on extreme input. On the classic
+//! references' domain: P = 0 on its boundary ([`classic`]; the default far field has its own
+//! tests in tests/far_field.rs).
 
 use ehlmap::discrete::point::operator::PointPhysics;
 use ehlmap::model::case::PointCase;
@@ -9,6 +11,13 @@ use ehlmap::solve::params::{Converge, Method};
 use ehlmap::solve::point::multigrid::PointMultigrid;
 use ehlmap::solve::point::{solve_point, PointMgParams, PointSolveParams};
 use ehlmap::solve::Status;
+
+/// The default multigrid settings on the truncated domain of the classic references.
+fn classic() -> PointMgParams {
+    let mut p = PointMgParams::default();
+    p.domain.far_field = false;
+    p
+}
 
 fn solve(m: f64, l: f64, d: f64, grid: usize) -> ehlmap::Solution {
     solve_with(m, l, d, grid, Converge::Fast)
@@ -20,7 +29,7 @@ fn solve_with(m: f64, l: f64, d: f64, grid: usize, converge: Converge) -> ehlmap
         mg: PointMgParams {
             grid,
             converge,
-            ..Default::default()
+            ..classic()
         },
         keep_fields: true,
         ..Default::default()
@@ -240,7 +249,7 @@ fn newton_relaxation_and_multigrid_solve_the_same_discrete_problem() {
             mg: PointMgParams {
                 grid: 33,
                 converge: Converge::Tight,
-                ..Default::default()
+                ..classic()
             },
             ..Default::default()
         };
@@ -283,9 +292,10 @@ fn domain_bias_estimate_matches_a_doubled_domain() {
     use ehlmap::discrete::point::domain::PointDomain;
     for (m, d) in [(5.0, 1.0), (20.0, 0.25), (30.0, 1.0)] {
         let case = PointCase::new(m, 0.0, d).unwrap();
-        let bias = PointDomain::of_case(&case, &Default::default()).bias();
+        let bias = PointDomain::of_case(&case, &classic().domain).bias();
         let solve = |f: f64| {
             let mut p = PointSolveParams::default();
+            p.mg = classic();
             p.mg.grid = 129;
             let dom = &mut p.mg.domain;
             dom.inlet_lh *= f;
@@ -323,9 +333,13 @@ fn accuracy_target_counts_the_domain_truncation() {
     use ehlmap::discrete::point::domain::PointDomain;
     use ehlmap::strategy::accuracy::solve_point_to_accuracy;
     let case = PointCase::new(5.0, 0.0, 1.0).unwrap();
-    let t = PointDomain::of_case(&case, &Default::default()).truncation_error();
+    let t = PointDomain::of_case(&case, &classic().domain).truncation_error();
     assert!(t > 0.2 && t < 0.3, "{t}");
-    let o = solve_point_to_accuracy(&case, &PointSolveParams::default(), 0.05, 65).outputs;
+    let truncated = PointSolveParams {
+        mg: classic(),
+        ..Default::default()
+    };
+    let o = solve_point_to_accuracy(&case, &truncated, 0.05, 65).outputs;
     assert_eq!(o.status, Status::Converged, "{}", o.reason);
     assert!(o.error_estimate.unwrap() >= t);
     assert_eq!(o.accuracy_met, Some(false), "{}", o.reason);
@@ -334,9 +348,17 @@ fn accuracy_target_counts_the_domain_truncation() {
         "{}",
         o.reason
     );
+    // The default far field: its truncation estimate (at most 0.45 %) leaves the target met.
+    let far = PointSolveParams::default();
+    let tf = PointDomain::of_case(&case, &far.mg.domain).truncation_error();
+    assert!(tf > 0.0 && tf <= 0.0045 + 1e-12, "{tf}");
+    let o = solve_point_to_accuracy(&case, &far, 0.05, 65).outputs;
+    assert_eq!(o.status, Status::Converged, "{}", o.reason);
+    assert!(o.error_estimate.unwrap() >= tf);
+    assert_eq!(o.accuracy_met, Some(true), "{}", o.reason);
     // An elastic case keeps its target: the truncation estimate is below 1e-3 there.
     let case = PointCase::new(30.0, 5.0, 1.0).unwrap();
-    assert!(PointDomain::of_case(&case, &Default::default()).truncation_error() < 1e-3);
+    assert!(PointDomain::of_case(&case, &classic().domain).truncation_error() < 1e-3);
 }
 
 /// The fast rule converges at the first attempt (no fallback ladder) to the tight solution on
@@ -348,7 +370,7 @@ fn fast_matches_tight_at_the_first_attempt(m: f64, l: f64, d: f64, grid: usize) 
         &PointSolveParams {
             mg: PointMgParams {
                 grid,
-                ..Default::default()
+                ..classic()
             },
             fallback: false,
             ..Default::default()

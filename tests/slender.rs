@@ -31,19 +31,21 @@ fn gap_bound_holds_on_the_validation_set() {
         let line = solve_line(&equivalent_line(&pc), &lp).outputs;
         assert_eq!(line.status, Status::Converged, "{}", line.reason);
         let o = point_outputs(&pc, &line);
-        let (reference, change) = point_reference(&pc, 257);
+        let (reference, change) = point_reference(&pc, 513);
         let g = gap((o.h_c, o.h_min), reference);
-        println!("M={m} L={l} D={d}: gap {g:.4}, bound {bound:.4}, point 129->257 {change:.4}");
+        println!("M={m} L={l} D={d}: gap {g:.4}, bound {bound:.4}, point 257->513 {change:.4}");
         assert!(
             g <= bound,
             "M={m} L={l} D={d}: gap {g} above the bound {bound}"
         );
-        // The line film is the thicker one (no side leakage), and the gap is real: the
-        // extrapolated reference is resolved better than the gap it measures.
-        assert!(o.h_c > reference.0 && g > 0.005, "{g}");
+        // The gap is real: the extrapolated reference is resolved better than the gap it
+        // measures. (Its sign is not fixed: with the far field the point film at M = 120,
+        // L = 10, D = 0.02 lies 0.7 % above the line's; on the truncated domain, 1.4 % low at
+        // that D, it lay below.)
+        assert!(g > 0.005, "{g}");
         assert!(
             change < g,
-            "reference not resolved: 129 -> 257 changes {change}"
+            "reference not resolved: 257 -> 513 changes {change}"
         );
     }
 }

@@ -69,10 +69,10 @@ pub struct StabilityArgs {
     /// status max-iterations and says so.
     #[arg(long, allow_hyphen_values = true)]
     pub time_limit: Option<f64>,
-    /// With --box: point contacts with the asymptotic far field on the domain's boundary
-    /// (`ehlmap solve --far-field`).
+    /// With --box: point contacts with P = 0 on the truncated domain's boundary instead of the
+    /// asymptotic far field (`ehlmap solve --truncated-domain`).
     #[arg(long)]
-    pub far_field: bool,
+    pub truncated_domain: bool,
 }
 
 /// The default --time-limit of `ehlmap stability --box`, s.
@@ -314,10 +314,10 @@ pub fn run_stability(a: &StabilityArgs) -> Result<(), CliError> {
             num(t)
         )));
     }
-    if a.far_field {
+    if a.truncated_domain {
         return Err(input(
-            "--far-field applies to --box only (the method maps run the point solver's domain \
-             as it is)",
+            "--truncated-domain applies to --box only (the method maps run the point solver's \
+             default domain)",
         ));
     }
     let grid = a.grid.unwrap_or(1025);
@@ -425,7 +425,7 @@ fn run_box(a: &StabilityArgs) -> Result<(), CliError> {
         cases.len(),
         rayon::current_num_threads()
     );
-    let cells = box_map::run_box(&cases, limit, a.far_field, &|s: &str| note!("{s}"));
+    let cells = box_map::run_box(&cases, limit, !a.truncated_domain, &|s: &str| note!("{s}"));
     write_table(
         &a.out.join("stability.parquet"),
         vec![
@@ -487,8 +487,8 @@ fn run_box(a: &StabilityArgs) -> Result<(), CliError> {
         &[0.0, l_hi],
     )
     .map_err(|e| out_err(&a.out, &e))?;
-    let far = if a.far_field {
-        ", point contacts with the far field"
+    let far = if a.truncated_domain {
+        ", point contacts on the truncated domain (P = 0 on its boundary)"
     } else {
         ""
     };

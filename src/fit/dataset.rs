@@ -9,8 +9,10 @@
 //! where both exceed it are left out, each listed with its estimate in the report; rows used for
 //! one film only are listed too (on the 513^2 nightly point sweep H_c is converged to 2 % at
 //! M = 1000, D = 1, H_min at the exit constriction is not). So are point rows
-//! whose domain-truncation error estimate (`PointDomain::truncation_error`, 2.5 times the change
-//! a doubled domain makes; rigid-like cases at small M) exceeds the same limit. (Filtering on the
+//! whose domain-truncation error estimate (`PointDomain::truncation_error` of the row's own
+//! domain rule: with the asymptotic far field at most 0.45 %; with P = 0 on the boundary
+//! (`far_field` false, and every point row of files before schema 5) 2.5 times the change a
+//! doubled domain makes, large for rigid-like cases at small M) exceeds the same limit. (Filtering on the
 //! doubling change alone, `PointDomain::bias`, kept rows that are some 4 % low: on the nightly
 //! point sweep at 257^2 the fit's max error was then 3.8 %, at M = 7.2, L = 5, D = 1, with the
 //! fit above the data; with this filter 1.8 %.) The film at the pressure maximum (`H_c_pmax`,
@@ -18,7 +20,7 @@
 //! The datasets carry no G column, so `FitPoint::g` is None (formulas that need G are skipped by
 //! the report).
 
-use crate::discrete::point::domain::PointDomain;
+use crate::discrete::point::domain::{PointDomain, PointDomainParams};
 use crate::fit::error::FitError;
 use crate::model::case::{Contact, PointCase};
 use crate::solve::film::Film;
@@ -230,5 +232,9 @@ fn domain_truncation(row: &CaseRow) -> f64 {
         return 0.0;
     };
     case.models.elasticity = row.elasticity;
-    PointDomain::of_case(&case, &Default::default()).truncation_error()
+    let params = PointDomainParams {
+        far_field: row.far_field,
+        ..PointDomainParams::default()
+    };
+    PointDomain::of_case(&case, &params).truncation_error()
 }

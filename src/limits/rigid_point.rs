@@ -8,7 +8,9 @@
 //! H(R) = H_inf (1 - a/R - b/R^2 - ...).
 //!
 //! [`RigidPointSolves::run`] solves the rigid case at M = 1, L = 0 on the default rigid domain
-//! ([`crate::discrete::point::domain::PointDomain`]) enlarged by [`DOMAIN_SCALES`] = 1, 2, 4, with
+//! ([`crate::discrete::point::domain::PointDomain`]) truncated with P = 0 on its boundary (not
+//! the solver's default far field, so that the constants stay a reference independent of it)
+//! and enlarged by [`DOMAIN_SCALES`] = 1, 2, 4, with
 //! the grid refined alongside ([`GRIDS`]: the spacing of the default 257^2 solve), and
 //! [`extrapolate`] removes both terms by Richardson extrapolation in 1/R:
 //!
@@ -77,6 +79,7 @@ impl RigidPointSolves {
                 let mut p = PointSolveParams::default();
                 p.mg.grid = grid;
                 let dom = &mut p.mg.domain;
+                dom.far_field = false;
                 dom.inlet_lh *= scale;
                 dom.outlet_lh *= scale;
                 dom.side_lh *= scale;

@@ -92,6 +92,7 @@ impl Case {
         ) + &n
             .accuracy
             .map_or(String::new(), |a| format!(";accuracy={a:e}"))
+            + if n.far_field { ";far_field=true" } else { "" }
             + &self
                 .models
                 .roughness
@@ -433,7 +434,16 @@ mod tests {
             c.canonical(),
             "ehlmap-case-v2;contact=point;M=1e1;L=0e0;D=5e-1;elasticity=elastic;viscosity=barus;\
              density=incompressible;grid=1025;cycle=v;converge=fast;max_cycles=60;fallback=true;\
-             tol_load=1e-7;tol_h=1e-6;error_estimate=false;accuracy=1e-2"
+             tol_load=1e-7;tol_h=1e-6;error_estimate=false;accuracy=1e-2;far_field=true"
+        );
+        // The truncated domain keeps the ids it had before the far field existed.
+        let truncated = parse("p.toml", &format!("{text}[numerics]\nfar_field = false\n"), "p")
+            .unwrap();
+        let t = plan(&truncated).unwrap();
+        let t = t.iter().find(|t| t.m == c.m && t.l == c.l && t.d == c.d).unwrap();
+        assert_eq!(
+            t.canonical(),
+            c.canonical().strip_suffix(";far_field=true").unwrap()
         );
         assert!(c.point_case().is_ok() && c.line_case().is_ok());
         assert!(cases.windows(2).all(|w| w[0].cost >= w[1].cost));

@@ -3,6 +3,7 @@
 //! spec asks for it, and copy every output into a [`CaseRow`]. Non-finite outputs become nulls
 //! with `valid = false`; a panicking solve becomes a row with status `panic`.
 
+use crate::discrete::point::domain::PointDomainParams;
 use crate::model::case::{Case as ModelCase, ParamError};
 use crate::model::lubricant::{Density, Viscosity};
 use crate::solve::solution::ModelUsed;
@@ -52,6 +53,7 @@ pub fn input_row(case: &Case, sweep: &str) -> CaseRow {
         tol_h: n.tol_h,
         half_grid_estimate: n.error_estimate,
         accuracy: n.accuracy,
+        far_field: n.far_field,
         ..CaseRow::default()
     }
 }
@@ -70,6 +72,10 @@ pub fn solve_params(case: &Case, grid: usize) -> SolveParams {
         fallback: n.fallback,
         accuracy: None,
         estimate: false,
+        point_domain: PointDomainParams {
+            far_field: n.far_field,
+            ..PointDomainParams::default()
+        },
         ..SolveParams::default()
     }
 }

@@ -5,7 +5,8 @@
 //! [`Settings`] is an ordered list of `key=value` pairs: `models.elasticity`,
 //! `models.viscosity`, `models.z`, `models.eta0`, `models.ph`, `models.density`, then per contact
 //! of the spec (line first) `<contact>.grid`, `.cycle`, `.converge`, `.max_cycles`, `.fallback`,
-//! `.tol_load`, `.tol_h`, `.error_estimate` and `.accuracy`, and for a spec with rough cases
+//! `.tol_load`, `.tol_h`, `.error_estimate` and `.accuracy` (and `point.far_field`; a footer
+//! written before it existed reads as `false`, the truncated domain its rows had), and for a spec with rough cases
 //! (an axis sigma with a value > 0) `models.slide_roll`, `models.variance_ratio_1`,
 //! `models.ph_over_e`, `models.eta_beta_sigma`, `models.sigma_over_beta` (floats in Rust's shortest
 //! round-trip `{:e}` form, `-` for a value not given). Not in it: the axes' values (adding axis
@@ -86,6 +87,9 @@ impl Settings {
         self.push(format!("{c}.tol_h"), float(n.tol_h));
         self.push(format!("{c}.error_estimate"), n.error_estimate.to_string());
         self.push(format!("{c}.accuracy"), opt_float(n.accuracy));
+        if contact == Contact::Point {
+            self.push("point.far_field", n.far_field.to_string());
+        }
     }
 
     /// The settings of a validated spec: its models and the numerics of each of its contacts.
@@ -148,6 +152,7 @@ impl Settings {
             tol_h: row.tol_h,
             error_estimate: row.half_grid_estimate,
             accuracy: row.accuracy,
+            far_field: row.far_field,
         };
         s.contact(row.contact, &n);
         s
@@ -162,6 +167,11 @@ impl Settings {
                 return None;
             }
             s.push(k, v);
+        }
+        // Written before the point far field existed: those point rows had P = 0 on the
+        // boundary.
+        if s.get("point.grid").is_some() && s.get("point.far_field").is_none() {
+            s.push("point.far_field", "false");
         }
         (!s.entries.is_empty()).then_some(s)
     }
@@ -230,6 +240,7 @@ mod tests {
         let numerics = [
             "",
             "[numerics.line]\naccuracy = 0.01\nerror_estimate = true\n",
+            "far_field = false\n", // into MIXED's [numerics.point]
         ];
         for m in models {
             for n in numerics {
@@ -243,7 +254,8 @@ mod tests {
                 for c in plan(&spec).unwrap() {
                     let row = Settings::of_row(&input_row(&c, "s"));
                     assert_eq!(row.conflicts(&settings), vec![], "{text}");
-                    assert_eq!(row.entries.len(), 15);
+                    let point = usize::from(c.contact == Contact::Point);
+                    assert_eq!(row.entries.len(), 15 + point);
                     assert!(row.entries.iter().all(|e| settings.entries.contains(e)));
                 }
             }
@@ -254,7 +266,7 @@ mod tests {
     fn numerics_conflict_axes_and_added_contacts_do_not() {
         let base = parse("s.toml", MIXED, "s").unwrap();
         let s = Settings::of_spec(&base);
-        assert_eq!(s.entries.len(), 6 + 2 * 9);
+        assert_eq!(s.entries.len(), 6 + 2 * 9 + 1);
         assert_eq!(s.get("point.grid"), Some("65"));
         assert_eq!(s.get("line.tol_h"), Some("1e-5"));
         // Pinned: a change here makes every stored dataset conflict with its own spec.
@@ -265,7 +277,20 @@ mod tests {
              line.converge=fast;line.max_cycles=60;line.fallback=true;line.tol_load=1e-7;\
              line.tol_h=1e-5;line.error_estimate=false;line.accuracy=1e-2;point.grid=65;\
              point.cycle=v;point.converge=fast;point.max_cycles=60;point.fallback=true;\
-             point.tol_load=1e-7;point.tol_h=1e-5;point.error_estimate=false;point.accuracy=-"
+             point.tol_load=1e-7;point.tol_h=1e-5;point.error_estimate=false;point.accuracy=-;\
+             point.far_field=true"
+        );
+        // A footer written before the far field existed: its point rows had P = 0 on the
+        // boundary, a conflict with today's default.
+        let old = s.to_string().replace(";point.far_field=true", "");
+        let d = s.conflicts(&Settings::parse(&old).unwrap());
+        assert_eq!(
+            d,
+            vec![Difference {
+                key: "point.far_field".into(),
+                ours: "true".into(),
+                theirs: "false".into()
+            }]
         );
         // Other axis values: same settings, same hash.
         let more = parse("s.toml", &MIXED.replace("[10, 100]", "[1, 10, 100]"), "s").unwrap();

@@ -87,7 +87,8 @@ pub struct PointDomainParams {
     /// Intervals per direction of the coarsest grid.
     pub n0: usize,
     /// The asymptotic far field on the boundary ([`crate::discrete::point::far_field`]):
-    /// boundary values and the load beyond the domain from the r^-3 decay instead of P = 0.
+    /// boundary values and the load beyond the domain from the r^-3 decay instead of P = 0
+    /// (default on; off: the truncated domain of the classic references).
     pub far_field: bool,
 }
 
@@ -100,7 +101,7 @@ impl Default for PointDomainParams {
             side: 2.0,
             side_lh: 3.0,
             n0: 16,
-            far_field: false,
+            far_field: true,
         }
     }
 }

@@ -21,6 +21,9 @@ use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams
 use crate::solve::params::{FinerCoarsest, MgParams};
 use crate::solve::point::relax::{point_line_sweep, PointScratch};
 
+/// The far field's reference points lie at least 1/FAR_FIELD_MAX_N0 of the domain inside.
+const FAR_FIELD_MAX_N0: usize = 16;
+
 /// With [`MgParams::parallel`], the levels of at least this many rows per direction relax in
 /// zebra order and compute their films and residuals on the rayon pool.
 pub const PARALLEL_MIN_ROWS: usize = 65;
@@ -67,9 +70,13 @@ impl Multigrid<PointContact> {
         loop {
             let mut lv = PointLevel::new(&phys, domain.x_in, domain.x_out, domain.y_half, n, n);
             if params.domain.far_field {
+                // The reference points one coarsest spacing inside, at most a sixteenth of the
+                // domain: the single-level baselines (n0 = the finest grid's intervals) then
+                // solve the discrete problem of the default hierarchy (n0 = 16).
+                let n_far = domain.n0.min(FAR_FIELD_MAX_N0) as f64;
                 let coarse = (
-                    (domain.x_out - domain.x_in) / domain.n0 as f64,
-                    2.0 * domain.y_half / domain.n0 as f64,
+                    (domain.x_out - domain.x_in) / n_far,
+                    2.0 * domain.y_half / n_far,
                 );
                 lv = lv.with_far_field(phys.d, coarse);
             }

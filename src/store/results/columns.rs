@@ -20,8 +20,9 @@ use std::sync::Arc;
 /// Schema 3 added `converge` (the stopping rule) and `algebraic_error`. Schema 4 added the
 /// rough-surface inputs (`sigma`, `gamma`, `slide_roll`) and outputs (`Lambda`, `Lambda_c`,
 /// `asperity_load_fraction`, `P_asperity_max`, `H_c_smooth`, `H_min_smooth`,
-/// `mixed_iterations`), all null for smooth surfaces.
-pub const SCHEMA_VERSION: u32 = 4;
+/// `mixed_iterations`), all null for smooth surfaces. Schema 5 added `far_field` (false in the
+/// rows of older files, whose point domains had P = 0 on the boundary).
+pub const SCHEMA_VERSION: u32 = 5;
 
 /// How one column's values are taken from a row (`get`) and put into one (`set`). The variant
 /// fixes the Arrow type (Utf8, Float64, Int64, Boolean) and the nullability (`Opt*` columns are
@@ -223,6 +224,7 @@ pub static COLUMNS: &[Column] = &[
     col!("converge", name, converge, 3),
     col!("half_grid_estimate", bool, half_grid_estimate),
     col!("accuracy", opt_f64, accuracy, 2),
+    col!("far_field", bool, far_field, 5),
     col!("model_used", name, model_used, 2),
     col!("level", opt_i64, level, 2),
     col!("error_estimate", opt_f64, error_estimate, 2),
@@ -300,6 +302,7 @@ mod tests {
             ("converge", S, false),
             ("half_grid_estimate", B, false),
             ("accuracy", F, true),
+            ("far_field", B, false),
             ("model_used", S, false),
             ("level", I, true),
             ("error_estimate", F, true),

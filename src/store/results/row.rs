@@ -166,6 +166,9 @@ pub struct CaseRow {
     pub half_grid_estimate: bool,
     /// The spec's target relative accuracy of H_c and H_min, when it gave one.
     pub accuracy: Option<f64>,
+    /// Point contacts: the asymptotic far field on the domain's boundary (false: P = 0 there;
+    /// always false for line contacts and in files written before schema 5).
+    pub far_field: bool,
     /// The model that answered the case (see `crate::strategy::select`).
     pub model_used: ModelUsed,
     /// Refinement level of the finest grid: log2 of its intervals over the first grid of the
@@ -266,6 +269,7 @@ impl Default for CaseRow {
             converge: Converge::default(),
             half_grid_estimate: false,
             accuracy: None,
+            far_field: false,
             model_used: ModelUsed::default(),
             level: None,
             error_estimate: None,
@@ -350,6 +354,7 @@ pub(crate) fn sample(id: &str) -> CaseRow {
         converge: Converge::Fast,
         half_grid_estimate: false,
         accuracy: Some(0.005),
+        far_field: false,
         model_used: ModelUsed::Full,
         level: Some(0),
         error_estimate: Some(2e-3),

@@ -5,6 +5,9 @@
 //! half grid of `error_estimate`), and errors name the key that set it. A contact whose
 //! numerics name no `grid` is solved to an accuracy target (`accuracy`, default 1 %) by the
 //! ladder, up to its largest default grid (16385 line points, 1025 point nodes per direction).
+//! `far_field` (point contacts only, default true) chooses the asymptotic far field on the
+//! point domain's boundary or, with false, P = 0 there; in the `[numerics]` of a mixed spec it
+//! applies to the point cases.
 
 use super::contacts::ContactAxes;
 use super::ctx::{join, Ctx, Table};
@@ -15,7 +18,7 @@ use crate::strategy::solve_case::{default_max_grid, DEFAULT_ACCURACY};
 use std::ops::Range;
 
 /// The settings a `[numerics]` table (or one of its per-contact tables) may hold.
-const KEYS: [&str; 9] = [
+const KEYS: [&str; 10] = [
     "grid",
     "cycle",
     "converge",
@@ -25,6 +28,7 @@ const KEYS: [&str; 9] = [
     "tol_h",
     "error_estimate",
     "accuracy",
+    "far_field",
 ];
 
 /// Each contact of the spec (with its M and L axes, in the order given) and its numerics.
@@ -42,6 +46,24 @@ pub(super) fn parse(
         let mut allowed = KEYS.to_vec();
         allowed.extend(["line", "point"]);
         cx.keys(t, "numerics", &allowed)?;
+        if let (Some(v), false) = (t.get("far_field"), contacts.contains(&Contact::Point)) {
+            return Err(cx.err(
+                &v.span(),
+                "numerics.far_field",
+                "applies to point contacts only (the spec has none)",
+            ));
+        }
+        if let Some(v) = t
+            .get("line")
+            .and_then(|l| l.get_ref().as_table())
+            .and_then(|l| l.get("far_field"))
+        {
+            return Err(cx.err(
+                &v.span(),
+                "numerics.line.far_field",
+                "applies to point contacts only",
+            ));
+        }
         for c in [Contact::Line, Contact::Point] {
             if let (Some(v), false) = (t.get(c.as_str()), contacts.contains(&c)) {
                 return Err(cx.err(
@@ -162,6 +184,9 @@ fn apply(
             ));
         }
         n.accuracy = Some(x);
+    }
+    if let (Some(v), Contact::Point) = (t.get("far_field"), contact) {
+        n.far_field = cx.boolean(v, &join(prefix, "far_field"))?;
     }
     if let Some(v) = t.get("error_estimate") {
         let key = join(prefix, "error_estimate");

@@ -56,6 +56,10 @@ pub struct Numerics {
     /// Target relative accuracy of H_c and H_min: refine from 257 points up to `grid` until the
     /// error estimate meets it (`ehlmap solve --accuracy`); the estimate goes to H_c_err/H_min_err.
     pub accuracy: Option<f64>,
+    /// Point contacts: the asymptotic far field on the domain's boundary (`far_field`, default
+    /// true; false: P = 0 there, the truncated domain of the classic references). Always false
+    /// for line contacts.
+    pub far_field: bool,
 }
 
 impl Default for Numerics {
@@ -70,6 +74,7 @@ impl Default for Numerics {
             tol_h: 1e-6,
             error_estimate: false,
             accuracy: None,
+            far_field: false,
         }
     }
 }
@@ -82,6 +87,7 @@ impl Numerics {
             Contact::Line => Numerics::default(),
             Contact::Point => Numerics {
                 grid: 129,
+                far_field: true,
                 ..Numerics::default()
             },
         }
