@@ -251,6 +251,10 @@ pub enum Rung {
     Default,
     /// V(4, 4) cycles: four pre- and post-relaxations at least.
     Smooth44,
+    /// W cycles with the default smoother, keeping the stopping rule as given (the one rung
+    /// that does not converge tightly: a W cycle's coarse-grid corrections settle a pressure
+    /// spike that V cycles with either rule leave oscillating).
+    WCycles,
     /// The line smoother under-relaxed to 0.3 at most.
     Damped,
     /// Distributive line relaxation at every node.
@@ -270,6 +274,7 @@ impl Rung {
         match self {
             Rung::Default => "default smoother",
             Rung::Smooth44 => "default smoother, V(4, 4) cycles",
+            Rung::WCycles => "default smoother, W cycles",
             Rung::Damped => "default smoother, under-relaxation 0.3",
             Rung::Distributive => "distributive line relaxation everywhere",
             Rung::DistributiveW => "distributive relaxation, W cycles",
@@ -278,15 +283,16 @@ impl Rung {
         }
     }
 
-    /// `p` changed as this rung says; every rung but the first converges tightly (the
-    /// conservative load balance).
+    /// `p` changed as this rung says; every rung but the first and [`Rung::WCycles`] converges
+    /// tightly (the conservative load balance).
     pub fn apply<D: Copy + FinerCoarsest>(self, p: &MgParams<D>) -> MgParams<D> {
         let mut q = *p;
-        if self != Rung::Default {
+        if !matches!(self, Rung::Default | Rung::WCycles) {
             q.converge = Converge::Tight;
         }
         match self {
             Rung::Default => {}
+            Rung::WCycles => q.cycle = CycleType::W,
             Rung::Tight => {}
             Rung::Smooth44 => {
                 q.pre = p.pre.max(4);

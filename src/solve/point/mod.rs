@@ -6,9 +6,9 @@
 //! line; `H0`; `f` the rolling traction integral (H/2) dP/dX dX dY over the load integral P dX dY
 //! (Hertzian units); `load_error` against 2 pi k/3; plus `D` and `k`.
 //!
-//! With `fallback` on (the default) a solve that does not converge is retried with the line
-//! solver's ladder: line under-relaxation 0.3, then distributive relaxation everywhere, then that
-//! with W cycles. The reason names the attempt kept; the best failed attempt is returned with its
+//! With `fallback` on (the default) a solve that does not converge is retried with W cycles
+//! (the stopping rule as given), then the line solver's ladder: tight convergence, line
+//! under-relaxation 0.3, then distributive relaxation everywhere, then that with W cycles. The reason names the attempt kept; the best failed attempt is returned with its
 //! status if none converges.
 
 pub mod jacobian;
@@ -141,8 +141,9 @@ fn package(
 }
 
 /// The fallback ladder (module doc).
-const LADDER: [Rung; 5] = [
+const LADDER: [Rung; 6] = [
     Rung::Default,
+    Rung::WCycles,
     Rung::Tight,
     Rung::Damped,
     Rung::Distributive,
