@@ -28,14 +28,19 @@
 //! of factor l_h (figures: docs/validation.md, Line contacts).
 //!
 //! Coarsest grid: the fewest intervals n0 (a power of two, at least 16, at most the finest
-//! grid's) with spacing h0 <= min(coarse_h_max max(1, l_h/2), coarse_lh l_h), for rigid surfaces
-//! h0 <= 0.4 l_h: coarse grids that cannot see the film (h0 much larger than l_h at high M) make
-//! corrections of the wrong kind. Invariant: X_in is shifted so that X = 0 is a node of every
+//! grid's) with spacing h0 <= max(min(coarse_h_max max(1, l_h/2), coarse_lh l_h), 0.4 w l_h),
+//! for rigid surfaces h0 <= 0.4 l_h: coarse grids that cannot see the film (h0 much larger than
+//! l_h at high M) make corrections of the wrong kind, and rigid-like films (w -> 1) have no
+//! feature finer than l_h (at M = 0.01 the elastic term alone asks for n0 = 1024, whose dense
+//! coarsest solve took 2-3 s of a 0.04 s solve on 4097 points). Invariant: X_in is shifted so that X = 0 is a node of every
 //! level.
 
 use crate::discrete::grid::align_origin;
 use crate::model::formulas::{moes_line_asymptotes, moes_line_hc};
 use std::f64::consts::PI;
+
+/// The coarsest spacing of rigid surfaces, in hydrodynamic lengths l_h (module doc).
+const RIGID_COARSE_LH: f64 = 0.4;
 
 /// Tunable constants of the domain rule (module doc).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -113,11 +118,15 @@ impl LineDomain {
         };
         let width = x_out - x_in;
         // Rigid surfaces have no feature finer than l_h: 0.4 l_h over a 49.5 l_h domain is about
-        // 124 intervals whatever M (the elastic rule below would ask for hundreds at M << 1).
+        // 124 intervals whatever M (the elastic rule alone would ask for thousands at M << 1,
+        // and the coarsest grid's dense Newton solve would cost seconds). Elastic surfaces blend
+        // toward it with the rigid weight w.
         let h_target = if rigid {
-            0.4 * lh
+            RIGID_COARSE_LH * lh
         } else {
-            (p.coarse_h_max * (0.5 * lh).max(1.0)).min(p.coarse_lh * lh)
+            (p.coarse_h_max * (0.5 * lh).max(1.0))
+                .min(p.coarse_lh * lh)
+                .max(w * RIGID_COARSE_LH * lh)
         };
         let mut n0 = 16usize;
         while width / n0 as f64 > h_target && n0 < max_intervals {
