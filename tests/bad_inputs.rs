@@ -325,7 +325,10 @@ fn table() -> Vec<Bad> {
         input("--grid 9", "solve --M 20 --grid 9"),
         input("--time-limit 0", "solve --M 20 --time-limit 0"),
         input("--truncated-domain", "solve --M 20 --truncated-domain"),
-        input("--truncated-domain", "stability --truncated-domain --out {dir}/st"),
+        input(
+            "--truncated-domain",
+            "stability --truncated-domain --out {dir}/st",
+        ),
         input("--time-limit -2", "solve --M 20 --time-limit -2"),
         input("--time-limit inf", "solve --M 20 --time-limit inf"),
         input("--time-limit", "solve --M 20 --time-limit soon"),

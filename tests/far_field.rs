@@ -183,6 +183,14 @@ fn a_spike_case_that_v_cycles_lose_converges_with_w_cycles() {
     let o = solve_point(&case, &p);
     assert_eq!(o.outputs.status, Status::Converged, "{}", o.outputs.reason);
     assert_eq!(o.attempt, 2, "{}", o.outputs.reason);
-    assert!(o.outputs.reason.contains("W cycles"), "{}", o.outputs.reason);
-    assert!((o.outputs.h_c / 7.437 - 1.0).abs() < 2e-3, "{}", o.outputs.h_c);
+    assert!(
+        o.outputs.reason.contains("W cycles"),
+        "{}",
+        o.outputs.reason
+    );
+    assert!(
+        (o.outputs.h_c / 7.437 - 1.0).abs() < 2e-3,
+        "{}",
+        o.outputs.h_c
+    );
 }

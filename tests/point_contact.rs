@@ -294,8 +294,10 @@ fn domain_bias_estimate_matches_a_doubled_domain() {
         let case = PointCase::new(m, 0.0, d).unwrap();
         let bias = PointDomain::of_case(&case, &classic().domain).bias();
         let solve = |f: f64| {
-            let mut p = PointSolveParams::default();
-            p.mg = classic();
+            let mut p = PointSolveParams {
+                mg: classic(),
+                ..Default::default()
+            };
             p.mg.grid = 129;
             let dom = &mut p.mg.domain;
             dom.inlet_lh *= f;
@@ -368,10 +370,7 @@ fn fast_matches_tight_at_the_first_attempt(m: f64, l: f64, d: f64, grid: usize) 
     let fast = solve_point(
         &case,
         &PointSolveParams {
-            mg: PointMgParams {
-                grid,
-                ..classic()
-            },
+            mg: PointMgParams { grid, ..classic() },
             fallback: false,
             ..Default::default()
         },

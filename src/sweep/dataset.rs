@@ -202,7 +202,10 @@ mod tests {
                 let c = conflicts(&parts, &Settings::of_spec(&spec));
                 assert_eq!(c.len(), 1, "{name}");
                 let msg = refusal(Path::new("out/x"), "x.toml", &parts, &c);
-                assert!(msg.contains("far_field = false in part-1of1-0001.parquet, true in the spec"), "{msg}");
+                assert!(
+                    msg.contains("far_field = false in part-1of1-0001.parquet, true in the spec"),
+                    "{msg}"
+                );
                 for c in &mut spec.contacts {
                     c.numerics.far_field = false;
                 }

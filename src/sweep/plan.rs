@@ -437,10 +437,17 @@ mod tests {
              tol_load=1e-7;tol_h=1e-6;error_estimate=false;accuracy=1e-2;far_field=true"
         );
         // The truncated domain keeps the ids it had before the far field existed.
-        let truncated = parse("p.toml", &format!("{text}[numerics]\nfar_field = false\n"), "p")
-            .unwrap();
+        let truncated = parse(
+            "p.toml",
+            &format!("{text}[numerics]\nfar_field = false\n"),
+            "p",
+        )
+        .unwrap();
         let t = plan(&truncated).unwrap();
-        let t = t.iter().find(|t| t.m == c.m && t.l == c.l && t.d == c.d).unwrap();
+        let t = t
+            .iter()
+            .find(|t| t.m == c.m && t.l == c.l && t.d == c.d)
+            .unwrap();
         assert_eq!(
             t.canonical(),
             c.canonical().strip_suffix(";far_field=true").unwrap()
