@@ -33,7 +33,7 @@
 //!
 //! **Truncation estimate.** A rigid-like contact's pressure decays slowly into the inlet and the
 //! sides, so a truncated domain (P = 0 on its boundary) carries less load at a given film and H
-//! comes out low; the asymptotic far field ([`PointDomainParams::far_field`],
+//! comes out low; the asymptotic far field ([`PointDomainParams::far_field`], the default;
 //! [`crate::discrete::point::far_field`]) removes most of the bias, and the estimates below
 //! then use its own measured constants.
 //! [`PointDomain::bias`] = [`DOMAIN_BIAS_PER_W`] w estimates the rise of H_c and H_min when the
@@ -41,7 +41,7 @@
 //! [`TRUNCATION_OVER_BIAS`] times the bias the total error of the default domain. A point
 //! solve's reason carries a caution where the bias is [`BIAS_CAUTION`] or more; the fit leaves
 //! out rows whose truncation estimate is above 2 %. (Measurements: docs/known-limits.md, "Point
-//! contacts below M of about 10-20 are biased low by the truncated domain".)
+//! contacts on the truncated domain are biased low below M of about 10-20".)
 
 use crate::discrete::grid::align_origin;
 use crate::model::formulas::{nvm_point_asymptotes, nvm_point_hc};
