@@ -4,6 +4,7 @@
 //! (known by extrapolating truncated domains enlarged 2, 4 and 8 times: issue 22), and, for the
 //! elastic cases, the same solve on a domain twice as large at equal spacing.
 
+use ehlmap::discrete::point::domain::PointDomainParams;
 use ehlmap::model::case::{Elasticity, Models, PointCase};
 use ehlmap::solve::params::Converge;
 use ehlmap::solve::point::{solve_point, PointSolveParams};
@@ -26,13 +27,10 @@ fn run_with(
     let mut p = PointSolveParams::default();
     p.mg.grid = grid;
     p.mg.converge = converge;
-    let d = &mut p.mg.domain;
-    d.far_field = far;
-    d.inlet_lh *= scale;
-    d.outlet_lh *= scale;
-    d.side_lh *= scale;
-    d.inlet_elastic *= scale;
-    d.side *= scale;
+    p.mg.domain = PointDomainParams {
+        far_field: far,
+        ..p.mg.domain.scaled(scale)
+    };
     let o = solve_point(case, &p).outputs;
     assert_eq!(
         o.status,

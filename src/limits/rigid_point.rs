@@ -22,6 +22,7 @@
 //! extrapolation with the fitted law. (Solves, extrapolations and the check across D:
 //! docs/validation.md, "The circular rigid-isoviscous constant"; timings: docs/performance.md.)
 
+use crate::discrete::point::domain::PointDomainParams;
 use crate::model::case::{Elasticity, Models, PointCase};
 use crate::solve::film::Film;
 use crate::solve::point::{solve_point, PointSolveParams};
@@ -78,11 +79,11 @@ impl RigidPointSolves {
             .map(|(scale, grid)| {
                 let mut p = PointSolveParams::default();
                 p.mg.grid = grid;
-                let dom = &mut p.mg.domain;
-                dom.far_field = false;
-                dom.inlet_lh *= scale;
-                dom.outlet_lh *= scale;
-                dom.side_lh *= scale;
+                // (A rigid domain has only l_h-scaled extents.)
+                p.mg.domain = PointDomainParams {
+                    far_field: false,
+                    ..p.mg.domain.scaled(scale)
+                };
                 (scale, solve_point(&case, &p).outputs)
             })
             .collect();

@@ -38,10 +38,16 @@ pub struct NewtonParams {
 impl NewtonParams {
     /// The full solve that starts a multigrid of `levels` levels on its coarsest level:
     /// `max_iter` iterations, given up when stalled ([`MULTIGRID_STALL_WINDOW`]) except by the
-    /// Newton baseline (one level), which has no fallback and runs its budget.
-    pub fn coarsest_start(max_iter: usize, levels: usize) -> Self {
+    /// Newton baseline (one level), which has no fallback and runs its budget; stopped at the
+    /// solve's `deadline`.
+    pub fn coarsest_start(
+        max_iter: usize,
+        levels: usize,
+        deadline: Option<std::time::Instant>,
+    ) -> Self {
         NewtonParams {
             max_iter,
+            deadline,
             stall_window: if levels > 1 {
                 MULTIGRID_STALL_WINDOW
             } else {

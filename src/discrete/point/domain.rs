@@ -106,6 +106,22 @@ impl Default for PointDomainParams {
     }
 }
 
+impl PointDomainParams {
+    /// These constants with every extent of the domain rule (inlet, outlet and side, elastic
+    /// and l_h-scaled) multiplied by `factor`: the domain scaled about the contact. (Scaling it
+    /// at equal spacing needs the grid's intervals scaled too.)
+    pub fn scaled(self, factor: f64) -> Self {
+        PointDomainParams {
+            inlet_elastic: factor * self.inlet_elastic,
+            inlet_lh: factor * self.inlet_lh,
+            outlet_lh: factor * self.outlet_lh,
+            side: factor * self.side,
+            side_lh: factor * self.side_lh,
+            ..self
+        }
+    }
+}
+
 /// A point-contact domain [x_in, x_out] x [-y_half, y_half] (Hertzian units) with n0 x n0
 /// coarsest intervals; X = 0 lies on a node of every level.
 #[derive(Clone, Copy, Debug, PartialEq)]

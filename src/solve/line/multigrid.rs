@@ -252,10 +252,11 @@ impl Contact for LineContact {
     /// Full Newton (with the load equation) on the coarsest level from the initial guess, then the
     /// slope dG/dH0 from a second fixed-H0 solve at a perturbed H0.
     fn start_coarse(mg: &mut LineMultigrid, with_slope: bool) -> NewtonOutcome {
-        let np = NewtonParams {
-            deadline: mg.params.deadline,
-            ..NewtonParams::coarsest_start(mg.params.newton_max_iter, mg.levels.len())
-        };
+        let np = NewtonParams::coarsest_start(
+            mg.params.newton_max_iter,
+            mg.levels.len(),
+            mg.params.deadline,
+        );
         let lv = &mut mg.levels[0];
         lv.f.fill(0.0);
         lv.g = PI / 2.0 * mg.phys.fluid_share;

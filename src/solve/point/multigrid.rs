@@ -66,18 +66,20 @@ impl Multigrid<PointContact> {
             &params.domain,
         );
         let mut levels = vec![];
+        // The far field's reference points one coarsest spacing inside, at most a sixteenth of
+        // the domain: the single-level baselines (n0 = the finest grid's intervals) then solve
+        // the discrete problem of the default hierarchy (n0 = 16).
+        let far_spacing = params.domain.far_field.then(|| {
+            let n_far = domain.n0.min(FAR_FIELD_MAX_N0) as f64;
+            (
+                (domain.x_out - domain.x_in) / n_far,
+                2.0 * domain.y_half / n_far,
+            )
+        });
         let mut n = domain.n0;
         loop {
             let mut lv = PointLevel::new(&phys, domain.x_in, domain.x_out, domain.y_half, n, n);
-            if params.domain.far_field {
-                // The reference points one coarsest spacing inside, at most a sixteenth of the
-                // domain: the single-level baselines (n0 = the finest grid's intervals) then
-                // solve the discrete problem of the default hierarchy (n0 = 16).
-                let n_far = domain.n0.min(FAR_FIELD_MAX_N0) as f64;
-                let coarse = (
-                    (domain.x_out - domain.x_in) / n_far,
-                    2.0 * domain.y_half / n_far,
-                );
+            if let Some(coarse) = far_spacing {
                 lv = lv.with_far_field(phys.d, coarse);
             }
             lv.direct_deformation = params.direct_deformation;
@@ -287,10 +289,11 @@ impl Contact for PointContact {
         lv.update_film(&mg.phys, mg.h0);
     }
     fn start_coarse(mg: &mut PointMultigrid, with_slope: bool) -> NewtonOutcome {
-        let np = NewtonParams {
-            deadline: mg.params.deadline,
-            ..NewtonParams::coarsest_start(mg.params.newton_max_iter, mg.levels.len())
-        };
+        let np = NewtonParams::coarsest_start(
+            mg.params.newton_max_iter,
+            mg.levels.len(),
+            mg.params.deadline,
+        );
         let lv = &mut mg.levels[0];
         lv.f.fill(0.0);
         lv.g = mg.phys.load * mg.phys.fluid_share;
