@@ -8,6 +8,7 @@ use crate::cli::output::{beside_dataset, note, outln, prepare_dir};
 use ehlmap::fit::dataset::load_fit_input;
 use ehlmap::fit::dataset::FitInput;
 use ehlmap::render::charts::write_charts;
+use ehlmap::report::formula_py::formula_py;
 use ehlmap::report::markdown::to_markdown;
 use ehlmap::report::{fit_report, FitReport};
 use std::path::{Path, PathBuf};
@@ -36,7 +37,7 @@ pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
     fit_datasets(&a.datasets, a.out.clone(), a.json, !a.no_limit_solves)
 }
 
-/// Fit the datasets and write the report, fit.json and charts to `out` (default beside the
+/// Fit the datasets and write the report, fit.json, formula.py and charts to `out` (default beside the
 /// first dataset); prints the report (or fit.json with `json`). Also the second step of
 /// `ehlmap sweep --fit`.
 pub fn fit_datasets(
@@ -78,12 +79,13 @@ pub fn fit_datasets(
     };
     write("report.md", &md)?;
     write("fit.json", &text)?;
+    write("formula.py", &formula_py(&report))?;
     if json {
         outln!("{text}")
     } else {
         outln!("{md}")?;
         note!(
-            "wrote {}/report.md, fit.json and {} charts (PNG, SVG)",
+            "wrote {}/report.md, fit.json, formula.py and {} charts (PNG, SVG)",
             out.display(),
             charts.len()
         );

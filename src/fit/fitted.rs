@@ -1,6 +1,8 @@
 //! What a fit returns: each film's fitted law with its parameters and their uncertainties, and
 //! its error statistics against the data.
 
+use crate::fit::correction::Correction;
+use crate::fit::heldout::HeldOut;
 use crate::fit::model::LineModel;
 use crate::fit::point_model::PointModel;
 use crate::fit::stats::{ErrStats, RegionStats, TargetRange};
@@ -22,23 +24,61 @@ pub struct Param {
     pub sigma: f64,
 }
 
-/// A fitted model of either contact.
+/// The blended-asymptote law of either contact.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "lowercase")]
-pub enum FittedModel {
+pub enum Blend {
     /// A line-contact law (Moes 1992 form).
     Line(LineModel),
     /// A point-contact law (Nijenbanning-Venner-Moes 1994 form).
     Point(PointModel),
 }
 
-impl FittedModel {
-    /// The fitted film H at (M, L, D) in Moes units; a line law ignores D.
+impl Blend {
+    /// The blended film at (M, L, D) in Moes units; a line law ignores D.
     pub fn eval(&self, m: f64, l: f64, d: f64) -> f64 {
         match self {
-            FittedModel::Line(x) => x.eval(m, l),
-            FittedModel::Point(x) => x.eval(m, l, d),
+            Blend::Line(x) => x.eval(m, l),
+            Blend::Point(x) => x.eval(m, l, d),
         }
+    }
+
+    /// The four asymptotes [H_RI, H_EI, H_RP, H_EP] at (M, L, D) (the last two 0 at L = 0).
+    pub fn asymptotes(&self, m: f64, l: f64, d: f64) -> [f64; 4] {
+        match self {
+            Blend::Line(x) => x.asymptotes(m, l),
+            Blend::Point(x) => x.asymptotes(m, l, d),
+        }
+    }
+}
+
+/// A fitted formula: the blend times its interior correction
+/// ([`crate::fit::correction`]), H = H_blend exp(correction).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FittedModel {
+    /// The blended-asymptote law (its asymptotes are the formula's).
+    #[serde(flatten)]
+    pub blend: Blend,
+    /// The interior correction (no terms: none; fit reports before it had none).
+    #[serde(default)]
+    pub correction: Correction,
+}
+
+impl FittedModel {
+    /// A formula without correction.
+    pub fn uncorrected(blend: Blend) -> Self {
+        FittedModel {
+            blend,
+            correction: Correction::default(),
+        }
+    }
+
+    /// The fitted film H at (M, L, D) in Moes units; a line law ignores D.
+    pub fn eval(&self, m: f64, l: f64, d: f64) -> f64 {
+        let log = self
+            .correction
+            .log_factor(self.blend.asymptotes(m, l, d), d);
+        self.blend.eval(m, l, d) * log.exp()
     }
 }
 
@@ -70,4 +110,8 @@ pub struct QuantityFit {
     /// [`MAX_ERROR_TARGET`]: crate::report::MAX_ERROR_TARGET
     #[serde(default)]
     pub within_target: Option<TargetRange>,
+    /// Held-out (cross-validated) errors of the formula and how the correction's size was
+    /// chosen (None: not enough cases, or a fold's blend fit failed).
+    #[serde(default)]
+    pub heldout: Option<HeldOut>,
 }

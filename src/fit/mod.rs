@@ -2,13 +2,16 @@
 //!
 //! [`model`] (line, Moes 1992 form) and [`point_model`] (point, NVM 1994 form) define the
 //! blended-asymptote formulas, [`lsq`] fits either in log space by Levenberg-Marquardt with
-//! parameter uncertainties, [`stats`] turns formula-vs-data errors into tables (overall and per
+//! parameter uncertainties, [`correction`] is the interior correction that vanishes in every
+//! asymptotic limit and [`heldout`] chooses its size by cross-validation, [`stats`] turns formula-vs-data errors into tables (overall and per
 //! region of the (M, L) plane, and the M range that meets a target), [`dataset`] reads the
 //! sweep rows a fit uses, [`fitted`] holds what a fit returns and [`error`] why a fit failed.
 
+pub mod correction;
 pub mod dataset;
 pub mod error;
 pub mod fitted;
+pub mod heldout;
 pub mod lsq;
 pub mod model;
 pub mod point_model;

@@ -25,6 +25,8 @@ pub trait FilmModel: Clone {
     fn x_mut(&mut self) -> &mut [f64];
     /// The film H at (M, L, D); line models ignore D.
     fn film(&self, m: f64, l: f64, d: f64) -> f64;
+    /// The four asymptotes [H_RI, H_EI, H_RP, H_EP] at (M, L, D) (the last two 0 at L = 0).
+    fn asymptotes(&self, m: f64, l: f64, d: f64) -> [f64; 4];
 }
 
 impl FilmModel for LineModel {
@@ -36,6 +38,9 @@ impl FilmModel for LineModel {
     }
     fn film(&self, m: f64, l: f64, _d: f64) -> f64 {
         self.eval(m, l)
+    }
+    fn asymptotes(&self, m: f64, l: f64, _d: f64) -> [f64; 4] {
+        LineModel::asymptotes(self, m, l)
     }
 }
 

@@ -147,6 +147,9 @@ impl FilmModel for PointModel {
     fn film(&self, m: f64, l: f64, d: f64) -> f64 {
         self.eval(m, l, d)
     }
+    fn asymptotes(&self, m: f64, l: f64, d: f64) -> [f64; 4] {
+        PointModel::asymptotes(self, m, l, d)
+    }
 }
 
 #[cfg(test)]

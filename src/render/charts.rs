@@ -7,7 +7,7 @@
 
 use crate::render::charts_map::{error_map, regime_map};
 use crate::render::style::{both, e, log_grid, series_legend, Ctx, RenderError, Res};
-use crate::report::{Film, FitPoint, FittedModel};
+use crate::report::{Blend, Film, FitPoint, FittedModel};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::Path;
@@ -16,9 +16,9 @@ fn parity<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, c: &Ctx) -> Res {
     let pts = c.pts;
     let lo = pts.iter().map(|p| p.h_c).fold(f64::INFINITY, f64::min) * 0.8;
     let hi = pts.iter().map(|p| p.h_c).fold(0.0, f64::max) * 1.25;
-    let title = match c.model {
-        FittedModel::Line(_) => "Fitted formula vs numerics (H_c, line)",
-        FittedModel::Point(_) => "Fitted formula vs numerics (H_c, point, all D)",
+    let title = match c.model.blend {
+        Blend::Line(_) => "Fitted formula vs numerics (H_c, line)",
+        Blend::Point(_) => "Fitted formula vs numerics (H_c, point, all D)",
     };
     let mut ch = ChartBuilder::on(root)
         .caption(title, ("sans-serif", 22))

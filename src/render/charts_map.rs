@@ -6,7 +6,7 @@
 //! edges (a saddle cell gives two segments).
 
 use crate::render::style::{e, log_grid, Ctx, Res};
-use crate::report::FittedModel;
+use crate::report::Blend;
 use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -60,9 +60,9 @@ pub(crate) fn error_map<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, c: &C
         .map(|p| c.model.eval(p.m, p.l, p.d.unwrap_or(1.0)) / p.h_c - 1.0)
         .collect();
     let emax = errs.iter().fold(1e-6f64, |a, v| a.max(v.abs()));
-    let what = match c.model {
-        FittedModel::Line(_) => "line",
-        FittedModel::Point(_) => "point, all D overlaid",
+    let what = match c.model.blend {
+        Blend::Line(_) => "line",
+        Blend::Point(_) => "point, all D overlaid",
     };
     let mut ch = ChartBuilder::on(root)
         .caption(
@@ -242,9 +242,9 @@ fn draw_hc_contours<DB: DrawingBackend>(
 /// The regime boundaries of the fit: RI = EI, RP = EP and isoviscous = piezoviscous bracket.
 fn boundaries<'a>(c: &'a Ctx) -> Vec<Boundary<'a>> {
     let a = |m: f64, l: f64| c.asymptotes(m, l);
-    let (p, q) = match c.model {
-        FittedModel::Line(x) => (x.x[7], x.x[8]),
-        FittedModel::Point(_) => (1.5, 8.0),
+    let (p, q) = match &c.model.blend {
+        Blend::Line(x) => (x.x[7], x.x[8]),
+        Blend::Point(_) => (1.5, 8.0),
     };
     vec![
         (

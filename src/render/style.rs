@@ -5,7 +5,7 @@
 //! (`log_grid`); these are crate-private.
 
 use crate::model::formulas::{moes_line_hc, nvm_point_hc};
-use crate::report::{FitPoint, FittedModel};
+use crate::report::{Blend, FitPoint, FittedModel};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
@@ -89,16 +89,16 @@ impl Ctx<'_> {
     /// The contact's published central-film formula at (M, L, D): Moes 1992 (line) or NVM 1994
     /// (point).
     pub fn published(&self, m: f64, l: f64, d: f64) -> f64 {
-        match self.model {
-            FittedModel::Line(_) => moes_line_hc(m, l),
-            FittedModel::Point(_) => nvm_point_hc(m, l, d),
+        match self.model.blend {
+            Blend::Line(_) => moes_line_hc(m, l),
+            Blend::Point(_) => nvm_point_hc(m, l, d),
         }
     }
     /// The name of [`Ctx::published`]'s formula.
     pub fn published_name(&self) -> &'static str {
-        match self.model {
-            FittedModel::Line(_) => "Moes 1992",
-            FittedModel::Point(_) => "NVM 1994",
+        match self.model.blend {
+            Blend::Line(_) => "Moes 1992",
+            Blend::Point(_) => "NVM 1994",
         }
     }
     /// The fitted film at (M, L) and the chart's D.
@@ -107,9 +107,9 @@ impl Ctx<'_> {
     }
     /// The four asymptotes at (M, L) and the chart's D.
     pub fn asymptotes(&self, m: f64, l: f64) -> [f64; 4] {
-        match self.model {
-            FittedModel::Line(x) => x.asymptotes(m, l),
-            FittedModel::Point(x) => x.asymptotes(m, l, self.d),
+        match &self.model.blend {
+            Blend::Line(x) => x.asymptotes(m, l),
+            Blend::Point(x) => x.asymptotes(m, l, self.d),
         }
     }
     /// The points at the chart's D.
@@ -123,9 +123,9 @@ impl Ctx<'_> {
     /// The title suffix naming the contact: empty for line contacts, ", point contact, D = .."
     /// for point contacts.
     pub fn suffix(&self) -> String {
-        match self.model {
-            FittedModel::Line(_) => String::new(),
-            FittedModel::Point(_) => format!(", point contact, D = {}", self.d),
+        match self.model.blend {
+            Blend::Line(_) => String::new(),
+            Blend::Point(_) => format!(", point contact, D = {}", self.d),
         }
     }
 }

@@ -2,6 +2,7 @@
 //! coefficients and uncertainties, error tables overall / per (M, L) region / per D, the
 //! published formulas on the same cases, asymptote checks), or the reason it was skipped.
 
+use crate::fit::correction::{Term, Transition};
 use crate::fit::stats::{ErrStats, RegionStats};
 use crate::report::{ContactReport, FitReport, QuantityFit, ASYMPTOTE_TARGET, MAX_ERROR_TARGET};
 use std::fmt::Write;
@@ -35,28 +36,108 @@ fn table(md: &mut String, all: &ErrStats, rows: &[RegionStats]) {
 }
 
 const LINE_FORM: &str =
-    "Formula (Moes units): H = [ (H_RI^p + H_EI^p)^(s/p) + (H_RP^-q + H_EP^-q)^(-s/q) ]^(1/s), \
-s = s0 + s1 exp(-s2 H_EI/H_RI), p = p0 + p1 exp(-s2 H_EI/H_RI), H_RI = 2.4475/M (exact, fixed), H_EI = a M^alpha, \
-H_RP = b L^beta (starting from its rigid limit 1.0496 L^(2/3), times 3/2.4475 for H_pm; see the \
-asymptote table), \
-H_EP = d M^gamma L^delta. The EI, RP and EP laws are fitted; p, q, the s-law and p1 \
-start from Moes' (7/3, 7/2, 7/5 + 8/5 exp(-2 H_EI/H_RI), 0) and are fitted too with 40 or more \
-converged cases (a 1 sigma of 0 marks a parameter held fixed). H_pm, the film at the pressure \
-maximum (Moes' central film), is fitted with the same form and its own exact H_RI = 3/M (the \
-flux thickness); H_min with H_RI = 2.4475/M.";
+    "Formula (Moes units): H = H_blend exp(C). H_blend = [ (H_RI^p + H_EI^p)^(s/p) + (H_RP^-q + \
+H_EP^-q)^(-s/q) ]^(1/s), s = s0 + s1 exp(-s2 H_EI/H_RI), p = p0 + p1 exp(-s2 H_EI/H_RI), \
+H_RI = 2.4475/M (exact, fixed), H_EI = a M^alpha, H_RP = b L^beta (starting from its rigid limit \
+1.0496 L^(2/3), times 3/2.4475 for H_pm; see the asymptote table), H_EP = d M^gamma L^delta. The \
+EI, RP and EP laws are fitted; p, q, the s-law and p1 start from Moes' (7/3, 7/2, 7/5 + 8/5 \
+exp(-2 H_EI/H_RI), 0) and are fitted too with 40 or more converged cases (a 1 sigma of 0 marks a \
+parameter held fixed). H_pm, the film at the pressure maximum (Moes' central film), is fitted \
+with the same form and its own exact H_RI = 3/M (the flux thickness); H_min with \
+H_RI = 2.4475/M. C = sum c_k phi_k is the interior correction: each phi_k is a transition bump \
+times a monomial and vanishes wherever one asymptote dominates (coordinates a = ln(H_EI/H_RI), \
+b = ln(H_EP/H_RP), c = ln(H_piezo/H_iso), w = 1/(1 + e^-c); bumps g(t) = 2/(1 + cosh t): \
+isoviscous g(a)(1 - w), piezoviscous g(b) w, outer g(c)); the number of terms is chosen by \
+5-fold held-out error, the coefficients fitted on all cases. formula.py evaluates H.";
 
-const POINT_FORM: &str = "Formula (Moes point units, NVM 1994 form): H = { [H_RI^r + \
-(H_EI^-4 + H_00^-4)^(-r/4)]^(s/r) + (H_RP^-8 + H_EP^-8)^(-s/8) }^(1/s), s = s0 (1 + exp(-s1 \
-H_EI/H_RI)); H_RI = c_RI f_RI(D) D^e_RI M^-2, H_EI = a f_EI(D) D^e_EI M^alpha, H_RP = b f_RP(D) \
-D^e_RP L^beta, H_EP = d f_EP(D) D^e_EP M^gamma L^delta, H_00 = c_00/D, with f_* NVM's D factors \
-normalised to 1 at D = 1 and e_* free corrections (0 = NVM; held at 0 when the data have one D). \
-H_RI is held: c_RI at the solver's rigid constant, its rigid solves extrapolated to an unbounded \
-domain (35.5 for H_c and H_min, 45.0 for H_pm; NVM 41.3), e_RI = 0. The other asymptotes are \
-fitted with alpha_EI and the whole H_EP law first held at NVM's (the converged point data \
-hardly reach the elastic regimes), then all of them and the blend (s0, s1, c_00, r: NVM's \
-1.5, 1.2, 1.8, 3/2) too (kept only if physical, identified and better) with 40 or more \
-converged cases. H_c is the film at the centre, H_pm the film at the pressure maximum on the \
+const POINT_FORM: &str = "Formula (Moes point units, NVM 1994 form): H = H_blend exp(C). \
+H_blend = { [H_RI^r + (H_EI^-4 + H_00^-4)^(-r/4)]^(s/r) + (H_RP^-8 + H_EP^-8)^(-s/8) }^(1/s), \
+s = s0 (1 + exp(-s1 H_EI/H_RI)); H_RI = c_RI f_RI(D) D^e_RI M^-2, H_EI = a f_EI(D) D^e_EI \
+M^alpha, H_RP = b f_RP(D) D^e_RP L^beta, H_EP = d f_EP(D) D^e_EP M^gamma L^delta, \
+H_00 = c_00/D, with f_* NVM's D factors normalised to 1 at D = 1 and e_* free corrections (0 = \
+NVM; held at 0 when the data have one D). H_RI is held: c_RI at the solver's rigid constant, its \
+rigid solves extrapolated to an unbounded domain (35.5 for H_c and H_min, 45.0 for H_pm; NVM \
+41.3), e_RI = 0. The other asymptotes are fitted with alpha_EI and the whole H_EP law first held \
+at NVM's, then all of them and the blend (s0, s1, c_00, r: NVM's 1.5, 1.2, 1.8, 3/2) too (kept \
+only if physical, identified and better) with 40 or more converged cases. C = sum c_k phi_k is \
+the interior correction (as for line contacts, with ln D factors), its size chosen by 5-fold \
+held-out error. H_c is the film at the centre, H_pm the film at the pressure maximum on the \
 centre line, H_min the minimum film: each has its own fit.";
+
+/// `v` with 5 significant digits (scientific notation outside [1e-4, 1e6)).
+pub fn sig5(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let e = v.abs().log10().floor() as i32;
+    if !(-4..6).contains(&e) {
+        return format!("{v:.4e}");
+    }
+    format!("{v:.*}", (4 - e).max(0) as usize)
+}
+
+fn term_name(t: &Term) -> String {
+    let bump = match t.transition {
+        Transition::Isoviscous => "g(a)(1-w)",
+        Transition::Piezoviscous => "g(b) w",
+        Transition::Outer => "g(c)",
+    };
+    let vars = ["a", "b", "c", "ln D", "w"];
+    let mono: Vec<String> = vars
+        .iter()
+        .zip(t.powers)
+        .filter(|(_, k)| *k > 0)
+        .map(|(v, k)| {
+            if k == 1 {
+                v.to_string()
+            } else {
+                format!("{v}^{k}")
+            }
+        })
+        .collect();
+    if mono.is_empty() {
+        bump.to_string()
+    } else {
+        format!("{bump} {}", mono.join(" "))
+    }
+}
+
+fn heldout(md: &mut String, q: &QuantityFit) {
+    let c = &q.model.correction;
+    match &q.heldout {
+        None => {
+            let _ = writeln!(md, "Held-out errors: not computed (too few cases, or a fold's fit failed); no correction.\n");
+        }
+        Some(h) => {
+            let base = &h.sizes[0];
+            let _ = writeln!(
+                md,
+                "Held-out errors ({}-fold, each case predicted by a fit that never saw it): with {} correction terms max {}, RMS {:.2} % (worst at M = {:.4}, L = {:.3}, D = {}); the blend alone max {}, RMS {:.2} %. Tried (terms: RMS / max): {}.\n",
+                h.folds,
+                h.chosen.terms,
+                pct(h.chosen.max),
+                100.0 * h.chosen.rms,
+                h.chosen.worst.0,
+                h.chosen.worst.1,
+                h.chosen.worst.2,
+                pct(base.max),
+                100.0 * base.rms,
+                h.sizes
+                    .iter()
+                    .map(|s| format!("{}: {:.2} / {:.1} %", s.terms, 100.0 * s.rms, 100.0 * s.max.abs()))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            );
+        }
+    }
+    if !c.terms.is_empty() {
+        let _ = writeln!(md, "| correction term phi_k | c_k |\n|---|---|");
+        for (t, k) in c.terms.iter().zip(&c.coef) {
+            let _ = writeln!(md, "| {} | {} |", term_name(t), sig5(*k));
+        }
+        md.push('\n');
+    }
+}
 
 fn quantity(md: &mut String, q: &QuantityFit) {
     let _ = writeln!(
@@ -66,9 +147,10 @@ fn quantity(md: &mut String, q: &QuantityFit) {
     );
     let _ = writeln!(md, "| parameter | value | 1 sigma |\n|---|---|---|");
     for p in &q.params {
-        let _ = writeln!(md, "| {} | {:.5} | {:.1e} |", p.name, p.value, p.sigma);
+        let _ = writeln!(md, "| {} | {} | {:.1e} |", p.name, sig5(p.value), p.sigma);
     }
     md.push('\n');
+    heldout(md, q);
     table(md, &q.overall, &q.regions);
     if !q.per_d.is_empty() {
         let _ = writeln!(md, "Per ellipticity:\n");
@@ -108,6 +190,15 @@ fn summary(md: &mut String, c: &ContactReport) {
                 }
                 None => line.push_str(", met at no M of the data"),
             }
+        }
+        if let Some(h) = &q.heldout {
+            let _ = write!(
+                line,
+                "; held-out max {:.2} %, RMS {:.2} % ({} correction terms)",
+                100.0 * h.chosen.max.abs(),
+                100.0 * h.chosen.rms,
+                h.chosen.terms
+            );
         }
         for p in c.published.iter().filter(|p| p.against == q.quantity) {
             if let Some(all) = &p.overall {

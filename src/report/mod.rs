@@ -18,12 +18,15 @@
 //! need at least K"; [`fit_report`] fails only when no contact could be fitted.
 
 pub mod checks;
+pub mod formula_py;
 pub mod markdown;
 pub mod mixed;
 
+use crate::fit::correction::{line_terms, point_terms, Correction, Term};
 pub use crate::fit::dataset::{FitInput, FitPoint};
 use crate::fit::error::FitError;
-pub use crate::fit::fitted::{FittedModel, Param, QuantityFit};
+pub use crate::fit::fitted::{Blend, FittedModel, Param, QuantityFit};
+use crate::fit::heldout::{correction_for, select, HeldOut};
 use crate::fit::lsq::{fit, LsqFit, Sample};
 use crate::fit::model::{FilmModel, LineModel, PARAM_NAMES};
 use crate::fit::point_model::{PointModel, POINT_PARAM_NAMES};
@@ -190,10 +193,14 @@ fn quantity<Mo: FilmModel>(
     film: Film,
     pts: &[FitPoint],
     f: LsqFit<Mo>,
+    correction: (Correction, Option<HeldOut>),
     names: &[&str],
-    wrap: fn(Mo) -> FittedModel,
+    wrap: fn(Mo) -> Blend,
 ) -> QuantityFit {
-    let model = wrap(f.model.clone());
+    let model = FittedModel {
+        blend: wrap(f.model.clone()),
+        correction: correction.0,
+    };
     let data: Vec<_> = pts
         .iter()
         .filter_map(|p| p.film(film).map(|h| (p, h)))
@@ -224,6 +231,7 @@ fn quantity<Mo: FilmModel>(
         regions: region_table(&tuples),
         per_d: d_table(&dts),
         within_target: target_range(&tuples, MAX_ERROR_TARGET),
+        heldout: correction.1,
     }
 }
 
@@ -323,7 +331,27 @@ struct Recipe<Mo> {
     late: &'static [usize],
     physical: fn(&Mo) -> bool,
     names: &'static [&'static str],
-    wrap: fn(Mo) -> FittedModel,
+    wrap: fn(Mo) -> Blend,
+    /// The correction's nested term list ([`crate::fit::correction`]).
+    terms: fn() -> Vec<Term>,
+}
+
+/// The interior correction of a fitted blend: its size chosen by held-out error
+/// ([`crate::fit::heldout`], the blend refitted per fold by [`staged`]), its coefficients fitted
+/// on all of `data`. No correction when the cross-validation could not be made.
+fn corrected<Mo: FilmModel>(
+    data: &[Sample],
+    blend: &Mo,
+    start: &Mo,
+    r: &Recipe<Mo>,
+) -> (Correction, Option<HeldOut>) {
+    let terms = (r.terms)();
+    let fit_blend = |train: &[Sample]| staged(train, start, r).ok().map(|f| f.model);
+    let Some(h) = select(data, &terms, &fit_blend) else {
+        return (Correction::default(), None);
+    };
+    let c = correction_for(blend, data, &terms[..h.chosen.terms]).unwrap_or_default();
+    (c, Some(h))
 }
 
 /// Fit each film the data carry (a film with fewer cases than the contact needs is left out and
@@ -353,13 +381,15 @@ fn fit_films<Mo: FilmModel>(
             ));
             continue;
         }
-        let f = staged(&data, &(r.start)(film), r).map_err(|e| FitError::Film {
+        let start = (r.start)(film);
+        let f = staged(&data, &start, r).map_err(|e| FitError::Film {
             contact: r.contact.to_string(),
             film: film.name(),
             source: Box::new(e),
         })?;
         models.push((film, f.model.clone()));
-        let q = Some(quantity(film, pts, f, r.names, r.wrap));
+        let correction = corrected(&data, &f.model, &start, r);
+        let q = Some(quantity(film, pts, f, correction, r.names, r.wrap));
         match film {
             Film::Centre => report.h_c = q,
             Film::PressureMax => report.h_pm = q,
@@ -387,7 +417,8 @@ fn line_report(
         late: &[],
         physical: line_physical,
         names: &PARAM_NAMES,
-        wrap: FittedModel::Line,
+        wrap: Blend::Line,
+        terms: line_terms,
     };
     let (mut report, models) = fit_films(&recipe, pts, failed)?;
     if limit_solves {
@@ -460,7 +491,8 @@ fn point_report(
         late: &[14, 15],
         physical: PointModel::physical,
         names: &POINT_PARAM_NAMES,
-        wrap: FittedModel::Point,
+        wrap: Blend::Point,
+        terms: point_terms,
     };
     let (mut report, models) = fit_films(&recipe, pts, failed)?;
     if limit_solves {

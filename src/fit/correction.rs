@@ -1,0 +1,304 @@
+//! The interior correction of a blended film formula: H = H_blend exp(sum_k c_k phi_k), where
+//! every basis function phi_k vanishes wherever one asymptote dominates, so the correction
+//! changes the formula between its asymptotes and never in their limits.
+//!
+//! Coordinates, from the blend's four asymptotes [H_RI, H_EI, H_RP, H_EP] at (M, L, D):
+//! a = ln(H_EI/H_RI) (rigid to elastic, isoviscous), b = ln(H_EP/H_RP) (rigid to elastic,
+//! piezoviscous), c = ln(H_piezo/H_iso) with H_iso = (H_RI^4 + H_EI^4)^(1/4) and
+//! H_piezo = (H_RP^-4 + H_EP^-4)^(-1/4) (isoviscous to piezoviscous; c = -infinity at L = 0),
+//! w = 1/(1 + e^-c), and ln D (both brackets evaluated scaled by their larger / smaller term, so
+//! that they stay finite far into the corners). The three transition bumps, each 1 at its centre and decaying
+//! like e^-|t| away from it:
+//!
+//! Isoviscous: g(a) (1 - w); Piezoviscous: g(b) w; Outer: g(c); g(t) = 2/(1 + cosh t).
+//!
+//! A basis function is a bump times a monomial in (a, b, c, ln D, w) ([`Term`]); a polynomial
+//! grows slower than the bump decays, so every phi_k tends to 0 at each of the four corners
+//! (RI: a, c -> -infinity; EI: a -> infinity, c -> -infinity; RP: b, c -> infinity; EP:
+//! b -> -infinity, c -> infinity: the piezoviscous bracket follows the smaller of H_RP and H_EP).
+//! The approach is as slow as the crossovers of the blend itself: e^-|t| is a power of M or L. At L = 0 the piezoviscous and outer terms are exactly 0. The terms are
+//! tried in the nested order of [`line_terms`] / [`point_terms`]; how many are kept is chosen by
+//! held-out error ([`crate::fit::heldout`]). The coefficients solve a linear least-squares
+//! problem in log space (SVD, [`fit_correction`]).
+
+use nalgebra::{DMatrix, DVector};
+use serde::{Deserialize, Serialize};
+
+/// Which transition a basis function lives on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Transition {
+    /// Rigid to elastic, isoviscous: g(a) (1 - w).
+    Isoviscous,
+    /// Rigid to elastic, piezoviscous: g(b) w.
+    Piezoviscous,
+    /// Isoviscous to piezoviscous: g(c).
+    Outer,
+}
+
+/// One basis function: a transition bump times a^i b^j c^k (ln D)^l w^n, `powers` = [i, j, k, l,
+/// n]. An isoviscous term uses no b or c (they are infinite at L = 0).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Term {
+    /// The transition bump.
+    pub transition: Transition,
+    /// Powers of (a, b, c, ln D, w).
+    pub powers: [u8; 5],
+}
+
+/// The coordinates of one case (module doc).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Coordinates {
+    /// ln(H_EI/H_RI).
+    pub a: f64,
+    /// ln(H_EP/H_RP) (NaN at L = 0).
+    pub b: f64,
+    /// ln(H_piezo/H_iso) (-infinity at L = 0).
+    pub c: f64,
+    /// ln D (0 for a line contact).
+    pub ln_d: f64,
+    /// 1/(1 + e^-c): 0 isoviscous, 1 piezoviscous.
+    pub w: f64,
+}
+
+impl Coordinates {
+    /// From the blend's asymptotes [H_RI, H_EI, H_RP, H_EP] (the last two 0 at L = 0) and D.
+    pub fn new(asym: [f64; 4], d: f64) -> Self {
+        let [ri, ei, rp, ep] = asym;
+        // (x^4 + y^4)^(1/4) and (x^-4 + y^-4)^(-1/4), scaled by the larger / smaller of the two
+        // so that neither overflows nor underflows far into a corner.
+        let (hi, lo) = (ri.max(ei), ri.min(ei));
+        let iso = hi * (1.0 + (lo / hi).powi(4)).powf(0.25);
+        let piezo_flag = rp > 0.0 && ep > 0.0;
+        let (b, c) = if piezo_flag {
+            let (hi, lo) = (rp.max(ep), rp.min(ep));
+            let piezo = lo * (1.0 + (lo / hi).powi(4)).powf(-0.25);
+            ((ep / rp).ln(), (piezo / iso).ln())
+        } else {
+            (f64::NAN, f64::NEG_INFINITY)
+        };
+        Coordinates {
+            a: (ei / ri).ln(),
+            b,
+            c,
+            ln_d: d.ln(),
+            w: 1.0 / (1.0 + (-c).exp()),
+        }
+    }
+}
+
+fn bump(t: f64) -> f64 {
+    2.0 / (1.0 + t.cosh())
+}
+
+impl Term {
+    const fn new(transition: Transition, powers: [u8; 5]) -> Self {
+        Term { transition, powers }
+    }
+
+    /// phi(z): 0 at L = 0 for the piezoviscous and outer terms.
+    pub fn eval(&self, z: &Coordinates) -> f64 {
+        let piezo = z.c > f64::NEG_INFINITY;
+        let base = match self.transition {
+            Transition::Isoviscous => bump(z.a) * (1.0 - z.w),
+            Transition::Piezoviscous if piezo => bump(z.b) * z.w,
+            Transition::Outer if piezo => bump(z.c),
+            _ => return 0.0,
+        };
+        if base == 0.0 {
+            // Far into a corner: the bump underflowed (and a coordinate may be infinite).
+            return 0.0;
+        }
+        let p = self.powers;
+        let vars = [z.a, z.b, z.c, z.ln_d, z.w];
+        vars.iter()
+            .zip(p)
+            .filter(|(_, k)| *k > 0)
+            .fold(base, |acc, (v, k)| acc * v.powi(k as i32))
+    }
+}
+
+use Transition::{Isoviscous as I, Outer as O, Piezoviscous as P};
+
+/// The line terms, in the order they are tried.
+pub fn line_terms() -> Vec<Term> {
+    [
+        (O, [0, 0, 0, 0, 0]),
+        (I, [0, 0, 0, 0, 0]),
+        (P, [0, 0, 0, 0, 0]),
+        (O, [0, 0, 1, 0, 0]),
+        (I, [1, 0, 0, 0, 0]),
+        (P, [0, 1, 0, 0, 0]),
+        (O, [1, 0, 0, 0, 0]),
+        (I, [2, 0, 0, 0, 0]),
+        (O, [0, 0, 2, 0, 0]),
+        (P, [0, 2, 0, 0, 0]),
+        (I, [0, 0, 0, 0, 1]),
+        (O, [0, 1, 0, 0, 0]),
+        (O, [1, 0, 1, 0, 0]),
+        (I, [3, 0, 0, 0, 0]),
+        (I, [1, 0, 0, 0, 1]),
+    ]
+    .into_iter()
+    .map(|(t, p)| Term::new(t, p))
+    .collect()
+}
+
+/// The point terms (the line ones with ln D factors interleaved), in the order they are tried.
+pub fn point_terms() -> Vec<Term> {
+    [
+        (O, [0, 0, 0, 0, 0]),
+        (I, [0, 0, 0, 0, 0]),
+        (P, [0, 0, 0, 0, 0]),
+        (O, [0, 0, 0, 1, 0]),
+        (I, [0, 0, 0, 1, 0]),
+        (P, [0, 0, 0, 1, 0]),
+        (O, [0, 0, 1, 0, 0]),
+        (I, [1, 0, 0, 0, 0]),
+        (P, [0, 1, 0, 0, 0]),
+        (O, [1, 0, 0, 0, 0]),
+        (I, [1, 0, 0, 1, 0]),
+        (O, [0, 0, 1, 1, 0]),
+        (I, [2, 0, 0, 0, 0]),
+        (O, [0, 0, 2, 0, 0]),
+        (P, [0, 2, 0, 0, 0]),
+        (I, [0, 0, 0, 0, 1]),
+        (I, [0, 0, 0, 2, 0]),
+        (O, [0, 0, 0, 2, 0]),
+        (O, [0, 1, 0, 0, 0]),
+        (P, [0, 1, 0, 1, 0]),
+    ]
+    .into_iter()
+    .map(|(t, p)| Term::new(t, p))
+    .collect()
+}
+
+/// A fitted correction: the terms kept and their coefficients (empty: no correction).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Correction {
+    /// The basis functions, in the order tried.
+    pub terms: Vec<Term>,
+    /// Their coefficients c_k.
+    pub coef: Vec<f64>,
+}
+
+impl Correction {
+    /// sum_k c_k phi_k at the coordinates of the blend's asymptotes `asym` and D.
+    pub fn log_factor(&self, asym: [f64; 4], d: f64) -> f64 {
+        if self.terms.is_empty() {
+            return 0.0;
+        }
+        let z = Coordinates::new(asym, d);
+        self.terms
+            .iter()
+            .zip(&self.coef)
+            .map(|(t, c)| c * t.eval(&z))
+            .sum()
+    }
+}
+
+/// Relative size of the smallest singular value kept by the least-squares solve.
+const SVD_EPS: f64 = 1e-10;
+
+/// The coefficients of `terms` that fit the log residuals `r` (ln H_data - ln H_blend) at the
+/// coordinates `z`: min |Phi c - r|^2 by SVD (singular values below 1e-10 of the largest are
+/// dropped). None when the solve fails or gives a non-finite coefficient.
+pub fn fit_correction(z: &[Coordinates], r: &[f64], terms: &[Term]) -> Option<Correction> {
+    if terms.is_empty() {
+        return Some(Correction::default());
+    }
+    let phi = DMatrix::from_fn(z.len(), terms.len(), |i, k| terms[k].eval(&z[i]));
+    let rhs = DVector::from_column_slice(r);
+    let svd = phi.svd(true, true);
+    let tol = SVD_EPS * svd.singular_values.max();
+    let c = svd.solve(&rhs, tol).ok()?;
+    c.iter().all(|v| v.is_finite()).then(|| Correction {
+        terms: terms.to_vec(),
+        coef: c.iter().copied().collect(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn line_asym(m: f64, l: f64) -> [f64; 4] {
+        let a = [
+            2.4475 / m,
+            2.621 * m.powf(-0.2),
+            1.287 * l.powf(2.0 / 3.0),
+            1.311 * m.powf(-0.125) * l.powf(0.75),
+        ];
+        if l > 0.0 {
+            a
+        } else {
+            [a[0], a[1], 0.0, 0.0]
+        }
+    }
+
+    #[test]
+    fn every_term_vanishes_in_each_asymptotic_limit() {
+        // RI: M -> 0 at L = 0 and small L; EI: M -> infinity at L = 0; RP: L -> infinity with
+        // M << L^(2/3); EP: M >> L^(2/3) >> 1. The crossovers are powers of M and L with small
+        // exponents (H_EP/H_RP ~ M^-1/8 L^1/12), hence the extreme values.
+        let corners = [
+            ("RI", 1e-12, 0.0),
+            ("RI, L > 0", 1e-12, 1e-3),
+            ("EI", 1e40, 0.0),
+            ("RP", 1.0, 1e120),
+            ("EP", 1e60, 1e12),
+        ];
+        for t in point_terms().iter().chain(&line_terms()) {
+            for (name, m, l) in corners {
+                let v = t.eval(&Coordinates::new(line_asym(m, l), 0.5));
+                assert!(v.abs() < 1e-3, "{t:?} at {name}: {v}");
+            }
+            // And it is not zero everywhere: some interior case sees it.
+            let interior = [
+                (1.0, 0.0),
+                (3.0, 5.0),
+                (100.0, 10.0),
+                (10.0, 20.0),
+                (1e4, 20.0),
+            ]
+            .iter()
+            .map(|&(m, l)| t.eval(&Coordinates::new(line_asym(m, l), 0.5)).abs())
+            .fold(0.0f64, f64::max);
+            assert!(interior > 1e-3, "{t:?} is 0 in the interior");
+        }
+    }
+
+    #[test]
+    fn piezoviscous_and_outer_terms_are_zero_at_l_0() {
+        let z = Coordinates::new(line_asym(3.0, 0.0), 1.0);
+        for t in line_terms() {
+            let v = t.eval(&z);
+            assert!(v.is_finite());
+            if t.transition != Transition::Isoviscous {
+                assert_eq!(v, 0.0, "{t:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn recovers_known_coefficients() {
+        // Residuals generated from three terms with fixed coefficients (seeded grid of cases).
+        let terms = line_terms();
+        let truth = [0.05, -0.03, 0.02];
+        let mut z = vec![];
+        for i in 0..12 {
+            for l in [0.0, 2.0, 5.0, 10.0, 20.0] {
+                let m = 10f64.powf(-1.0 + 0.4 * i as f64);
+                z.push(Coordinates::new(line_asym(m, l), 1.0));
+            }
+        }
+        let r: Vec<f64> = z
+            .iter()
+            .map(|zi| (0..3).map(|k| truth[k] * terms[k].eval(zi)).sum())
+            .collect();
+        let c = fit_correction(&z, &r, &terms[..3]).unwrap();
+        for k in 0..3 {
+            assert!((c.coef[k] - truth[k]).abs() < 1e-12, "{:?}", c.coef);
+        }
+    }
+}

@@ -1,0 +1,223 @@
+//! `formula.py`: the fitted formulas as a standalone Python module (standard library only) whose
+//! `H(M, L, D=None, film="H_c")` reproduces [`FittedModel::eval`] operation by operation (the
+//! blend of [`crate::fit::model`] / [`crate::fit::point_model`] times the correction of
+//! [`crate::fit::correction`]); `D=None` is the line formula, a number the point formula. Every
+//! parameter is written with the shortest decimal that reads back to the same f64, so Python and
+//! Rust agree to rounding (tests/formula_py.rs: 1e-12 relative). Overflow in Python (which raises
+//! where Rust gives infinity) is caught and mapped to infinity, as in the Rust evaluation.
+
+use crate::fit::correction::{Correction, Transition};
+use crate::fit::fitted::{Blend, FittedModel};
+use crate::report::{ContactReport, FitReport};
+use std::fmt::Write;
+
+const HEADER: &str = r#""""Film-thickness formulas fitted by ehlmap (`ehlmap fit`), in Moes' dimensionless units.
+
+H(M, L, D=None, film="H_c"): the film "H_c" (centre), "H_pm" (at the pressure maximum) or "H_min"
+of a line contact (D=None) or of a point contact of ellipticity D = Rx/Ry. Each formula is a blend
+of four asymptotes (rigid/elastic x isoviscous/piezoviscous) times an interior correction that
+vanishes wherever one asymptote dominates (docs/method.md of ehlmap). Standard library only.
+"""
+import math
+
+INF = float("inf")
+
+
+def _pow(a, b):
+    try:
+        return a ** b
+    except OverflowError:
+        return INF
+    except ZeroDivisionError:
+        return INF
+
+
+def _exp(a):
+    try:
+        return math.exp(a)
+    except OverflowError:
+        return INF
+
+
+def _cosh(a):
+    try:
+        return math.cosh(a)
+    except OverflowError:
+        return INF
+
+
+def _line_asymptotes(x, c_ri, M, L):
+    return [
+        c_ri / M,
+        _exp(x[0]) * _pow(M, x[1]),
+        _exp(x[2]) * _pow(L, x[3]),
+        _exp(x[4]) * _pow(M, x[5]) * _pow(L, x[6]),
+    ]
+
+
+def _line_blend(x, c_ri, M, L):
+    h_ri, h_ei, h_rp, h_ep = _line_asymptotes(x, c_ri, M, L)
+    decay = _exp(-x[11] * h_ei / h_ri)
+    p, q = x[7] + x[12] * decay, x[8]
+    s = x[9] + x[10] * decay
+    iso = _pow(_pow(h_ri, p) + _pow(h_ei, p), s / p)
+    piezo = _pow(_pow(h_rp, -q) + _pow(h_ep, -q), -s / q) if L > 0.0 else 0.0
+    return _pow(iso + piezo, 1.0 / s)
+
+
+def _nvm_d_factors(D):
+    c = (1.0 + 0.006 * math.log(D) + 0.63 * _pow(D, 4.0 / 7.0)) / 1.63
+    return [
+        _pow((1.0 + 0.796 * _pow(D, 14.0 / 15.0)) / 1.796, -15.0 / 7.0) / D,
+        _pow(c, -14.0 / 25.0) * _pow(D, -1.0 / 15.0),
+        _pow((1.0 + 0.691 * D) / 1.691, -2.0 / 3.0),
+        _pow(c, -7.0 / 20.0) * _pow(D, -1.0 / 24.0),
+    ]
+
+
+def _point_asymptotes(x, M, L, D):
+    f = _nvm_d_factors(D)
+    return [
+        _exp(x[0]) * f[0] * _pow(D, x[1]) / (M * M),
+        _exp(x[2]) * _pow(M, x[3]) * f[1] * _pow(D, x[4]),
+        _exp(x[5]) * _pow(L, x[6]) * f[2] * _pow(D, x[7]),
+        _exp(x[8]) * _pow(M, x[9]) * _pow(L, x[10]) * f[3] * _pow(D, x[11]),
+    ]
+
+
+def _point_blend(x, M, L, D):
+    h_ri, h_ei, h_rp, h_ep = _point_asymptotes(x, M, L, D)
+    h_00 = _exp(x[14]) / D
+    s = x[12] * (1.0 + _exp(-x[13] * h_ei / h_ri))
+    r = x[15]
+    ei = _pow(_pow(h_ei, -4) + _pow(h_00, -4), -r / 4.0)
+    iso = _pow(_pow(h_ri, r) + ei, s / r)
+    piezo = _pow(_pow(h_rp, -8) + _pow(h_ep, -8), -s / 8.0) if L > 0.0 else 0.0
+    return _pow(iso + piezo, 1.0 / s)
+
+
+def _bump(t):
+    return 2.0 / (1.0 + _cosh(t))
+
+
+def _correction(terms, asym, D):
+    """sum c_k phi_k; terms = [(transition, (i, j, k, l, n), c), ...]."""
+    if not terms:
+        return 0.0
+    ri, ei, rp, ep = asym
+    hi, lo = max(ri, ei), min(ri, ei)
+    iso = hi * _pow(1.0 + _pow(lo / hi, 4), 0.25)
+    if rp > 0.0 and ep > 0.0:
+        hi, lo = max(rp, ep), min(rp, ep)
+        piezo = lo * _pow(1.0 + _pow(lo / hi, 4), -0.25)
+        b, c = math.log(ep / rp), math.log(piezo / iso)
+    else:
+        b, c = float("nan"), -INF
+    a = math.log(ei / ri)
+    w = 1.0 / (1.0 + _exp(-c))
+    variables = (a, b, c, math.log(D), w)
+    total = 0.0
+    for transition, powers, coef in terms:
+        if transition == "isoviscous":
+            base = _bump(a) * (1.0 - w)
+        elif c == -INF:
+            base = 0.0
+        elif transition == "piezoviscous":
+            base = _bump(b) * w
+        else:
+            base = _bump(c)
+        if base != 0.0:
+            for v, k in zip(variables, powers):
+                if k > 0:
+                    base *= v ** k
+        total += coef * base
+    return total
+
+"#;
+
+fn f(v: f64) -> String {
+    format!("{v:?}")
+}
+
+fn transition(t: Transition) -> &'static str {
+    match t {
+        Transition::Isoviscous => "isoviscous",
+        Transition::Piezoviscous => "piezoviscous",
+        Transition::Outer => "outer",
+    }
+}
+
+fn terms(c: &Correction) -> String {
+    let rows: Vec<String> = c
+        .terms
+        .iter()
+        .zip(&c.coef)
+        .map(|(t, k)| {
+            let p = t.powers;
+            format!(
+                "(\"{}\", ({}, {}, {}, {}, {}), {})",
+                transition(t.transition),
+                p[0],
+                p[1],
+                p[2],
+                p[3],
+                p[4],
+                f(*k)
+            )
+        })
+        .collect();
+    format!("[{}]", rows.join(", "))
+}
+
+fn entry(m: &FittedModel) -> String {
+    match &m.blend {
+        Blend::Line(x) => format!(
+            "{{\"c_ri\": {}, \"x\": [{}], \"terms\": {}}}",
+            f(x.c_ri),
+            x.x.iter().map(|v| f(*v)).collect::<Vec<_>>().join(", "),
+            terms(&m.correction)
+        ),
+        Blend::Point(x) => format!(
+            "{{\"x\": [{}], \"terms\": {}}}",
+            x.x.iter().map(|v| f(*v)).collect::<Vec<_>>().join(", "),
+            terms(&m.correction)
+        ),
+    }
+}
+
+fn table(name: &str, c: &ContactReport) -> String {
+    let mut s = format!("{name} = {{\n");
+    for q in [&c.h_c, &c.h_pm, &c.h_min].into_iter().flatten() {
+        let _ = writeln!(s, "    \"{}\": {},", q.quantity, entry(&q.model));
+    }
+    s.push_str("}\n");
+    s
+}
+
+const FOOTER: &str = r#"
+
+def H(M, L, D=None, film="H_c"):
+    """The fitted film at (M, L) of a line contact (D=None) or at (M, L, D) of a point contact."""
+    if D is None:
+        if film not in LINE:
+            raise ValueError(f"no line formula for {film} (fitted: {sorted(LINE)})")
+        e = LINE[film]
+        asym = _line_asymptotes(e["x"], e["c_ri"], M, L)
+        return _line_blend(e["x"], e["c_ri"], M, L) * _exp(_correction(e["terms"], asym, 1.0))
+    if film not in POINT:
+        raise ValueError(f"no point formula for {film} (fitted: {sorted(POINT)})")
+    e = POINT[film]
+    asym = _point_asymptotes(e["x"], M, L, D)
+    return _point_blend(e["x"], M, L, D) * _exp(_correction(e["terms"], asym, D))
+"#;
+
+/// The text of `formula.py` for the report's fitted formulas (a contact not fitted gives an
+/// empty table, and `H` then names the films it has).
+pub fn formula_py(r: &FitReport) -> String {
+    let mut s = HEADER.to_string();
+    s.push_str(&table("LINE", &r.line));
+    s.push('\n');
+    s.push_str(&table("POINT", &r.point));
+    s.push_str(FOOTER);
+    s
+}

@@ -1,0 +1,182 @@
+//! The fitted formula as a product: its interior correction, its held-out errors and
+//! `formula.py`, on the committed datasets (`tests/data/smoke-line`, 32 line cases on 2049
+//! points; `tests/data/point-257`, 51 point cases on 257^2).
+//!
+//! * `formula.py` (standard-library Python) reproduces the Rust evaluation to 1e-12 relative for
+//!   every film of both contacts, inside and far outside the data (python3 runs it).
+//! * The held-out procedure: every size it tries predicts each case by a fit that did not see
+//!   it, so its held-out errors are never below the fitted ones; and the formula's asymptotes are
+//!   the blend's, so far into each asymptotic corner the formula equals its asymptote.
+
+use ehlmap::fit::correction::Coordinates;
+use ehlmap::fit::dataset::load_fit_input;
+use ehlmap::report::formula_py::formula_py;
+use ehlmap::report::{fit_report, FitReport, QuantityFit};
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::{Command, Stdio};
+
+fn report() -> FitReport {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+    let input = load_fit_input(&[dir.join("smoke-line"), dir.join("point-257")]).unwrap();
+    fit_report(&input, false).unwrap()
+}
+
+fn films(r: &FitReport) -> Vec<(bool, &QuantityFit)> {
+    let line = [&r.line.h_c, &r.line.h_pm, &r.line.h_min];
+    let point = [&r.point.h_c, &r.point.h_pm, &r.point.h_min];
+    line.into_iter()
+        .flatten()
+        .map(|q| (false, q))
+        .chain(point.into_iter().flatten().map(|q| (true, q)))
+        .collect()
+}
+
+#[test]
+fn formula_py_reproduces_the_rust_evaluation() {
+    let r = report();
+    let dir = std::env::temp_dir().join(format!("ehlmap-formula-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("formula.py"), formula_py(&r)).unwrap();
+    // (M, L, D) inside and far outside the data, L = 0 included.
+    let mut cases = vec![];
+    for m in [0.01, 0.3, 1.0, 3.7, 20.0, 150.0, 1000.0, 3e4, 1e5] {
+        for l in [0.0, 0.5, 4.0, 10.0, 25.0, 40.0] {
+            for d in [0.01, 0.1, 0.45, 1.0] {
+                cases.push((m, l, d));
+            }
+        }
+    }
+    let fs = films(&r);
+    assert_eq!(fs.len(), 6, "every film of both contacts fitted");
+    let mut input = String::new();
+    let mut want = vec![];
+    for (point, q) in &fs {
+        for &(m, l, d) in &cases {
+            let (dd, dpy) = if *point {
+                (d, format!("{d:?}"))
+            } else {
+                (1.0, "None".to_string())
+            };
+            input.push_str(&format!("{m:?} {l:?} {dpy} {}\n", q.quantity));
+            want.push(q.model.eval(m, l, dd));
+        }
+    }
+    let script = "import sys\nsys.path.insert(0, sys.argv[1])\nfrom formula import H\n\
+        for row in sys.stdin:\n    m, l, d, f = row.split()\n    \
+        print(repr(H(float(m), float(l), None if d == 'None' else float(d), f)))\n";
+    let mut child = Command::new("python3")
+        .arg("-c")
+        .arg(script)
+        .arg(&dir)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("python3 is needed to test formula.py");
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(input.as_bytes())
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let got: Vec<f64> = String::from_utf8(out.stdout)
+        .unwrap()
+        .lines()
+        .map(|s| s.parse().unwrap())
+        .collect();
+    assert_eq!(got.len(), want.len());
+    let mut worst = 0.0f64;
+    for (g, w) in got.iter().zip(&want) {
+        assert!(w.is_finite() && *w > 0.0, "Rust value {w}");
+        worst = worst.max((g / w - 1.0).abs());
+    }
+    assert!(worst < 1e-12, "worst relative difference {worst:e}");
+    // Some correction is in play (else this test would not cover it).
+    assert!(fs.iter().any(|(_, q)| !q.model.correction.terms.is_empty()));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn held_out_errors_are_not_below_the_fitted_ones_and_choose_a_size() {
+    let r = report();
+    for (_, q) in films(&r) {
+        let h = q.heldout.as_ref().expect("held-out errors computed");
+        assert_eq!(h.folds, 5);
+        assert_eq!(h.sizes[0].terms, 0, "the blend alone is scored");
+        assert!(h.sizes.iter().any(|s| s == &h.chosen));
+        assert_eq!(q.model.correction.terms.len(), h.chosen.terms);
+        let best = h.sizes.iter().map(|s| s.rms).fold(f64::INFINITY, f64::min);
+        assert!(h.chosen.rms <= 1.02 * best);
+        // Held-out RMS is an out-of-sample figure: not below the in-sample RMS of the same
+        // formula (the final fit uses every case).
+        assert!(
+            h.chosen.rms >= q.overall.rms * 0.999,
+            "{}: held-out {} vs fitted {}",
+            q.quantity,
+            h.chosen.rms,
+            q.overall.rms
+        );
+    }
+}
+
+#[test]
+fn far_into_each_asymptotic_corner_the_formula_is_its_asymptote() {
+    // The correction vanishes where one asymptote dominates: at every (M, L) of a wide log grid
+    // whose coordinates put it deep in a corner (|c| > 20 and |a| > 20 isoviscous, |b| > 20
+    // piezoviscous: each bracket's asymptotes e^20 apart), the corrected formula equals the blend
+    // to 1e-3, and the blend there is its asymptote. The grid is wide because the crossovers are
+    // slow powers (the point H_EP/H_RP goes like (L/M)^(1/12)); only the range where the
+    // asymptotes are normal f64 numbers counts.
+    let r = report();
+    for (point, q) in films(&r) {
+        let d = if point { 0.5 } else { 1.0 };
+        let mut seen = [false; 4];
+        for i in (-300..=300).step_by(2) {
+            let m = 10f64.powi(i);
+            for j in -1..=300 {
+                let l = if j < 0 { 0.0 } else { 10f64.powi(j - 6) };
+                let asym = q.model.blend.asymptotes(m, l, d);
+                let n = if l > 0.0 { 4 } else { 2 };
+                if !asym[..n].iter().all(|h| h.is_normal()) {
+                    // Beyond the range of f64 (M^-2 underflows at M = 1e160).
+                    continue;
+                }
+                let z = Coordinates::new(asym, d);
+                let corner = if z.c < -20.0 && z.a.abs() > 20.0 {
+                    usize::from(z.a > 0.0)
+                } else if z.c > 20.0 && z.b.abs() > 20.0 {
+                    2 + usize::from(z.b < 0.0)
+                } else {
+                    continue;
+                };
+                seen[corner] = true;
+                let ratio = q.model.correction.log_factor(asym, d).exp();
+                assert!(
+                    (ratio - 1.0).abs() < 1e-3,
+                    "{} at M = {m:e}, L = {l:e}: formula / blend = {ratio} ({z:?}, {:?})",
+                    q.quantity,
+                    q.model
+                        .correction
+                        .terms
+                        .iter()
+                        .map(|t| t.eval(&z))
+                        .collect::<Vec<_>>()
+                );
+            }
+        }
+        // RI, EI, RP, EP: both isoviscous corners and at least one piezoviscous one (with the
+        // fitted exponents of these small datasets the other may lie beyond the f64 range).
+        assert!(
+            seen[0] && seen[1] && (seen[2] || seen[3]),
+            "{}: corners visited {seen:?}",
+            q.quantity
+        );
+    }
+}
