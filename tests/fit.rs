@@ -194,6 +194,8 @@ fn fit_command_writes_report_json_and_charts() {
         "parity.svg",
         "hc_vs_m.png",
         "error_map.svg",
+        "validity_map.png",
+        "validity_map.svg",
     ] {
         assert!(
             out.join(f)

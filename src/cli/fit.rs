@@ -110,7 +110,7 @@ fn charts(out: &Path, input: &FitInput, report: &FitReport) -> Result<Vec<String
     ] {
         if let Some(q) = &c.h_c {
             charts.extend(
-                write_charts(out, prefix, pts, &q.model)
+                write_charts(out, prefix, pts, &q.model, q.heldout.as_ref())
                     .map_err(|e| io(format!("--out {}: charts: {e}", out.display())))?,
             );
         }

@@ -7,7 +7,8 @@
 //! formula. Each case is predicted exactly once per n, by a formula that never saw it. The size
 //! kept is the smallest n whose held-out RMS relative error is within [`RMS_SLACK`] of the best
 //! n's (fewer terms when more buy almost nothing). Inputs: the samples (M, L, D, H) and the
-//! nested term list; output: [`HeldOut`] (per size: RMS, max; the size chosen).
+//! nested term list; output: [`HeldOut`] (per size: RMS, max; the size chosen; each case's
+//! held-out error at that size).
 
 use crate::fit::correction::{fit_correction, Coordinates, Correction, Term};
 use crate::fit::lsq::Sample;
@@ -36,6 +37,19 @@ pub struct SizeScore {
     pub worst: (f64, f64, f64),
 }
 
+/// The held-out relative error of one case (at the size kept).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CaseError {
+    /// Moes' M.
+    pub m: f64,
+    /// Moes' L.
+    pub l: f64,
+    /// D (1 for a line contact).
+    pub d: f64,
+    /// formula / data - 1, the formula fitted without this case's fold.
+    pub error: f64,
+}
+
 /// The cross-validation of one film's formula.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct HeldOut {
@@ -45,6 +59,9 @@ pub struct HeldOut {
     pub sizes: Vec<SizeScore>,
     /// The size kept (an entry of `sizes`).
     pub chosen: SizeScore,
+    /// Each case's held-out error at the size kept, in the data's order (the validity map).
+    #[serde(default)]
+    pub cases: Vec<CaseError>,
 }
 
 fn coords<Mo: FilmModel>(model: &Mo, s: &Sample) -> Coordinates {
@@ -130,9 +147,20 @@ pub fn select<Mo: FilmModel>(
         .collect();
     let best = scores.iter().map(|s| s.rms).fold(f64::INFINITY, f64::min);
     let chosen = scores.iter().find(|s| s.rms <= RMS_SLACK * best)?.clone();
+    let cases = data
+        .iter()
+        .zip(&errors[chosen.terms])
+        .map(|(s, &error)| CaseError {
+            m: s.m,
+            l: s.l,
+            d: s.d,
+            error,
+        })
+        .collect();
     Some(HeldOut {
         folds: FOLDS,
         sizes: scores,
         chosen,
+        cases,
     })
 }

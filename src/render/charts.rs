@@ -2,11 +2,14 @@
 //! nothing is needed from the system), per contact: parity plot (fit and the published formula),
 //! H_c over M per L with the fitted formula and its four asymptotes (dashed), the relative-error
 //! map over (log M, L), and the contour map of the fitted H_c(M, L) with the regime boundaries
-//! (where two asymptotes cross) as contour lines of ln(H_a/H_b) = 0, by marching squares.
+//! (where two asymptotes cross) as contour lines of ln(H_a/H_b) = 0, by marching squares, and the
+//! validity map of its held-out errors ([`crate::render::validity_map`]).
 //! Point charts are drawn at D = 1 (curves, contours) or over all D (parity, error map).
 
+use crate::fit::heldout::HeldOut;
 use crate::render::charts_map::{error_map, regime_map};
-use crate::render::style::{both, e, log_grid, series_legend, Ctx, RenderError, Res};
+use crate::render::style::{both, distinct, e, log_grid, series_legend, Ctx, RenderError, Res};
+use crate::render::validity_map::validity_map;
 use crate::report::{Blend, Film, FitPoint, FittedModel};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -54,12 +57,6 @@ fn parity<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, c: &Ctx) -> Res {
     .legend(|(x, y)| Cross::new((x, y), 3, RED.stroke_width(1)));
     series_legend(&mut ch, SeriesLabelPosition::UpperLeft)?;
     Ok(())
-}
-
-pub(crate) fn distinct(mut v: Vec<f64>) -> Vec<f64> {
-    v.sort_by(f64::total_cmp);
-    v.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * b.abs().max(1.0));
-    v
 }
 
 fn curves<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, c: &Ctx) -> Res {
@@ -185,6 +182,7 @@ pub fn write_charts(
     prefix: &str,
     pts: &[FitPoint],
     model: &FittedModel,
+    heldout: Option<&HeldOut>,
 ) -> Result<Vec<String>, RenderError> {
     // The charts show H_c: the cases whose H_c is within the fit's error limit.
     let pts: &[FitPoint] = &pts
@@ -211,5 +209,23 @@ pub fn write_charts(
     chart!("hc_vs_m", curves, (1400, 650));
     chart!("error_map", error_map, (900, 650));
     chart!("regime_map", regime_map, (1000, 700));
+    if let Some(h) = heldout.filter(|h| !h.cases.is_empty()) {
+        let point = matches!(model.blend, Blend::Point(_));
+        let panels = if point {
+            distinct(h.cases.iter().map(|c| c.d).collect()).len()
+        } else {
+            1
+        };
+        let size = (1100, 80 + 420 * panels.div_ceil(2) as u32);
+        let (cases, film) = (&h.cases, Film::Centre.name());
+        let stem = format!("{prefix}validity_map");
+        both(
+            &dir.join(&stem),
+            size,
+            |r| validity_map(r, cases, film, point),
+            |r| validity_map(r, cases, film, point),
+        )?;
+        stems.push(stem);
+    }
     Ok(stems)
 }

@@ -148,6 +148,13 @@ where
         .map_err(e)
 }
 
+/// The distinct values of `v` (equal within 1e-9 relative), sorted.
+pub(crate) fn distinct(mut v: Vec<f64>) -> Vec<f64> {
+    v.sort_by(f64::total_cmp);
+    v.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * b.abs().max(1.0));
+    v
+}
+
 /// Log-spaced grid of n + 1 values from lo to hi.
 pub(crate) fn log_grid(lo: f64, hi: f64, n: usize) -> Vec<f64> {
     (0..=n)
