@@ -7,19 +7,22 @@
 //! piezoviscous), c = ln(H_piezo/H_iso) with H_iso = (H_RI^4 + H_EI^4)^(1/4) and
 //! H_piezo = (H_RP^-4 + H_EP^-4)^(-1/4) (isoviscous to piezoviscous; c = -infinity at L = 0),
 //! w = 1/(1 + e^-c), and ln D (both brackets evaluated scaled by their larger / smaller term, so
-//! that they stay finite far into the corners). The three transition bumps, each 1 at its centre and decaying
-//! like e^-|t| away from it:
+//! that they stay finite far into the corners). The three transition bumps, each 1 at its centre
+//! and decaying like e^-|t| away from it, and the elastic tail:
 //!
-//! Isoviscous: g(a) (1 - w); Piezoviscous: g(b) w; Outer: g(c); g(t) = 2/(1 + cosh t).
+//! Isoviscous: g(a) (1 - w); Piezoviscous: g(b) w; Outer: g(c); g(t) = 2/(1 + cosh t);
+//! Tail: t(a) (1 - w), t(a) = e^(-a/TAIL) / (1 + e^-a) (0 in the rigid limit, decaying like
+//! e^(-a/TAIL) into the elastic-isoviscous one, which the data approach slowly).
 //!
 //! A basis function is a bump times a monomial in (a, b, c, ln D, w) ([`Term`]); a polynomial
 //! grows slower than the bump decays, so every phi_k tends to 0 at each of the four corners
 //! (RI: a, c -> -infinity; EI: a -> infinity, c -> -infinity; RP: b, c -> infinity; EP:
 //! b -> -infinity, c -> infinity: the piezoviscous bracket follows the smaller of H_RP and H_EP).
-//! The approach is as slow as the crossovers of the blend itself: e^-|t| is a power of M or L. At L = 0 the piezoviscous and outer terms are exactly 0. The terms are
+//! The approach is as slow as the crossovers of the blend itself (e^-|t| is a power of M or L),
+//! slower for the tail. At L = 0 the piezoviscous and outer terms are exactly 0. The terms are
 //! tried in the nested order of [`line_terms`] / [`point_terms`]; how many are kept is chosen by
-//! held-out error ([`crate::fit::heldout`]). The coefficients solve a linear least-squares
-//! problem in log space (SVD, [`fit_correction`]).
+//! held-out error ([`crate::fit::heldout`]). Given the blend, the coefficients solve a linear
+//! least-squares problem in log space (SVD, [`fit_correction`]).
 
 use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
@@ -34,6 +37,20 @@ pub enum Transition {
     Piezoviscous,
     /// Isoviscous to piezoviscous: g(c).
     Outer,
+    /// The slow approach to the elastic-isoviscous limit: t(a) (1 - w), t(a) = e^(-a/TAIL) /
+    /// (1 + e^-a) (0 at the rigid corner, decaying like e^(-a/TAIL) into the elastic one).
+    Tail,
+}
+
+/// The decay length of the [`Transition::Tail`] bump in a = ln(H_EI/H_RI).
+pub const TAIL: f64 = 8.0;
+
+fn tail(a: f64) -> f64 {
+    if a < 0.0 {
+        (a - a / TAIL).exp() / (a.exp() + 1.0)
+    } else {
+        (-a / TAIL).exp() / (1.0 + (-a).exp())
+    }
 }
 
 /// One basis function: a transition bump times a^i b^j c^k (ln D)^l w^n, `powers` = [i, j, k, l,
@@ -101,6 +118,7 @@ impl Term {
         let piezo = z.c > f64::NEG_INFINITY;
         let base = match self.transition {
             Transition::Isoviscous => bump(z.a) * (1.0 - z.w),
+            Transition::Tail => tail(z.a) * (1.0 - z.w),
             Transition::Piezoviscous if piezo => bump(z.b) * z.w,
             Transition::Outer if piezo => bump(z.c),
             _ => return 0.0,
@@ -118,7 +136,7 @@ impl Term {
     }
 }
 
-use Transition::{Isoviscous as I, Outer as O, Piezoviscous as P};
+use Transition::{Isoviscous as I, Outer as O, Piezoviscous as P, Tail as T};
 
 /// The line terms, in the order they are tried.
 pub fn line_terms() -> Vec<Term> {
@@ -126,6 +144,7 @@ pub fn line_terms() -> Vec<Term> {
         (O, [0, 0, 0, 0, 0]),
         (I, [0, 0, 0, 0, 0]),
         (P, [0, 0, 0, 0, 0]),
+        (T, [0, 0, 0, 0, 0]),
         (O, [0, 0, 1, 0, 0]),
         (I, [1, 0, 0, 0, 0]),
         (P, [0, 1, 0, 0, 0]),
@@ -153,6 +172,8 @@ pub fn point_terms() -> Vec<Term> {
         (O, [0, 0, 0, 1, 0]),
         (I, [0, 0, 0, 1, 0]),
         (P, [0, 0, 0, 1, 0]),
+        (T, [0, 0, 0, 0, 0]),
+        (T, [0, 0, 0, 1, 0]),
         (O, [0, 0, 1, 0, 0]),
         (I, [1, 0, 0, 0, 0]),
         (P, [0, 1, 0, 0, 0]),
@@ -167,6 +188,7 @@ pub fn point_terms() -> Vec<Term> {
         (O, [0, 0, 0, 2, 0]),
         (O, [0, 1, 0, 0, 0]),
         (P, [0, 1, 0, 1, 0]),
+        (T, [0, 0, 0, 2, 0]),
     ]
     .into_iter()
     .map(|(t, p)| Term::new(t, p))
@@ -274,7 +296,7 @@ mod tests {
         for t in line_terms() {
             let v = t.eval(&z);
             assert!(v.is_finite());
-            if t.transition != Transition::Isoviscous {
+            if matches!(t.transition, Transition::Piezoviscous | Transition::Outer) {
                 assert_eq!(v, 0.0, "{t:?}");
             }
         }

@@ -3,15 +3,17 @@
 //! K-fold cross-validation ([`FOLDS`] folds): the cases are ranked by (M, L, D) and case k goes to
 //! fold k mod K, so every fold spans the whole map. For each fold the blend is refitted on the
 //! other folds (the caller's `fit_blend`), then for each n the correction with the first n terms
-//! of the nested list ([`crate::fit::correction`]); the fold's cases are predicted by that
-//! formula. Each case is predicted exactly once per n, by a formula that never saw it. The size
-//! kept is the smallest n whose held-out RMS relative error is within [`RMS_SLACK`] of the best
-//! n's (fewer terms when more buy almost nothing). Inputs: the samples (M, L, D, H) and the
-//! nested term list; output: [`HeldOut`] (per size: RMS, max; the size chosen; each case's
-//! held-out error at that size).
+//! of the nested list ([`crate::fit::correction`]), alone on that blend (cheap); the blend alone
+//! and the [`JOINT_CANDIDATES`] best sizes are then cross-validated again with blend and
+//! correction fitted together ([`joint`]: what the final formula is). The fold's cases are
+//! predicted by each formula: each case is predicted exactly once per size, by a formula that
+//! never saw it. The size kept is the smallest joint one whose held-out RMS relative error is
+//! within [`RMS_SLACK`] of the best (fewer terms when more buy almost nothing). Inputs: the
+//! samples (M, L, D, H), the nested term list and how the blend is refitted ([`Refit`]); output:
+//! [`HeldOut`] (per size: RMS, max; the size kept; each case's held-out error at that size).
 
 use crate::fit::correction::{fit_correction, Coordinates, Correction, Term};
-use crate::fit::lsq::Sample;
+use crate::fit::lsq::{fit, Sample};
 use crate::fit::model::FilmModel;
 use serde::{Deserialize, Serialize};
 
@@ -20,6 +22,10 @@ pub const FOLDS: usize = 5;
 
 /// A size within this factor of the best held-out RMS counts as good as the best.
 pub const RMS_SLACK: f64 = 1.02;
+
+/// Sizes cross-validated with the joint fit (besides the blend alone): the best by the cheap
+/// cross-validation of the correction alone.
+pub const JOINT_CANDIDATES: usize = 4;
 
 /// Each fold's training set must have this many more cases than the correction has terms.
 const SPARE: usize = 10;
@@ -55,13 +61,106 @@ pub struct CaseError {
 pub struct HeldOut {
     /// Folds used.
     pub folds: usize,
-    /// Every size tried, in increasing number of terms.
+    /// Every size tried with the correction alone on each fold's blend, in increasing number of
+    /// terms.
     pub sizes: Vec<SizeScore>,
-    /// The size kept (an entry of `sizes`).
+    /// The sizes tried with the blend and the correction fitted together ([`joint`]): the
+    /// blend alone and the [`JOINT_CANDIDATES`] best of `sizes`.
+    #[serde(default)]
+    pub joint: Vec<SizeScore>,
+    /// The size kept (an entry of `joint`: its held-out errors are those of the formula as
+    /// fitted).
     pub chosen: SizeScore,
     /// Each case's held-out error at the size kept, in the data's order (the validity map).
     #[serde(default)]
     pub cases: Vec<CaseError>,
+}
+
+/// A blend under a fixed correction, as the least-squares fit sees it: its parameters are the
+/// blend's, its film the blend's times the correction.
+#[derive(Clone)]
+struct Corrected<'a, Mo> {
+    blend: Mo,
+    correction: &'a Correction,
+}
+
+impl<Mo: FilmModel> FilmModel for Corrected<'_, Mo> {
+    fn x(&self) -> &[f64] {
+        self.blend.x()
+    }
+    fn x_mut(&mut self) -> &mut [f64] {
+        self.blend.x_mut()
+    }
+    fn film(&self, m: f64, l: f64, d: f64) -> f64 {
+        let log = self
+            .correction
+            .log_factor(self.blend.asymptotes(m, l, d), d);
+        self.blend.film(m, l, d) * log.exp()
+    }
+    fn asymptotes(&self, m: f64, l: f64, d: f64) -> [f64; 4] {
+        self.blend.asymptotes(m, l, d)
+    }
+}
+
+/// How the blend is refitted under its correction ([`joint`]).
+pub struct Refit<'a, Mo> {
+    /// The blend parameters freed.
+    pub free: &'a [usize],
+    /// Whether a refitted blend is physical (else the previous one is kept).
+    pub physical: &'a dyn Fn(&Mo) -> bool,
+}
+
+/// Rounds of the alternating fit in [`joint`].
+pub const JOINT_ROUNDS: usize = 2;
+
+/// The blend and the correction with `terms` fitted together to `data`, by alternating: the
+/// correction on the blend's residuals (linear), then the blend's `refit.free` parameters under
+/// that correction (Levenberg-Marquardt), [`JOINT_ROUNDS`] times; a blend step is kept only when
+/// it is physical and lowers the RMS log error. Returns the blend, the correction and the
+/// one-sigma uncertainties of the blend's parameters from the last blend step kept (None: no step
+/// kept, or no correction terms). None when the first correction fails.
+pub fn joint<Mo: FilmModel>(
+    data: &[Sample],
+    blend: &Mo,
+    terms: &[Term],
+    refit: &Refit<Mo>,
+) -> Option<(Mo, Correction, Option<Vec<f64>>)> {
+    let mut blend = blend.clone();
+    let mut c = correction_for(&blend, data, terms)?;
+    let mut sigma = None;
+    if terms.is_empty() {
+        return Some((blend, c, sigma));
+    }
+    let rms = |b: &Mo, c: &Correction| {
+        let f = Corrected {
+            blend: b.clone(),
+            correction: c,
+        };
+        let ss: f64 = data
+            .iter()
+            .map(|s| (f.film(s.m, s.l, s.d) / s.h).ln().powi(2))
+            .sum();
+        (ss / data.len() as f64).sqrt()
+    };
+    for _ in 0..JOINT_ROUNDS {
+        let start = Corrected {
+            blend: blend.clone(),
+            correction: &c,
+        };
+        let before = rms(&blend, &c);
+        if let Ok(f) = fit(data, &start, refit.free) {
+            let b = f.model.blend;
+            if (refit.physical)(&b) && f.rms_log.is_finite() && f.rms_log < before {
+                blend = b;
+                sigma = Some(f.sigma);
+            }
+        }
+        match correction_for(&blend, data, terms) {
+            Some(next) if rms(&blend, &next) <= rms(&blend, &c) => c = next,
+            _ => {}
+        }
+    }
+    Some((blend, c, sigma))
 }
 
 fn coords<Mo: FilmModel>(model: &Mo, s: &Sample) -> Coordinates {
@@ -89,6 +188,7 @@ pub fn select<Mo: FilmModel>(
     data: &[Sample],
     terms: &[Term],
     fit_blend: &dyn Fn(&[Sample]) -> Option<Mo>,
+    refit: &Refit<Mo>,
 ) -> Option<HeldOut> {
     if data.len() < 2 * FOLDS {
         return None;
@@ -110,46 +210,62 @@ pub fn select<Mo: FilmModel>(
     let sizes = (0..=terms.len())
         .filter(|n| n + SPARE <= smallest_train)
         .count();
-    // errors[n][i]: the held-out relative error of case i with n terms.
-    let mut errors = vec![vec![f64::NAN; data.len()]; sizes];
-    for f in 0..FOLDS {
-        let train: Vec<Sample> = (0..data.len())
-            .filter(|&i| fold[i] != f)
-            .map(|i| data[i])
-            .collect();
-        let blend = fit_blend(&train)?;
-        for (n, row) in errors.iter_mut().enumerate() {
-            let Some(c) = correction_for(&blend, &train, &terms[..n]) else {
+    let trains: Vec<Vec<Sample>> = (0..FOLDS)
+        .map(|f| {
+            (0..data.len())
+                .filter(|&i| fold[i] != f)
+                .map(|i| data[i])
+                .collect()
+        })
+        .collect();
+    let blends: Vec<Mo> = trains.iter().map(|t| fit_blend(t)).collect::<Option<_>>()?;
+    // errors[n][i]: the held-out relative error of case i with n terms; `plain`: the correction
+    // alone on each fold's blend, `joint`: blend and correction fitted together.
+    let held_out = |n: usize, together: bool| -> Vec<f64> {
+        let mut row = vec![f64::NAN; data.len()];
+        for f in 0..FOLDS {
+            let fitted = if together {
+                joint(&trains[f], &blends[f], &terms[..n], refit).map(|(b, c, _)| (b, c))
+            } else {
+                correction_for(&blends[f], &trains[f], &terms[..n]).map(|c| (blends[f].clone(), c))
+            };
+            let Some((b, c)) = fitted else {
                 continue;
             };
             for i in (0..data.len()).filter(|&i| fold[i] == f) {
                 let s = &data[i];
-                let log = c.log_factor(blend.asymptotes(s.m, s.l, s.d), s.d);
-                row[i] = blend.film(s.m, s.l, s.d) * log.exp() / s.h - 1.0;
+                let log = c.log_factor(b.asymptotes(s.m, s.l, s.d), s.d);
+                row[i] = b.film(s.m, s.l, s.d) * log.exp() / s.h - 1.0;
             }
         }
-    }
-    let scores: Vec<SizeScore> = errors
-        .iter()
-        .enumerate()
-        .filter(|(_, e)| e.iter().all(|v| v.is_finite()))
-        .map(|(n, e)| {
-            let worst = (0..e.len())
-                .max_by(|&i, &j| e[i].abs().total_cmp(&e[j].abs()))
-                .expect("non-empty");
-            SizeScore {
-                terms: n,
-                rms: (e.iter().map(|v| v * v).sum::<f64>() / e.len() as f64).sqrt(),
-                max: e[worst],
-                worst: (data[worst].m, data[worst].l, data[worst].d),
-            }
-        })
+        row
+    };
+    let plain: Vec<(SizeScore, Vec<f64>)> = (0..sizes)
+        .filter_map(|n| score(data, n, held_out(n, false)))
         .collect();
-    let best = scores.iter().map(|s| s.rms).fold(f64::INFINITY, f64::min);
-    let chosen = scores.iter().find(|s| s.rms <= RMS_SLACK * best)?.clone();
+    // The joint fit is costly (a Levenberg-Marquardt refit per fold and size): it is
+    // cross-validated for the blend alone and the JOINT_CANDIDATES sizes best without it.
+    let mut ranked: Vec<usize> = plain.iter().map(|(s, _)| s.terms).collect();
+    ranked.sort_by(|&i, &j| plain_rms(&plain, i).total_cmp(&plain_rms(&plain, j)));
+    let mut candidates: Vec<usize> = ranked.into_iter().take(JOINT_CANDIDATES).collect();
+    candidates.push(0);
+    candidates.sort_unstable();
+    candidates.dedup();
+    let joint_scores: Vec<(SizeScore, Vec<f64>)> = candidates
+        .iter()
+        .filter_map(|&n| score(data, n, held_out(n, true)))
+        .collect();
+    let best = joint_scores
+        .iter()
+        .map(|(s, _)| s.rms)
+        .fold(f64::INFINITY, f64::min);
+    let (chosen, errors) = joint_scores
+        .iter()
+        .find(|(s, _)| s.rms <= RMS_SLACK * best)?
+        .clone();
     let cases = data
         .iter()
-        .zip(&errors[chosen.terms])
+        .zip(&errors)
         .map(|(s, &error)| CaseError {
             m: s.m,
             l: s.l,
@@ -159,8 +275,34 @@ pub fn select<Mo: FilmModel>(
         .collect();
     Some(HeldOut {
         folds: FOLDS,
-        sizes: scores,
+        sizes: plain.into_iter().map(|(s, _)| s).collect(),
+        joint: joint_scores.into_iter().map(|(s, _)| s).collect(),
         chosen,
         cases,
     })
+}
+
+/// The held-out RMS of size `n` among the `plain` scores.
+fn plain_rms(plain: &[(SizeScore, Vec<f64>)], n: usize) -> f64 {
+    plain
+        .iter()
+        .find(|(s, _)| s.terms == n)
+        .map_or(f64::INFINITY, |(s, _)| s.rms)
+}
+
+/// The score of `n` terms from each case's held-out error (None when one is not finite).
+fn score(data: &[Sample], n: usize, e: Vec<f64>) -> Option<(SizeScore, Vec<f64>)> {
+    if !e.iter().all(|v| v.is_finite()) {
+        return None;
+    }
+    let worst = (0..e.len())
+        .max_by(|&i, &j| e[i].abs().total_cmp(&e[j].abs()))
+        .expect("non-empty");
+    let s = SizeScore {
+        terms: n,
+        rms: (e.iter().map(|v| v * v).sum::<f64>() / e.len() as f64).sqrt(),
+        max: e[worst],
+        worst: (data[worst].m, data[worst].l, data[worst].d),
+    };
+    Some((s, e))
 }

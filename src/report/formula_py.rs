@@ -6,7 +6,7 @@
 //! Rust agree to rounding (tests/formula_py.rs: 1e-12 relative). Overflow in Python (which raises
 //! where Rust gives infinity) is caught and mapped to infinity, as in the Rust evaluation.
 
-use crate::fit::correction::{Correction, Transition};
+use crate::fit::correction::{Correction, Transition, TAIL};
 use crate::fit::fitted::{Blend, FittedModel};
 use crate::report::{ContactReport, FitReport};
 use std::fmt::Write;
@@ -21,6 +21,7 @@ vanishes wherever one asymptote dominates (docs/method.md of ehlmap). Standard l
 import math
 
 INF = float("inf")
+TAIL = {TAIL}
 
 
 def _pow(a, b):
@@ -100,6 +101,12 @@ def _bump(t):
     return 2.0 / (1.0 + _cosh(t))
 
 
+def _tail(a):
+    if a < 0.0:
+        return _exp(a - a / TAIL) / (_exp(a) + 1.0)
+    return _exp(-a / TAIL) / (1.0 + _exp(-a))
+
+
 def _correction(terms, asym, D):
     """sum c_k phi_k; terms = [(transition, (i, j, k, l, n), c), ...]."""
     if not terms:
@@ -120,6 +127,8 @@ def _correction(terms, asym, D):
     for transition, powers, coef in terms:
         if transition == "isoviscous":
             base = _bump(a) * (1.0 - w)
+        elif transition == "tail":
+            base = _tail(a) * (1.0 - w)
         elif c == -INF:
             base = 0.0
         elif transition == "piezoviscous":
@@ -144,6 +153,7 @@ fn transition(t: Transition) -> &'static str {
         Transition::Isoviscous => "isoviscous",
         Transition::Piezoviscous => "piezoviscous",
         Transition::Outer => "outer",
+        Transition::Tail => "tail",
     }
 }
 
@@ -214,7 +224,7 @@ def H(M, L, D=None, film="H_c"):
 /// The text of `formula.py` for the report's fitted formulas (a contact not fitted gives an
 /// empty table, and `H` then names the films it has).
 pub fn formula_py(r: &FitReport) -> String {
-    let mut s = HEADER.to_string();
+    let mut s = HEADER.replace("{TAIL}", &f(TAIL));
     s.push_str(&table("LINE", &r.line));
     s.push('\n');
     s.push_str(&table("POINT", &r.point));

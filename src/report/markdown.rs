@@ -81,6 +81,7 @@ fn term_name(t: &Term) -> String {
         Transition::Isoviscous => "g(a)(1-w)",
         Transition::Piezoviscous => "g(b) w",
         Transition::Outer => "g(c)",
+        Transition::Tail => "t(a)(1-w)",
     };
     let vars = ["a", "b", "c", "ln D", "w"];
     let mono: Vec<String> = vars

@@ -26,7 +26,7 @@ use crate::fit::correction::{line_terms, point_terms, Correction, Term};
 pub use crate::fit::dataset::{FitInput, FitPoint};
 use crate::fit::error::FitError;
 pub use crate::fit::fitted::{Blend, FittedModel, Param, QuantityFit};
-use crate::fit::heldout::{correction_for, select, HeldOut};
+use crate::fit::heldout::{joint, select, HeldOut, Refit};
 use crate::fit::lsq::{fit, LsqFit, Sample};
 use crate::fit::model::{FilmModel, LineModel, PARAM_NAMES};
 use crate::fit::point_model::{PointModel, POINT_PARAM_NAMES};
@@ -225,7 +225,10 @@ fn quantity<Mo: FilmModel>(
             })
             .collect(),
         model,
-        rms_log: f.rms_log,
+        // Of the formula as fitted (blend and correction), over the cases that carry the film.
+        rms_log: (tuples.iter().map(|t| (t.2 / t.3).ln().powi(2)).sum::<f64>()
+            / tuples.len() as f64)
+            .sqrt(),
         converged: f.converged,
         overall: err_stats(&tuples).expect("non-empty data"),
         regions: region_table(&tuples),
@@ -336,22 +339,41 @@ struct Recipe<Mo> {
     terms: fn() -> Vec<Term>,
 }
 
-/// The interior correction of a fitted blend: its size chosen by held-out error
-/// ([`crate::fit::heldout`], the blend refitted per fold by [`staged`]), its coefficients fitted
-/// on all of `data`. No correction when the cross-validation could not be made.
+/// The interior correction of the blend fitted in `f`: its size chosen by held-out error
+/// ([`crate::fit::heldout`], the blend refitted per fold by [`staged`]), then blend and
+/// correction fitted together on all of `data` ([`joint`], the parameters of the last stage
+/// freed): `f` takes the refitted blend and its sigmas. No correction when the cross-validation
+/// could not be made.
 fn corrected<Mo: FilmModel>(
     data: &[Sample],
-    blend: &Mo,
+    f: &mut LsqFit<Mo>,
     start: &Mo,
     r: &Recipe<Mo>,
 ) -> (Correction, Option<HeldOut>) {
     let terms = (r.terms)();
     let fit_blend = |train: &[Sample]| staged(train, start, r).ok().map(|f| f.model);
-    let Some(h) = select(data, &terms, &fit_blend) else {
+    let free = if data.len() >= FULL_FIT_MIN_POINTS {
+        &r.stage2
+    } else {
+        &r.stage1
+    };
+    let refit = Refit {
+        free,
+        physical: &r.physical,
+    };
+    let Some(h) = select(data, &terms, &fit_blend, &refit) else {
         return (Correction::default(), None);
     };
-    let c = correction_for(blend, data, &terms[..h.chosen.terms]).unwrap_or_default();
-    (c, Some(h))
+    match joint(data, &f.model, &terms[..h.chosen.terms], &refit) {
+        Some((b, c, sigma)) => {
+            f.model = b;
+            if let Some(sigma) = sigma {
+                f.sigma = sigma;
+            }
+            (c, Some(h))
+        }
+        None => (Correction::default(), Some(h)),
+    }
 }
 
 /// Fit each film the data carry (a film with fewer cases than the contact needs is left out and
@@ -382,13 +404,13 @@ fn fit_films<Mo: FilmModel>(
             continue;
         }
         let start = (r.start)(film);
-        let f = staged(&data, &start, r).map_err(|e| FitError::Film {
+        let mut f = staged(&data, &start, r).map_err(|e| FitError::Film {
             contact: r.contact.to_string(),
             film: film.name(),
             source: Box::new(e),
         })?;
+        let correction = corrected(&data, &mut f, &start, r);
         models.push((film, f.model.clone()));
-        let correction = corrected(&data, &f.model, &start, r);
         let q = Some(quantity(film, pts, f, correction, r.names, r.wrap));
         match film {
             Film::Centre => report.h_c = q,
