@@ -217,6 +217,15 @@ fn fit_command_writes_report_json_and_charts() {
         "{md}"
     );
     assert!(md.contains("- H_c: max error 0.77 % (target 2 %: met); held-out max 1.88 %"));
+    // Every formula on the same cases in one table: the fit in sample and held out, the published.
+    assert!(
+        md.contains(
+            "| ehlmap fit, held out | 1.88 % / 0.63 % | 0.60 % / 0.30 % | 0.74 % / 0.19 % |\n\
+             | Moes 1992 | 5.86 % / 2.75 % | 5.86 % / 2.54 % | - |\n\
+             | Dowson-Toyoda 1979 (skipped: dataset has no G) | - | - | - |"
+        ),
+        "{md}"
+    );
     // formula.py is written beside the report.
     let py = std::fs::read_to_string(out.join("formula.py")).unwrap();
     assert!(py.contains("def H(M, L, D=None, film=\"H_c\"):") && py.contains("LINE = {"));

@@ -240,6 +240,49 @@ fn summary(md: &mut String, c: &ContactReport) {
     md.push('\n');
 }
 
+/// One table of every formula on the same cases: the fit in sample and held out, and each
+/// published formula, by film (max |error| / RMS; "-" where a formula has no such film or was
+/// skipped).
+fn comparison(md: &mut String, c: &ContactReport) {
+    let films = [&c.h_c, &c.h_pm, &c.h_min];
+    let cell = |max: f64, rms: f64| format!("{:.2} % / {:.2} %", 100.0 * max.abs(), 100.0 * rms);
+    let _ = writeln!(
+        md,
+        "### All formulas on the same cases (max |error| / RMS)\n\n| formula | H_c | H_pm | H_min |\n|---|---|---|---|"
+    );
+    let row = |name: &str, f: &dyn Fn(&QuantityFit) -> Option<String>| {
+        let cells: Vec<String> = films
+            .iter()
+            .map(|q| q.as_ref().and_then(f).unwrap_or_else(|| "-".to_string()))
+            .collect();
+        format!("| {name} | {} |\n", cells.join(" | "))
+    };
+    md.push_str(&row("ehlmap fit", &|q| {
+        Some(cell(q.overall.max, q.overall.rms))
+    }));
+    md.push_str(&row("ehlmap fit, held out", &|q| {
+        q.heldout.as_ref().map(|h| cell(h.chosen.max, h.chosen.rms))
+    }));
+    let mut names: Vec<&str> = c.published.iter().map(|p| p.name.as_str()).collect();
+    names.dedup();
+    for name in names {
+        let why = c
+            .published
+            .iter()
+            .find(|p| p.name == name)
+            .and_then(|p| p.skipped.as_deref());
+        let label = why.map_or(name.to_string(), |w| format!("{name} ({w})"));
+        md.push_str(&row(&label, &|q| {
+            c.published
+                .iter()
+                .find(|p| p.name == name && p.against == q.quantity)
+                .and_then(|p| p.overall.as_ref())
+                .map(|s| cell(s.max, s.rms))
+        }));
+    }
+    md.push('\n');
+}
+
 fn contact(md: &mut String, c: &ContactReport) {
     let _ = writeln!(md, "## {} contact\n", c.contact);
     if let Some(why) = &c.skipped {
@@ -261,6 +304,7 @@ fn contact(md: &mut String, c: &ContactReport) {
         let _ = writeln!(md, "Not fitted: {why}.\n");
     }
     summary(md, c);
+    comparison(md, c);
     for q in [&c.h_c, &c.h_pm, &c.h_min].into_iter().flatten() {
         quantity(md, q);
     }
