@@ -7,6 +7,7 @@ use crate::cli::error::{input, io, CliError};
 use crate::cli::output::{beside_dataset, note, outln, prepare_dir};
 use ehlmap::fit::dataset::load_fit_input;
 use ehlmap::fit::dataset::FitInput;
+use ehlmap::fit::heldout::FOLDS;
 use ehlmap::render::charts::write_charts;
 use ehlmap::report::formula_py::formula_py;
 use ehlmap::report::markdown::to_markdown;
@@ -58,10 +59,12 @@ pub fn fit_datasets(
     // The report's directory before the fit (its limit solves can take minutes).
     prepare_dir("--out", &out)?;
     let cases = data.line.len() + data.point.len();
-    note!(
-        "fitting {cases} cases: each film's formula is cross-validated (5 folds, blend and \
-         correction refitted per fold; about 30 s for 200-300 cases)"
-    );
+    if cases >= 2 * FOLDS {
+        note!(
+            "fitting {cases} cases: each film's formula is cross-validated ({FOLDS} folds, blend \
+             and correction refitted per fold; about 30 s for 200-300 cases)"
+        );
+    }
     if limit_solves && !data.point.is_empty() {
         note!(
             "the point asymptote checks solve the limit cases on the data's grid \
