@@ -91,13 +91,20 @@ fn line_asymptotes_agree_with_the_limit_solves() {
     let ri_pm = check("H_pm", "rigid-isoviscous");
     assert!((ri_pm.solver.unwrap() - 3.0).abs() < 0.006);
     assert_eq!(ri_pm.grid, Some(4097));
-    // Measured on this dataset (H_pm): EI 1.015 at M = 500 (trend 0.991, 1.000, 1.015 at
-    // M = 50, 158, 500), EP 1.050 (0.986, 1.022, 1.050), RP 1.034; EI 1.020 for H_c (its RP
-    // ratio, 0.85 here and 1.09 on the nightly sweep, is not checked: the film at X = 0 does not
-    // follow the rigid-piezoviscous limit).
+    // The EI law is held at the solver's own limit (2.488 M^-1/5, 1.984 for H_min, from solves
+    // beyond the nightly data): its ratio falls toward 1 over the data (H_pm 1.0184, 1.0073,
+    // 1.0014 at M = 50, 158, 500) and is within 0.5 % at the data's largest M. Measured (H_pm):
+    // EP 1.059 (1.003, 1.034, 1.059), RP 0.993 (H_c's RP ratio, 0.81 here, is not checked: the
+    // film at X = 0 does not follow the rigid-piezoviscous limit).
     for film in ["H_c", "H_pm", "H_min"] {
-        let ei = check(film, "elastic-isoviscous").ratio.unwrap();
-        assert!((ei - 1.0).abs() < 0.03, "{film} EI ratio {ei}");
+        let ei = check(film, "elastic-isoviscous");
+        let r = ei.ratio.unwrap();
+        assert!((r - 1.0).abs() < 0.005, "{film} EI ratio {r}");
+        assert!(
+            ei.trend.windows(2).all(|w| w[1].1 < w[0].1),
+            "{:?}",
+            ei.trend
+        );
     }
     for (name, tol) in [("elastic-isoviscous", 0.03), ("elastic-piezoviscous", 0.06)] {
         let t = &check("H_pm", name).trend;
@@ -122,9 +129,9 @@ fn line_asymptotes_agree_with_the_limit_solves() {
     // The summary counts the checks within 1 %.
     assert!(
         md.contains(
-            "- H_pm: max error 0.46 % (target 2 %: met); held-out max 0.60 %, RMS 0.30 % (13 \
+            "- H_pm: max error 0.50 % (target 2 %: met); held-out max 1.01 %, RMS 0.39 % (15 \
              correction terms); Moes 1992 5.86 % (fit better); asymptotes within 1 % of the \
-             limit solves: 1 of 4 (rigid-isoviscous)."
+             limit solves: 3 of 4 (rigid-isoviscous, elastic-isoviscous, rigid-piezoviscous)."
         ),
         "{md}"
     );
@@ -140,7 +147,7 @@ fn empty_or_tiny_datasets_are_clear_errors() {
     input.line.truncate(5);
     let e = fit_report(&input, false).unwrap_err().to_string();
     assert!(e.contains("too few"), "{e}");
-    assert!(e.contains("line skipped: 5 cases, need at least 12"), "{e}");
+    assert!(e.contains("line skipped: 5 cases, need at least 10"), "{e}");
     // A dataset whose rows mostly lack the film at the pressure maximum (older datasets): H_c
     // and H_min are fitted, H_pm is not, and the report says why.
     let mut input = load_fit_input(&[data()]).unwrap();
@@ -151,7 +158,7 @@ fn empty_or_tiny_datasets_are_clear_errors() {
     assert!(r.h_c.is_some() && r.h_min.is_some() && r.h_pm.is_none());
     assert_eq!(
         r.skipped_films,
-        ["H_pm: 5 of 32 cases carry it, need at least 12"]
+        ["H_pm: 5 of 32 cases carry it, need at least 10"]
     );
     assert_eq!(
         r.published.len(),
@@ -206,21 +213,21 @@ fn fit_command_writes_report_json_and_charts() {
         );
     }
     // The summary states each film's target and held-out errors: with the interior correction
-    // H_c and H_pm meet 2 % on this dataset (the blend alone: 2.37 % and 1.60 %), held out 1.88 %
-    // and 0.60 %.
+    // H_c and H_pm meet 2 % on this dataset (the blend alone: 2.37 % and 1.60 %), held out 2.26 %
+    // and 1.01 %.
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(
         md.contains(
-            "- H_pm: max error 0.46 % (target 2 %: met); held-out max 0.60 %, RMS 0.30 % (13 \
+            "- H_pm: max error 0.50 % (target 2 %: met); held-out max 1.01 %, RMS 0.39 % (15 \
              correction terms); Moes 1992 5.86 % (fit better)."
         ),
         "{md}"
     );
-    assert!(md.contains("- H_c: max error 0.77 % (target 2 %: met); held-out max 1.88 %"));
+    assert!(md.contains("- H_c: max error 0.70 % (target 2 %: met); held-out max 2.26 %"));
     // Every formula on the same cases in one table: the fit in sample and held out, the published.
     assert!(
         md.contains(
-            "| ehlmap fit, held out | 1.88 % / 0.63 % | 0.60 % / 0.30 % | 0.74 % / 0.19 % |\n\
+            "| ehlmap fit, held out | 2.26 % / 0.66 % | 1.01 % / 0.39 % | 1.14 % / 0.31 % |\n\
              | Moes 1992 | 5.86 % / 2.75 % | 5.86 % / 2.54 % | - |\n\
              | Dowson-Toyoda 1979 (skipped: dataset has no G) | - | - | - |"
         ),
