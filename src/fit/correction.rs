@@ -109,10 +109,6 @@ fn bump(t: f64) -> f64 {
 }
 
 impl Term {
-    const fn new(transition: Transition, powers: [u8; 5]) -> Self {
-        Term { transition, powers }
-    }
-
     /// phi(z): 0 at L = 0 for the piezoviscous and outer terms.
     pub fn eval(&self, z: &Coordinates) -> f64 {
         let piezo = z.c > f64::NEG_INFINITY;
@@ -138,9 +134,16 @@ impl Term {
 
 use Transition::{Isoviscous as I, Outer as O, Piezoviscous as P, Tail as T};
 
+/// The terms of a (transition, powers) list, in its order.
+fn terms(list: &[(Transition, [u8; 5])]) -> Vec<Term> {
+    list.iter()
+        .map(|&(transition, powers)| Term { transition, powers })
+        .collect()
+}
+
 /// The line terms, in the order they are tried.
 pub fn line_terms() -> Vec<Term> {
-    [
+    terms(&[
         (O, [0, 0, 0, 0, 0]),
         (I, [0, 0, 0, 0, 0]),
         (P, [0, 0, 0, 0, 0]),
@@ -157,15 +160,12 @@ pub fn line_terms() -> Vec<Term> {
         (O, [1, 0, 1, 0, 0]),
         (I, [3, 0, 0, 0, 0]),
         (I, [1, 0, 0, 0, 1]),
-    ]
-    .into_iter()
-    .map(|(t, p)| Term::new(t, p))
-    .collect()
+    ])
 }
 
 /// The point terms (the line ones with ln D factors interleaved), in the order they are tried.
 pub fn point_terms() -> Vec<Term> {
-    [
+    terms(&[
         (O, [0, 0, 0, 0, 0]),
         (I, [0, 0, 0, 0, 0]),
         (P, [0, 0, 0, 0, 0]),
@@ -189,10 +189,7 @@ pub fn point_terms() -> Vec<Term> {
         (O, [0, 1, 0, 0, 0]),
         (P, [0, 1, 0, 1, 0]),
         (T, [0, 0, 0, 2, 0]),
-    ]
-    .into_iter()
-    .map(|(t, p)| Term::new(t, p))
-    .collect()
+    ])
 }
 
 /// A fitted correction: the terms kept and their coefficients (empty: no correction).
@@ -216,6 +213,11 @@ impl Correction {
             .zip(&self.coef)
             .map(|(t, c)| c * t.eval(&z))
             .sum()
+    }
+
+    /// The corrected film: `blend` (the blend's film at the case) times exp([`Self::log_factor`]).
+    pub fn apply(&self, blend: f64, asym: [f64; 4], d: f64) -> f64 {
+        blend * self.log_factor(asym, d).exp()
     }
 }
 

@@ -65,20 +65,11 @@ pub struct FittedModel {
 }
 
 impl FittedModel {
-    /// A formula without correction.
-    pub fn uncorrected(blend: Blend) -> Self {
-        FittedModel {
-            blend,
-            correction: Correction::default(),
-        }
-    }
-
     /// The fitted film H at (M, L, D) in Moes units; a line law ignores D.
     pub fn eval(&self, m: f64, l: f64, d: f64) -> f64 {
-        let log = self
-            .correction
-            .log_factor(self.blend.asymptotes(m, l, d), d);
-        self.blend.eval(m, l, d) * log.exp()
+        let b = &self.blend;
+        self.correction
+            .apply(b.eval(m, l, d), b.asymptotes(m, l, d), d)
     }
 }
 

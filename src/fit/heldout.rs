@@ -92,10 +92,9 @@ impl<Mo: FilmModel> FilmModel for Corrected<'_, Mo> {
         self.blend.x_mut()
     }
     fn film(&self, m: f64, l: f64, d: f64) -> f64 {
-        let log = self
-            .correction
-            .log_factor(self.blend.asymptotes(m, l, d), d);
-        self.blend.film(m, l, d) * log.exp()
+        let b = &self.blend;
+        self.correction
+            .apply(b.film(m, l, d), b.asymptotes(m, l, d), d)
     }
     fn asymptotes(&self, m: f64, l: f64, d: f64) -> [f64; 4] {
         self.blend.asymptotes(m, l, d)
@@ -232,10 +231,13 @@ pub fn select<Mo: FilmModel>(
             let Some((b, c)) = fitted else {
                 continue;
             };
+            let formula = Corrected {
+                blend: b,
+                correction: &c,
+            };
             for i in (0..data.len()).filter(|&i| fold[i] == f) {
                 let s = &data[i];
-                let log = c.log_factor(b.asymptotes(s.m, s.l, s.d), s.d);
-                row[i] = b.film(s.m, s.l, s.d) * log.exp() / s.h - 1.0;
+                row[i] = formula.film(s.m, s.l, s.d) / s.h - 1.0;
             }
         }
         row

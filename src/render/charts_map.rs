@@ -5,9 +5,8 @@
 //! Contours by marching squares on a 160 x 120 grid in (ln M, L), linear interpolation on cell
 //! edges (a saddle cell gives two segments).
 
-use crate::render::style::{e, log_grid, Ctx, Res};
+use crate::render::style::{case_map, e, log_grid, Ctx, MapChart, Res};
 use crate::report::Blend;
-use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -64,27 +63,11 @@ pub(crate) fn error_map<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, c: &C
         Blend::Line(_) => "line",
         Blend::Point(_) => "point, all D overlaid",
     };
-    let mut ch = ChartBuilder::on(root)
-        .caption(
-            format!(
-                "Fit error ({what}): red +, blue -, full colour = {:.2} %",
-                100.0 * emax
-            ),
-            ("sans-serif", 20),
-        )
-        .margin(12)
-        .x_label_area_size(40)
-        .y_label_area_size(48)
-        .build_cartesian_2d(
-            (m_lo * 0.8..m_hi * 1.25).log_scale(),
-            -0.05 * l_hi..1.05 * l_hi,
-        )
-        .map_err(e)?;
-    ch.configure_mesh()
-        .x_desc("M")
-        .y_desc("L")
-        .draw()
-        .map_err(e)?;
+    let caption = format!(
+        "Fit error ({what}): red +, blue -, full colour = {:.2} %",
+        100.0 * emax
+    );
+    let mut ch = case_map(root, &caption, 20, (m_lo, m_hi, l_hi))?;
     ch.draw_series(pts.iter().zip(&errs).map(|(p, &err)| {
         let t = (err.abs() / emax).clamp(0.0, 1.0);
         let col = if err >= 0.0 {
@@ -102,9 +85,6 @@ pub(crate) fn error_map<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, c: &C
 
 /// A regime boundary: its name, colour and the function whose zero contour it is.
 type Boundary<'a> = (&'static str, RGBColor, Box<dyn Fn(f64, f64) -> f64 + 'a>);
-
-/// The chart of the regime map: log M by linear L.
-type MapChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<LogCoord<f64>, RangedCoordf64>>;
 
 /// The sampling grid of the contours: 161 log-spaced M values by 121 L values from 0 to l_hi.
 struct Grid {

@@ -1,11 +1,13 @@
 //! The style and drawing helpers shared by the chart modules: the bundled DejaVu Sans font
 //! (registered once as "sans-serif" by [`ensure_font`], so nothing is needed from the system),
 //! PNG plus SVG output of one drawing (`both`), the error type of drawing (`Res`, `e`), what a
-//! fit chart draws (`Ctx`), the legend box (`series_legend`) and log-spaced sampling
-//! (`log_grid`); these are crate-private.
+//! fit chart draws (`Ctx`), the legend box (`series_legend`), the (log M, L) chart of data cases
+//! (`case_map`), distinct values (`distinct`) and log-spaced sampling (`log_grid`); these are
+//! crate-private.
 
 use crate::model::formulas::{moes_line_hc, nvm_point_hc};
 use crate::report::{Blend, FitPoint, FittedModel};
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
@@ -153,6 +155,35 @@ pub(crate) fn distinct(mut v: Vec<f64>) -> Vec<f64> {
     v.sort_by(f64::total_cmp);
     v.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * b.abs().max(1.0));
     v
+}
+
+/// A chart over log M by linear L.
+pub(crate) type MapChart<'a, DB> = ChartContext<'a, DB, Cartesian2d<LogCoord<f64>, RangedCoordf64>>;
+
+/// The chart of data cases over (log M, L) on `area`, padded around M in [m_lo, m_hi] and L in
+/// [0, l_hi], with its mesh labelled M and L drawn (the fit's error map and validity map).
+pub(crate) fn case_map<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    caption: &str,
+    font: u32,
+    (m_lo, m_hi, l_hi): (f64, f64, f64),
+) -> Result<MapChart<'a, DB>, RenderError> {
+    let mut ch = ChartBuilder::on(area)
+        .caption(caption, ("sans-serif", font))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(48)
+        .build_cartesian_2d(
+            (m_lo * 0.8..m_hi * 1.25).log_scale(),
+            -0.05 * l_hi..1.05 * l_hi,
+        )
+        .map_err(e)?;
+    ch.configure_mesh()
+        .x_desc("M")
+        .y_desc("L")
+        .draw()
+        .map_err(e)?;
+    Ok(ch)
 }
 
 /// Log-spaced grid of n + 1 values from lo to hi.

@@ -4,7 +4,7 @@
 //! 1 % is where the map is green.
 
 use crate::fit::heldout::CaseError;
-use crate::render::style::{distinct, e, Res};
+use crate::render::style::{case_map, distinct, e, Res};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -54,21 +54,7 @@ pub(crate) fn validity_map<DB: DrawingBackend>(
         } else {
             String::new()
         };
-        let mut ch = ChartBuilder::on(area)
-            .caption(caption, ("sans-serif", 16))
-            .margin(10)
-            .x_label_area_size(36)
-            .y_label_area_size(44)
-            .build_cartesian_2d(
-                (m_lo * 0.8..m_hi * 1.25).log_scale(),
-                -0.05 * l_hi..1.05 * l_hi,
-            )
-            .map_err(e)?;
-        ch.configure_mesh()
-            .x_desc("M")
-            .y_desc("L")
-            .draw()
-            .map_err(e)?;
+        let mut ch = case_map(area, &caption, 16, (m_lo, m_hi, l_hi))?;
         let here: Vec<&CaseError> = cases
             .iter()
             .filter(|c| !point || (c.d - d).abs() <= 1e-9 * d)
