@@ -66,6 +66,7 @@ fn main() {
             keep_fields: false,
             rough: false,
             time_limit: None,
+            formula: None,
         };
         let (r, _) = ehlmap::cases::run(&spec, opts).expect("a valid case");
         r.numerical.expect("a numerical solve")

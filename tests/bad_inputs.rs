@@ -635,6 +635,39 @@ fn table() -> Vec<Bad> {
             "--out",
             "fit {data}/smoke-line --out {dir}/a-file --no-limit-solves",
         ),
+        input(
+            "--check: ",
+            "fit {data}/smoke-line --check {data}/smoke-line --out {dir}/fc --no-limit-solves",
+        ),
+        input(
+            "--check: ",
+            "fit {data}/smoke-line --check {dir}/nodir --out {dir}/fc",
+        ),
+        // ---- a formula as the model
+        input(
+            "cannot read it",
+            "solve --M 20 --formula {dir}/nodir/fit.json",
+        ),
+        input(
+            "not a fit report",
+            "solve --M 20 --formula {dir}/ok-spec.toml",
+        ),
+        input(
+            "--formula applies to the accuracy ladder",
+            "solve --M 20 --grid 257 --formula x",
+        ),
+        input(
+            "--formula and --full-model",
+            "solve --M 20 --full-model --formula x",
+        ),
+        input(
+            "not a fit report",
+            "case {dir}/ok-line.toml --formula {dir}/ok-spec.toml",
+        ),
+        input(
+            "not a fit report",
+            "sweep {dir}/ok-spec.toml --formula {dir}/ok-spec.toml",
+        ),
         // ---- bench and stability
         input("--repeats 0", "bench --quick --repeats 0 --out {dir}/bench"),
         input("--repeats", "bench --repeats -1 --out {dir}/bench"),

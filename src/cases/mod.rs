@@ -16,6 +16,7 @@ use crate::model::lubricant::Viscosity;
 use crate::model::roughness::Roughness;
 use crate::solve::solution::{with_error, Outputs, PointFields, Profile};
 use crate::solve::Status;
+use crate::strategy::formula::FormulaRef;
 use crate::strategy::solve_case::{solve as solve_case, solve_rough_beside, SolveParams};
 use serde::Serialize;
 
@@ -63,6 +64,8 @@ pub struct RunOptions {
     pub rough: bool,
     /// Seconds all solves together may take ([`SolveParams::time_limit`]; `None`: no limit).
     pub time_limit: Option<f64>,
+    /// A fitted film formula that may answer the case ([`SolveParams::formula`]).
+    pub formula: Option<FormulaRef>,
 }
 
 /// Validate a case file, derive its groups; with `solve`, also solve it numerically (keeping the
@@ -77,6 +80,7 @@ pub fn run(
         keep_fields,
         rough: with_rough,
         time_limit,
+        formula,
     } = opts;
     let d = spec.derive()?;
     let mut films = d.films.clone();
@@ -85,6 +89,7 @@ pub fn run(
         let params = SolveParams {
             grid: d.grid,
             keep_fields,
+            formula,
             ..SolveParams::default()
         }
         .time_limit(time_limit);
@@ -146,6 +151,7 @@ pub fn report(spec: &CaseSpec, solve: bool) -> Result<CaseReport, CaseError> {
         keep_fields: false,
         rough: true,
         time_limit: None,
+        formula: None,
     };
     run(spec, opts).map(|r| r.0)
 }

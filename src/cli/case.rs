@@ -5,7 +5,7 @@
 use crate::cli::error::{input, CliError};
 use crate::cli::limits::{check_memory, estimate, Solver};
 use crate::cli::output::{note, out, outln, prepare_dir, report_plot};
-use crate::cli::solve_args::time_limit_arg;
+use crate::cli::solve_args::{formula_arg, time_limit_arg};
 use ehlmap::strategy::solve_case::default_max_grid;
 use std::path::PathBuf;
 
@@ -30,6 +30,11 @@ pub struct CaseArgs {
     /// the reason says so. Default: no limit.
     #[arg(long, allow_hyphen_values = true)]
     pub time_limit: Option<f64>,
+    /// A fit report (fit.json, or its directory) whose formula answers the case without a
+    /// solve where its held-out error map is below half the accuracy target (not with a grid
+    /// in the case file).
+    #[arg(long)]
+    pub formula: Option<PathBuf>,
 }
 
 /// Run `ehlmap case`.
@@ -59,6 +64,21 @@ pub fn run_case(a: &CaseArgs) -> Result<(), CliError> {
         .time_limit
         .map(|t| time_limit_arg("--time-limit", t))
         .transpose()?;
+    let formula = a
+        .formula
+        .as_deref()
+        .map(|p| formula_arg("--formula", p))
+        .transpose()?;
+    if formula.is_some() && (a.no_solve || derived.grid.is_some()) {
+        return Err(input(format!(
+            "--formula answers a solve with an accuracy target: {}",
+            if a.no_solve {
+                "drop --no-solve".to_string()
+            } else {
+                format!("{path} names a grid (drop it to let the accuracy target pick)")
+            }
+        )));
+    }
     if let Some(dir) = &a.plot {
         prepare_dir("--plot", dir)?;
     }
@@ -67,6 +87,7 @@ pub fn run_case(a: &CaseArgs) -> Result<(), CliError> {
         keep_fields: a.plot.is_some(),
         rough: !a.smooth_only,
         time_limit,
+        formula,
     };
     let (r, fields) = ehlmap::cases::run(&spec, opts).map_err(|e| input(format!("{path}: {e}")))?;
     let plotted = match (&a.plot, &r.numerical) {

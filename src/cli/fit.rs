@@ -31,18 +31,30 @@ pub struct FitArgs {
     /// data's grid, at least 257^2: minutes for fine grids).
     #[arg(long)]
     pub no_limit_solves: bool,
+    /// A check dataset (repeatable): its cases are compared with the fitted formula, never
+    /// fitted (e.g. the midpoints between the data's cases, sweeps/nightly-*-mid.toml). A
+    /// formula answers a solve (--formula) only between data cases whose check cases it meets.
+    #[arg(long)]
+    pub check: Vec<PathBuf>,
 }
 
 /// Run `ehlmap fit`.
 pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
-    fit_datasets(&a.datasets, a.out.clone(), a.json, !a.no_limit_solves)
+    fit_datasets(
+        &a.datasets,
+        &a.check,
+        a.out.clone(),
+        a.json,
+        !a.no_limit_solves,
+    )
 }
 
 /// Fit the datasets and write the report, fit.json, formula.py and charts to `out` (default beside the
-/// first dataset); prints the report (or fit.json with `json`). Also the second step of
-/// `ehlmap sweep --fit`.
+/// first dataset), with the `check` datasets as the check set; prints the report (or fit.json
+/// with `json`). Also the second step of `ehlmap sweep --fit`.
 pub fn fit_datasets(
     datasets: &[PathBuf],
+    check: &[PathBuf],
     out: Option<PathBuf>,
     json: bool,
     limit_solves: bool,
@@ -55,7 +67,13 @@ pub fn fit_datasets(
             d.display()
         )));
     }
-    let data = load_fit_input(datasets).map_err(|e| input(e.to_string()))?;
+    let mut data = load_fit_input(datasets).map_err(|e| input(e.to_string()))?;
+    if !check.is_empty() {
+        let c = load_fit_input(check).map_err(|e| input(format!("--check: {e}")))?;
+        data = data
+            .with_check(c)
+            .map_err(|e| input(format!("--check: {e}")))?;
+    }
     // The report's directory before the fit (its limit solves can take minutes).
     prepare_dir("--out", &out)?;
     let cases = data.line.len() + data.point.len();

@@ -11,11 +11,14 @@ use ehlmap::model::case::{Case, Contact, Elasticity, LineCase, Models, ParamErro
 use ehlmap::model::error::num;
 use ehlmap::model::lubricant::{Density, Viscosity};
 use ehlmap::model::roughness::Roughness;
+use ehlmap::report::surrogate::FittedFormula;
+use ehlmap::report::FitReport;
 use ehlmap::solve::params::Method;
 use ehlmap::solve::params::{Converge, CycleType};
 use ehlmap::solve::{CycleEvent, Observer};
+use ehlmap::strategy::formula::FormulaRef;
 use ehlmap::strategy::solve_case::{SolveParams, DEFAULT_ACCURACY};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
 pub enum ContactArg {
@@ -183,6 +186,11 @@ pub struct SolveArgs {
     /// so. Default: no limit.
     #[arg(long, allow_hyphen_values = true)]
     pub time_limit: Option<f64>,
+    /// A fit report (its fit.json, or the report directory) whose formula answers the case
+    /// without a solve where its held-out error map is below half the accuracy target
+    /// (model_used "formula"); else the case is solved and the reason says why not.
+    #[arg(long)]
+    pub formula: Option<PathBuf>,
     /// Print every multigrid cycle (level, cycle, residual, load error, H_c, work units) to
     /// stderr; --method multigrid only.
     #[arg(long)]
@@ -276,6 +284,7 @@ pub(crate) fn check_flags(a: &SolveArgs) -> Result<(), CliError> {
             (a.accuracy.is_some(), "--accuracy"),
             (a.full_model, "--full-model"),
             (a.max_grid.is_some(), "--max-grid"),
+            (a.formula.is_some(), "--formula"),
         ] {
             if given {
                 return Err(input(format!(
@@ -287,6 +296,11 @@ pub(crate) fn check_flags(a: &SolveArgs) -> Result<(), CliError> {
     } else if a.no_estimate {
         return Err(input(
             "--no-estimate applies with --grid only (the accuracy ladder always estimates its error)",
+        ));
+    }
+    if a.full_model && a.formula.is_some() {
+        return Err(input(
+            "--formula and --full-model exclude each other (the full model is always solved)",
         ));
     }
     if let Some(n) = a.max_cycles {
@@ -503,6 +517,27 @@ pub(crate) fn time_limit_arg(flag: &str, t: f64) -> Result<f64, CliError> {
     }
 }
 
+/// The formula of the fit report at `path` (`fit.json`, or a report directory holding one),
+/// kept for the rest of the run; bad input names `flag`.
+pub(crate) fn formula_arg(flag: &str, path: &Path) -> Result<FormulaRef, CliError> {
+    let file = if path.is_dir() {
+        path.join("fit.json")
+    } else {
+        path.to_path_buf()
+    };
+    let shown = file.display().to_string();
+    let text = std::fs::read_to_string(&file)
+        .map_err(|e| input(format!("{flag} {shown}: cannot read it: {e}")))?;
+    let report: FitReport = serde_json::from_str(&text).map_err(|e| {
+        input(format!(
+            "{flag} {shown}: not a fit report (fit.json of `ehlmap fit`): {e}"
+        ))
+    })?;
+    let formula =
+        FittedFormula::from_report(&report, &shown).map_err(|e| input(format!("{flag} {e}")))?;
+    Ok(FormulaRef::leak(formula))
+}
+
 /// A valid --max-grid for the contact (with --accuracy).
 fn max_grid_arg(g: usize, contact: Contact) -> Result<usize, CliError> {
     let ((lo, hi), what) = match contact {
@@ -565,6 +600,11 @@ pub(crate) fn params_arg(a: &SolveArgs, case: &Case) -> Result<SolveParams, CliE
             far_field: !a.truncated_domain,
             ..PointDomainParams::default()
         },
+        formula: a
+            .formula
+            .as_deref()
+            .map(|p| formula_arg("--formula", p))
+            .transpose()?,
         ..SolveParams::default()
     }
     .time_limit(time_limit))

@@ -20,7 +20,7 @@
 use crate::cli::error::{input, io, CliError};
 use crate::cli::limits::{check_memory, estimate, human, Solver};
 use crate::cli::output::{note, out, write_stderr};
-use crate::cli::solve_args::time_limit_arg;
+use crate::cli::solve_args::{formula_arg, time_limit_arg};
 use clap::ValueEnum;
 use ehlmap::store::results;
 use ehlmap::sweep::executor::{self, Progress, RunOptions};
@@ -64,6 +64,11 @@ pub struct SweepArgs {
     /// the same without one), so a resumed run may change it.
     #[arg(long, allow_hyphen_values = true)]
     pub case_time_limit: Option<f64>,
+    /// A fit report (fit.json, or its directory) whose formula answers the cases with an
+    /// accuracy target where its held-out error map is below half the target (rows with
+    /// model_used "formula"); the others are solved. Not a setting of the dataset.
+    #[arg(long)]
+    pub formula: Option<PathBuf>,
     /// Print the planned cases and exit without solving.
     #[arg(long)]
     pub dry_run: bool,
@@ -132,6 +137,18 @@ pub fn run_sweep(args: &SweepArgs) -> Result<(), CliError> {
         .case_time_limit
         .map(|t| time_limit_arg("--case-time-limit", t))
         .transpose()?;
+    let formula = args
+        .formula
+        .as_deref()
+        .map(|p| formula_arg("--formula", p))
+        .transpose()?;
+    if formula.is_some() && cases.iter().all(|c| c.numerics.accuracy.is_none()) {
+        return Err(input(format!(
+            "--formula answers cases with an accuracy target, and {} names a grid for every \
+             case (drop `grid` or set `accuracy` in its [numerics])",
+            args.spec.display()
+        )));
+    }
     let (base, flag) = match &args.out {
         Some(o) => (o.clone(), "--out"),
         None => (spec.output.dir.clone(), "the spec's output.dir"),
@@ -196,12 +213,13 @@ pub fn run_sweep(args: &SweepArgs) -> Result<(), CliError> {
         },
         new_dataset: args.new_dataset,
         case_time_limit,
+        formula,
     };
     match executor::execute(&spec, &cases, &opts) {
         Ok(r) => {
             report_run(&spec.name, &r);
             if args.fit {
-                return crate::cli::fit::fit_datasets(&[dataset], None, false, true);
+                return crate::cli::fit::fit_datasets(&[dataset], &[], None, false, true);
             }
             Ok(())
         }

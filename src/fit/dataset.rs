@@ -17,12 +17,16 @@
 //! point sweep at 257^2 the fit's max error was then 3.8 %, at M = 7.2, L = 5, D = 1, with the
 //! fit above the data; with this filter 1.8 %.) The film at the pressure maximum (`H_c_pmax`,
 //! fitted as H_pm) has no error estimate of its own: it needs both H_c's and H_min's.
+//! Rows answered by a fitted formula (`model_used = "formula"`) are left out (listed). The model
+//! families of the rows used are recorded per contact (a formula answers only its own family).
 //! The datasets carry no G column, so `FitPoint::g` is None (formulas that need G are skipped by
 //! the report).
 
 use crate::discrete::point::domain::{PointDomain, PointDomainParams};
 use crate::fit::error::FitError;
-use crate::model::case::{Contact, PointCase};
+#[cfg(doc)]
+use crate::model::case::Models;
+use crate::model::case::{family, Contact, PointCase};
 use crate::solve::film::Film;
 use crate::solve::solution::ModelUsed;
 use crate::store::results::{read_dataset, read_part, CaseRow, RowStatus};
@@ -80,6 +84,16 @@ impl FitPoint {
         }
     }
 
+    /// The relative error estimate of `film` at this case: H_c's, H_min's, and for H_pm the
+    /// larger of the two (None where a film has none).
+    pub fn estimate(&self, film: Film) -> Option<f64> {
+        match film {
+            Film::Centre => self.h_c_err,
+            Film::PressureMax => self.h_c_err.zip(self.h_min_err).map(|(a, b)| a.max(b)),
+            Film::Minimum => self.h_min_err,
+        }
+    }
+
     /// D, or 1 for a line contact.
     pub(crate) fn dd(&self) -> f64 {
         self.d.unwrap_or(1.0)
@@ -106,6 +120,47 @@ pub struct FitInput {
     /// Rows used for one film only (the other film's error estimate is above the threshold).
     #[serde(default)]
     pub one_film: Vec<String>,
+    /// The model families ([`Models::family`]) of the line cases used, sorted, distinct.
+    #[serde(default)]
+    pub line_families: Vec<String>,
+    /// The same for the point cases.
+    #[serde(default)]
+    pub point_families: Vec<String>,
+    /// Line cases of the check set: evaluated against the formula, never fitted
+    /// ([`FitInput::with_check`]).
+    #[serde(default)]
+    pub check_line: Vec<FitPoint>,
+    /// Point cases of the check set.
+    #[serde(default)]
+    pub check_point: Vec<FitPoint>,
+}
+
+impl FitInput {
+    /// This input with the check set `check` (read like the data; its cases are only compared
+    /// with the fitted formula). A check case that is also a data case (equal M, L, D) is an
+    /// error: it would not check anything.
+    pub fn with_check(mut self, check: FitInput) -> Result<FitInput, FitError> {
+        let key = |p: &FitPoint| (p.m.to_bits(), p.l.to_bits(), p.dd().to_bits());
+        let data: std::collections::BTreeSet<_> =
+            self.line.iter().chain(&self.point).map(key).collect();
+        if let Some(p) = check
+            .line
+            .iter()
+            .chain(&check.point)
+            .find(|p| data.contains(&key(p)))
+        {
+            return Err(FitError::Dataset(format!(
+                "{}: the check case M = {}, L = {}{} is also a data case",
+                check.datasets.join(", "),
+                p.m,
+                p.l,
+                p.d.map_or(String::new(), |d| format!(", D = {d}"))
+            )));
+        }
+        self.check_line = check.line;
+        self.check_point = check.point;
+        Ok(self)
+    }
 }
 
 /// Load the fit input from one or more dataset directories (module doc: which rows are kept,
@@ -145,6 +200,14 @@ pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, FitError> {
             // The formula is the smooth-surface film: rough rows are the mixed map's.
             input.excluded.push(format!(
                 "{}: rough surfaces (sigma = {sigma}): see ehlmap mixed",
+                row.case_id
+            ));
+            continue;
+        }
+        if row.model_used == ModelUsed::Formula {
+            // A formula's answer is no datum for a formula.
+            input.excluded.push(format!(
+                "{}: answered by a fitted formula, not solved",
                 row.case_id
             ));
             continue;
@@ -201,12 +264,23 @@ pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, FitError> {
                 100.0 * MAX_ERROR_ESTIMATE
             ));
         }
+        let family = || family(row.elasticity, &row.viscosity, &row.density);
         match (row.contact, point) {
-            (Contact::Line, Some(p)) => input.line.push(p),
-            (Contact::Point, Some(p)) if p.d.is_some() => input.point.push(p),
+            (Contact::Line, Some(p)) => {
+                input.line.push(p);
+                input.line_families.push(family());
+            }
+            (Contact::Point, Some(p)) if p.d.is_some() => {
+                input.point.push(p);
+                input.point_families.push(family());
+            }
             (Contact::Point, _) => input.failed_point += 1,
             (Contact::Line, None) => input.failed_line += 1,
         }
+    }
+    for f in [&mut input.line_families, &mut input.point_families] {
+        f.sort();
+        f.dedup();
     }
     Ok(input)
 }

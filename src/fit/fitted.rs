@@ -2,7 +2,7 @@
 //! its error statistics against the data.
 
 use crate::fit::correction::Correction;
-use crate::fit::heldout::HeldOut;
+use crate::fit::heldout::{CaseError, HeldOut};
 use crate::fit::model::LineModel;
 use crate::fit::point_model::PointModel;
 use crate::fit::stats::{ErrStats, RegionStats, TargetRange};
@@ -21,6 +21,7 @@ pub struct Param {
     pub value: f64,
     /// One-sigma uncertainty from the least-squares covariance (0: held in the final fit; NaN:
     /// not identified, J^T J singular).
+    #[serde(deserialize_with = "crate::fit::stats::null_as_nan")]
     pub sigma: f64,
 }
 
@@ -105,4 +106,8 @@ pub struct QuantityFit {
     /// chosen (None: not enough cases, or a fold's blend fit failed).
     #[serde(default)]
     pub heldout: Option<HeldOut>,
+    /// The formula's errors on the check set: cases of separate datasets (`ehlmap fit --check`,
+    /// e.g. the midpoints between the data), never fitted; with the data's error estimates.
+    #[serde(default)]
+    pub check: Vec<CaseError>,
 }

@@ -52,8 +52,15 @@ pub struct CaseError {
     pub l: f64,
     /// D (1 for a line contact).
     pub d: f64,
+    /// The data's film at this case (None in fit reports before it was recorded).
+    #[serde(default)]
+    pub h: Option<f64>,
     /// formula / data - 1, the formula fitted without this case's fold.
     pub error: f64,
+    /// The data's own relative error estimate of this film (None: not estimated); the caller
+    /// fills it ([`HeldOut::with_estimates`]).
+    #[serde(default)]
+    pub estimate: Option<f64>,
 }
 
 /// The cross-validation of one film's formula.
@@ -74,6 +81,17 @@ pub struct HeldOut {
     /// Each case's held-out error at the size kept, in the data's order (the validity map).
     #[serde(default)]
     pub cases: Vec<CaseError>,
+}
+
+impl HeldOut {
+    /// These held-out errors with each case's data error estimate (`estimates` in the data's
+    /// order, as the samples were given to [`select`]).
+    pub fn with_estimates(mut self, estimates: &[Option<f64>]) -> Self {
+        for (c, e) in self.cases.iter_mut().zip(estimates) {
+            c.estimate = *e;
+        }
+        self
+    }
 }
 
 /// A blend under a fixed correction, as the least-squares fit sees it: its parameters are the
@@ -272,7 +290,9 @@ pub fn select<Mo: FilmModel>(
             m: s.m,
             l: s.l,
             d: s.d,
+            h: Some(s.h),
             error,
+            estimate: None,
         })
         .collect();
     Some(HeldOut {

@@ -4,6 +4,12 @@
 
 use serde::{Deserialize, Serialize};
 
+/// Reads a number written by serde_json, where NaN is written as null: null reads as NaN (so
+/// that fit.json reads back, [`ErrStats`] of a per-D table and unidentified sigmas included).
+pub fn null_as_nan<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
+}
+
 /// Error statistics of formula/data - 1 over a set of points.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ErrStats {
@@ -16,8 +22,10 @@ pub struct ErrStats {
     /// Mean of the signed relative errors (positive: the formula is above the data on average).
     pub mean: f64,
     /// Where the largest error is: its M (NaN in a per-D table, [`d_table`]).
+    #[serde(deserialize_with = "null_as_nan")]
     pub worst_m: f64,
     /// Where the largest error is: its L (its D in a per-D table, [`d_table`]).
+    #[serde(deserialize_with = "null_as_nan")]
     pub worst_l: f64,
 }
 

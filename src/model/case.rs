@@ -78,6 +78,24 @@ pub struct Models {
     pub roughness: Option<Roughness>,
 }
 
+impl Models {
+    /// The family name of these models: "elastic barus incompressible" (elasticity, viscosity
+    /// and density names), with " rough" for rough surfaces. Cases of one family and equal
+    /// (M, L, D) have equal films when the family is `Models::default()`'s.
+    pub fn family(&self) -> String {
+        let f = family(self.elasticity, self.viscosity.name(), self.density.name());
+        match self.roughness.filter(|r| r.is_rough()) {
+            Some(_) => f + " rough",
+            None => f,
+        }
+    }
+}
+
+/// The family name from the stored names (see [`Models::family`]).
+pub fn family(elasticity: Elasticity, viscosity: &str, density: &str) -> String {
+    format!("{elasticity} {viscosity} {density}")
+}
+
 pub(crate) use crate::model::error::check;
 pub use crate::model::error::ParamError;
 

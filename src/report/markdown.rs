@@ -132,6 +132,21 @@ fn heldout(md: &mut String, q: &QuantityFit) {
             );
         }
     }
+    if !q.check.is_empty() {
+        let n = q.check.len();
+        let max =
+            q.check
+                .iter()
+                .map(|c| c.error)
+                .fold(0.0f64, |a, e| if e.abs() > a.abs() { e } else { a });
+        let rms = (q.check.iter().map(|c| c.error * c.error).sum::<f64>() / n as f64).sqrt();
+        let _ = writeln!(
+            md,
+            "Check set ({n} cases of separate datasets, never fitted): max {}, RMS {:.2} %.\n",
+            pct(max),
+            100.0 * rms
+        );
+    }
     if !c.terms.is_empty() {
         let _ = writeln!(md, "| correction term phi_k | c_k |\n|---|---|");
         for (t, k) in c.terms.iter().zip(&c.coef) {

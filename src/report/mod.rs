@@ -21,12 +21,13 @@ pub mod checks;
 pub mod formula_py;
 pub mod markdown;
 pub mod mixed;
+pub mod surrogate;
 
 use crate::fit::correction::{line_terms, point_terms, Correction, Term};
 pub use crate::fit::dataset::{FitInput, FitPoint};
 use crate::fit::error::FitError;
 pub use crate::fit::fitted::{Blend, FittedModel, Param, QuantityFit};
-use crate::fit::heldout::{joint, select, HeldOut, Refit};
+use crate::fit::heldout::{joint, select, CaseError, HeldOut, Refit};
 use crate::fit::lsq::{fit, LsqFit, Sample};
 use crate::fit::model::{FilmModel, LineModel, PARAM_NAMES};
 use crate::fit::point_model::{PointModel, POINT_PARAM_NAMES};
@@ -117,6 +118,10 @@ pub struct ContactReport {
     /// Films not fitted because too few cases carry them (H_pm of older datasets).
     #[serde(default)]
     pub skipped_films: Vec<String>,
+    /// The model families of the cases fitted ([`FitInput::line_families`]): a formula answers
+    /// cases of its one family only.
+    #[serde(default)]
+    pub families: Vec<String>,
     /// The contact's published formulas on the same cases (line: Moes 1992, Dowson-Toyoda 1979;
     /// point: NVM 1994, Hamrock-Dowson 1977).
     pub published: Vec<Published>,
@@ -245,6 +250,7 @@ fn quantity<Mo: FilmModel>(
         per_d: d_table(&dts),
         within_target: target_range(&tuples, MAX_ERROR_TARGET),
         heldout: correction.1,
+        check: vec![],
     }
 }
 
@@ -425,7 +431,13 @@ fn fit_films<Mo: FilmModel>(
             film: film.name(),
             source: Box::new(e),
         })?;
-        let correction = corrected(&data, &mut f, &start, r);
+        let (correction, heldout) = corrected(&data, &mut f, &start, r);
+        let estimates: Vec<Option<f64>> = pts
+            .iter()
+            .filter(|p| p.film(film).is_some())
+            .map(|p| p.estimate(film))
+            .collect();
+        let correction = (correction, heldout.map(|h| h.with_estimates(&estimates)));
         models.push((film, f.model.clone()));
         let q = Some(quantity(film, pts, f, correction, r.names, r.wrap));
         match film {
@@ -545,6 +557,31 @@ fn point_report(
     Ok(report)
 }
 
+/// Each fitted film's errors on the check cases that carry it ([`QuantityFit::check`]).
+fn add_checks(r: &mut ContactReport, checks: &[FitPoint]) {
+    for (film, q) in [
+        (Film::Centre, &mut r.h_c),
+        (Film::PressureMax, &mut r.h_pm),
+        (Film::Minimum, &mut r.h_min),
+    ] {
+        let Some(q) = q else { continue };
+        q.check = checks
+            .iter()
+            .filter_map(|p| {
+                let h = p.film(film)?;
+                Some(CaseError {
+                    m: p.m,
+                    l: p.l,
+                    d: p.dd(),
+                    h: Some(h),
+                    error: q.model.eval(p.m, p.l, p.dd()) / h - 1.0,
+                    estimate: p.estimate(film),
+                })
+            })
+            .collect();
+    }
+}
+
 /// Fit, compare and check each contact present. `limit_solves` runs the solver's limit cases.
 /// Errors: no converged case at all, or no contact with enough cases (the message names each).
 pub fn fit_report(input: &FitInput, limit_solves: bool) -> Result<FitReport, FitError> {
@@ -555,8 +592,12 @@ pub fn fit_report(input: &FitInput, limit_solves: bool) -> Result<FitReport, Fit
             excluded: input.excluded.len(),
         });
     }
-    let line = line_report(&input.line, input.failed_line, limit_solves)?;
-    let point = point_report(&input.point, input.failed_point, limit_solves)?;
+    let mut line = line_report(&input.line, input.failed_line, limit_solves)?;
+    let mut point = point_report(&input.point, input.failed_point, limit_solves)?;
+    line.families = input.line_families.clone();
+    point.families = input.point_families.clone();
+    add_checks(&mut line, &input.check_line);
+    add_checks(&mut point, &input.check_point);
     if line.h_c.is_none() && point.h_c.is_none() {
         let why = |c: &ContactReport| c.skipped.clone().unwrap_or_default();
         return Err(FitError::TooFewCases {

@@ -20,6 +20,9 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum ModelUsed {
+    /// A film formula fitted to solver data, where its held-out error map allows
+    /// ([`crate::strategy::formula`]).
+    Formula,
     /// Martin's closed form (rigid isoviscous line contact).
     ClosedForm,
     /// A rigid isoviscous solve.
@@ -37,7 +40,8 @@ pub enum ModelUsed {
 
 impl ModelUsed {
     /// Every model, cheapest first.
-    pub const ALL: [ModelUsed; 6] = [
+    pub const ALL: [ModelUsed; 7] = [
+        ModelUsed::Formula,
         ModelUsed::ClosedForm,
         ModelUsed::RigidIsoviscous,
         ModelUsed::Rigid,
@@ -49,6 +53,7 @@ impl ModelUsed {
     /// The name stored in JSON and Parquet.
     pub fn as_str(&self) -> &'static str {
         match self {
+            ModelUsed::Formula => "formula",
             ModelUsed::ClosedForm => "closed-form",
             ModelUsed::RigidIsoviscous => "rigid-isoviscous",
             ModelUsed::Rigid => "rigid",
@@ -74,7 +79,7 @@ impl std::str::FromStr for ModelUsed {
             .ok_or_else(|| ParamError::Unknown {
                 what: "model",
                 name: s.to_string(),
-                expected: "closed-form, rigid-isoviscous, rigid, isoviscous, slender-line or full",
+                expected: "formula, closed-form, rigid-isoviscous, rigid, isoviscous, slender-line or full",
             })
     }
 }

@@ -4,7 +4,8 @@
 //! Contract: by default (`accuracy = Some(`[`DEFAULT_ACCURACY`]`)`, no `grid`) the multigrid
 //! solve refines the grid until the Richardson estimate of H_c and H_min meets the target (up to
 //! `max_grid`), and unless `full_model` is set the cheapest verified model answers
-//! ([`crate::strategy::select`]). With a fixed `grid` (or no target, or a baseline method) the
+//! ([`crate::strategy::select`]); a `formula` given answers first where it may
+//! ([`crate::strategy::formula`]). With a fixed `grid` (or no target, or a baseline method) the
 //! case is solved on that grid (or the contact's default) by the chosen method and, with
 //! `estimate` (the default), once more on the half grid for the Richardson estimate
 //! ([`crate::strategy::accuracy::add_half_grid_estimate`]). The fallback ladder runs when
@@ -27,6 +28,7 @@ use crate::strategy::accuracy::{
     add_half_grid_estimate, point_truncation, solve_line_to_accuracy, solve_point_to_accuracy,
     ESTIMATE_ORDER, POINT_ESTIMATE_ORDER,
 };
+use crate::strategy::formula::{formula_answer, FormulaRef};
 use crate::strategy::select::{solve_line_selected, solve_point_selected};
 
 /// The default target relative accuracy of H_c and H_min.
@@ -89,6 +91,9 @@ pub struct SolveParams {
     /// reason naming the time limit. `None` (default): no limit. See
     /// [`SolveParams::time_limit`].
     pub deadline: Option<std::time::Instant>,
+    /// With `accuracy` and without `full_model`: a fitted film formula that answers the case
+    /// where its held-out error map allows ([`crate::strategy::formula`]). `None` (default): none.
+    pub formula: Option<FormulaRef>,
 }
 
 impl Default for SolveParams {
@@ -113,6 +118,7 @@ impl Default for SolveParams {
             line_domain: line.mg.domain,
             point_domain: PointSolveParams::default().mg.domain,
             deadline: None,
+            formula: None,
         }
     }
 }
@@ -213,8 +219,28 @@ pub fn smooth_twin(case: &Case) -> Option<Case> {
     Some(case.with_roughness(None))
 }
 
-/// [`solve`] of the case's own surfaces, smooth or rough.
+/// [`solve`] of the case's own surfaces, smooth or rough: by the formula where it answers, else
+/// by a solve whose reason says why the formula did not answer.
 fn solve_surfaces(case: &Case, params: &SolveParams) -> Solution {
+    let ladder = params.method == Method::Multigrid && params.grid.is_none();
+    let target = params.accuracy.filter(|_| ladder && !params.full_model);
+    let Some((f, t)) = params.formula.zip(target) else {
+        return solve_models(case, params);
+    };
+    match formula_answer(case, f.0, t) {
+        Ok(s) => s,
+        Err(why) => {
+            let mut s = solve_models(case, params);
+            let note = format!("; formula not used: {why}");
+            s.outputs.reason.push_str(&note);
+            s.info.reason.push_str(&note);
+            s
+        }
+    }
+}
+
+/// [`solve_surfaces`] by a solve: the accuracy ladder with model selection, or a fixed grid.
+fn solve_models(case: &Case, params: &SolveParams) -> Solution {
     let max_grid = params.max_grid.unwrap_or(default_max_grid(case.contact()));
     let ladder = params.method == Method::Multigrid && params.grid.is_none();
     match (case, params.accuracy.filter(|_| ladder)) {

@@ -16,13 +16,14 @@
 use crate::solve::Status;
 use crate::store::error::StoreError;
 use crate::store::results::{self, CaseRow};
+use crate::strategy::formula::FormulaRef;
 use crate::sweep::dataset;
 use crate::sweep::lock::{self, DatasetLock, LockError, HEARTBEAT};
 use crate::sweep::plan::{Case, Shard};
 pub use crate::sweep::progress::Progress;
 use crate::sweep::progress::{note, Reporter};
-use crate::sweep::row::solve_guarded;
 pub use crate::sweep::row::{input_row, solve_case};
+use crate::sweep::row::{solve_guarded, CaseOptions};
 use crate::sweep::settings::Settings;
 use crate::sweep::spec::SweepSpec;
 use std::collections::HashSet;
@@ -96,6 +97,10 @@ pub struct RunOptions {
     /// with status max-iterations and a reason naming the limit (`None`: no limit). Not a
     /// setting of the dataset: a case that ends before its limit is the same without one.
     pub case_time_limit: Option<f64>,
+    /// A fitted film formula that answers the cases with an accuracy target where its held-out
+    /// error map allows ([`crate::strategy::formula`]; the rows say `model_used = "formula"`).
+    /// Not a setting of the dataset: every row names the model that answered it.
+    pub formula: Option<FormulaRef>,
 }
 
 /// What a run did.
@@ -293,8 +298,11 @@ pub fn execute(
     let failure = std::thread::scope(|ts| {
         let (stop, todo, pool) = (&stop, &todo, &pool);
         let sweep = spec.name.as_str();
-        let limit = opts.case_time_limit;
-        ts.spawn(move || solve_all(pool, threads, todo, sweep, limit, stop, tx));
+        let each = CaseOptions {
+            time_limit: opts.case_time_limit,
+            formula: opts.formula,
+        };
+        ts.spawn(move || solve_all(pool, threads, todo, sweep, each, stop, tx));
         let sink = Sink {
             report: &mut report,
             reporter: &mut reporter,
@@ -362,14 +370,13 @@ fn part_metadata(
 }
 
 /// Solve `todo` on `pool`: `threads` workers take the next case in order and send its row to
-/// `tx`, until no case is left, `stop` is set or the receiver is gone; each case at most
-/// `time_limit` seconds.
+/// `tx`, until no case is left, `stop` is set or the receiver is gone; each case with `each`.
 fn solve_all(
     pool: &rayon::ThreadPool,
     threads: usize,
     todo: &[&Case],
     sweep: &str,
-    time_limit: Option<f64>,
+    each: CaseOptions,
     stop: &AtomicBool,
     tx: mpsc::Sender<CaseRow>,
 ) {
@@ -384,7 +391,7 @@ fn solve_all(
                 }
                 let i = next.fetch_add(1, Ordering::Relaxed);
                 let Some(case) = todo.get(i) else { break };
-                if tx.send(solve_guarded(case, sweep, time_limit)).is_err() {
+                if tx.send(solve_guarded(case, sweep, each)).is_err() {
                     break;
                 }
             });

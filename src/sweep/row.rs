@@ -10,6 +10,7 @@ use crate::solve::solution::ModelUsed;
 use crate::solve::solution::{Outputs, Solution};
 use crate::solve::Status;
 use crate::store::results::{finite, CaseRow, RowStatus};
+use crate::strategy::formula::FormulaRef;
 use crate::strategy::solve_case::{estimate_fixed, solve, SolveParams};
 use crate::strategy::warm::warm_start_line;
 use crate::sweep::plan::Case;
@@ -88,6 +89,28 @@ pub fn solve_params(case: &Case, grid: usize) -> SolveParams {
 /// `ehlmap solve` reports); `work_units`, `wall_s` are the cost of every solve. All the solves
 /// of the case together take at most `time_limit` seconds ([`SolveParams::time_limit`]).
 pub fn solve_case(case: &Case, sweep: &str, time_limit: Option<f64>) -> CaseRow {
+    solve_case_with(
+        case,
+        sweep,
+        CaseOptions {
+            time_limit,
+            formula: None,
+        },
+    )
+}
+
+/// How each case of a run is solved besides its spec: run options, not dataset settings.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CaseOptions {
+    /// Seconds all the solves of a case may take ([`SolveParams::time_limit`]).
+    pub time_limit: Option<f64>,
+    /// A fitted formula that answers cases with an accuracy target where it may
+    /// ([`SolveParams::formula`]).
+    pub formula: Option<FormulaRef>,
+}
+
+/// [`solve_case`] with the run's [`CaseOptions`].
+pub fn solve_case_with(case: &Case, sweep: &str, opts: CaseOptions) -> CaseRow {
     let c = match case.case() {
         Ok(c) => c,
         Err(e) => return invalid_row(case, sweep, e),
@@ -97,9 +120,10 @@ pub fn solve_case(case: &Case, sweep: &str, time_limit: Option<f64>) -> CaseRow 
         grid: n.accuracy.is_none().then_some(n.grid),
         accuracy: n.accuracy,
         max_grid: Some(n.grid),
+        formula: opts.formula,
         ..solve_params(case, n.grid)
     }
-    .time_limit(time_limit);
+    .time_limit(opts.time_limit);
     let mut s = solve(&c, &params);
     // D and k are inputs (k from the exact Hertz ellipse, set by input_row); a solver that
     // reports them must agree.
@@ -154,8 +178,12 @@ fn fill_outputs(row: &mut CaseRow, o: &Outputs, attempt: usize, valid: &mut bool
     row.model_used = o.model_used;
     row.level = o.level.map(|l| l as i64);
     // A closed-form answer has no grid, pressure maximum or traction, a slender-line one no
-    // point film constant or traction: null, not invalid.
-    let partial = o.model_used == ModelUsed::ClosedForm || o.model_used == ModelUsed::SlenderLine;
+    // point film constant or traction, a formula answer none of these and no film position or
+    // load error: null, not invalid.
+    let partial = matches!(
+        o.model_used,
+        ModelUsed::ClosedForm | ModelUsed::SlenderLine | ModelUsed::Formula
+    );
     let opt = |v: f64, valid: &mut bool| {
         if partial && v.is_nan() {
             None
@@ -168,8 +196,8 @@ fn fill_outputs(row: &mut CaseRow, o: &Outputs, attempt: usize, valid: &mut bool
     row.h_c = finite(o.h_c, valid);
     row.h_c_pmax = finite(o.h_c_pmax, valid);
     row.h_min = finite(o.h_min, valid);
-    row.x_min = finite(o.x_min, valid);
-    row.y_min = o.y_min.and_then(|y| finite(y, valid));
+    row.x_min = opt(o.x_min, valid);
+    row.y_min = o.y_min.and_then(|y| opt(y, valid));
     row.p_max = opt(o.p_max, valid);
     if let Some(sp) = o.spike {
         row.spike_x = finite(sp.x, valid);
@@ -177,7 +205,7 @@ fn fill_outputs(row: &mut CaseRow, o: &Outputs, attempt: usize, valid: &mut bool
     }
     row.h0 = opt(o.h0, valid);
     row.f = opt(o.f, valid);
-    row.load_error = finite(o.load_error, valid);
+    row.load_error = opt(o.load_error, valid);
     row.status = o.status.into();
     row.reason = o.reason.clone();
     row.attempt = Some(attempt as i64);
@@ -210,8 +238,8 @@ fn build_row(case: &Case, sweep: &str, o: &Outputs, attempt: usize) -> CaseRow {
     row
 }
 
-pub(crate) fn solve_guarded(case: &Case, sweep: &str, time_limit: Option<f64>) -> CaseRow {
-    let solve = || solve_case(case, sweep, time_limit);
+pub(crate) fn solve_guarded(case: &Case, sweep: &str, opts: CaseOptions) -> CaseRow {
+    let solve = || solve_case_with(case, sweep, opts);
     match std::panic::catch_unwind(std::panic::AssertUnwindSafe(solve)) {
         Ok(r) => r,
         Err(p) => {
