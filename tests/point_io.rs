@@ -122,7 +122,7 @@ fn committed_point_specs_are_valid() {
     assert!(nightly.contacts[0].numerics.error_estimate);
     assert_eq!(nightly.m.len(), 8);
     assert_eq!((nightly.m[0], nightly.m[7]), (1.0, 1000.0));
-    assert_eq!(ehlmap::sweep::plan::plan(&nightly).unwrap().len(), 128);
+    assert_eq!(ehlmap::sweep::plan::plan(&nightly).unwrap().len(), 224);
     // The fit tests' dataset is the nightly sweep from M = 7.2 up.
     let data = spec::load(&root.join("tests/data/point-257.toml")).unwrap();
     assert_eq!(data.contacts[0].numerics.grid, 257);
