@@ -288,4 +288,10 @@ fn fit_json_reads_back_for_both_contacts() {
         assert!((a.eval(m, l, d) / b.eval(m, l, d) - 1.0).abs() < 1e-12);
     }
     FittedFormula::from_report(&back, "both").unwrap();
+    // With the asymptote checks (the rigid-piezoviscous row's M is infinite: null).
+    let r = fit_report(&load_fit_input(&[data().join("smoke-line")]).unwrap(), true).unwrap();
+    let json = serde_json::to_string(&r).unwrap();
+    let back: FitReport = serde_json::from_str(&json).unwrap();
+    assert_eq!(back.line.asymptotes.len(), r.line.asymptotes.len());
+    assert!(back.line.asymptotes.iter().any(|a| a.m.is_nan()));
 }

@@ -22,6 +22,7 @@ use crate::fit::dataset::FitPoint;
 use crate::fit::dataset::MAX_ERROR_ESTIMATE;
 use crate::fit::model::LineModel;
 use crate::fit::point_model::PointModel;
+use crate::fit::stats::null_as_nan;
 use crate::limits::rigid_point::{extrapolate, RigidPointSolves, DOMAIN_SCALES};
 use crate::limits::solves::{
     line_solve, point_alpha_bar_1, point_solve, LimitSolves, Solve, POINT_CHECK_GRID,
@@ -42,9 +43,12 @@ pub struct AsymptoteCheck {
     /// The fitted law as text, with its coefficients (e.g. "2.4475 M^-1 (exact, fixed)").
     pub law: String,
     /// M of the limit solve: 1 (rigid-isoviscous), the largest M of the data's cases at the
-    /// row's L (elastic rows), infinite (rigid-piezoviscous, the limit M -> infinity).
+    /// row's L (elastic rows), infinite (rigid-piezoviscous, the limit M -> infinity; null in
+    /// fit.json, read back as NaN).
+    #[serde(deserialize_with = "null_as_nan")]
     pub m: f64,
     /// L of the limit solve: 0 for the isoviscous rows, the largest L of the data otherwise.
+    #[serde(deserialize_with = "null_as_nan")]
     pub l: f64,
     /// Ellipticity D of the point checks; None for line contacts.
     pub d: Option<f64>,
@@ -58,6 +62,7 @@ pub struct AsymptoteCheck {
     pub solver: Option<f64>,
     /// The fitted asymptote at (M, L) (at M = 1 for the rigid-piezoviscous law, which does not
     /// depend on M).
+    #[serde(deserialize_with = "null_as_nan")]
     pub fitted: f64,
     /// solver / fitted asymptote (1 in the limit); None if the limit solve failed.
     pub ratio: Option<f64>,

@@ -34,7 +34,7 @@ use std::collections::BTreeMap;
 
 /// The bound of a film is this times its held-out map plus the data's estimate. Measured on
 /// points between the data and check cases (the quarter points of the nightly cells, neither
-/// data nor check cases; docs/validation.md): the true error reached 0.58 of the bound on 208
+/// data nor check cases; docs/validation.md): the true error reached 0.86 of the bound on 416
 /// line cases and 0.74 on 128 point cases; without the interpolant term of the map, the map plus
 /// the estimate alone was exceeded 1.9-fold.
 pub const MAP_SAFETY: f64 = 2.0;
@@ -131,7 +131,7 @@ impl FilmMap {
         if corners.len() > 1 && checked == 0 {
             return Err(format!(
                 "no check case between {} (fit with --check on a dataset of the cells' \
-                 midpoints, e.g. sweeps/nightly-line-mid.toml)",
+                 midpoints and centres, e.g. sweeps/nightly-line-mid.toml and -cells.toml)",
                 describe(corners, point)
             ));
         }
