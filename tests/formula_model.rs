@@ -240,6 +240,22 @@ fn a_sweep_with_a_formula_stores_its_rows_and_the_fit_leaves_them_out() {
             assert!(r.h_c.is_some_and(|h| h > 0.0) && r.error_estimate.is_some());
         }
     }
+    // `ehlmap solve --formula`: the readable answer has the films with their bounds and no NaN.
+    let o = Command::new(bin)
+        .args(["solve", "--M", &m.to_string(), "--L", &l.to_string()])
+        .args(["--accuracy", "0.2", "--formula", fit.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        text.contains("model          formula") && text.contains("answered by a fitted formula"),
+        "{text}"
+    );
+    assert!(
+        !text.contains("NaN") && text.contains("H_c            "),
+        "{text}"
+    );
     // A spec whose every case names a grid cannot use a formula: bad input.
     let fixed = dir.join("g.toml");
     std::fs::write(

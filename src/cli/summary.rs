@@ -39,6 +39,12 @@ pub fn summary(case: &Case, o: &Outputs, skipped_estimate: bool) -> String {
         Case::Point(_) => format!("{} x {} points", o.grid, o.grid),
         Case::Line(_) => format!("{} points", o.grid),
     };
+    let formula = o.model_used == ModelUsed::Formula;
+    let h_min_at = if formula {
+        "(position not given by a formula)".to_string()
+    } else {
+        h_min_at
+    };
     let rows = [
         ("status", format!("{}: {}", o.status, o.reason)),
         (
@@ -75,8 +81,16 @@ pub fn summary(case: &Case, o: &Outputs, skipped_estimate: bool) -> String {
         m.viscosity.name(),
         m.density.name()
     );
-    for (name, value) in rows {
+    // A formula answer has films only: its other rows would all be NaN.
+    let shown = if formula { &rows[..4] } else { &rows[..] };
+    for (name, value) in shown {
         out += &format!("{name:<15}{value}\n");
+    }
+    if formula {
+        out += &format!(
+            "{:<15}none: answered by a fitted formula, no pressure or grid ({:.1e} s)\n",
+            "solve", o.wall_s
+        );
     }
     if let Some(x) = &o.mixed {
         out += &mixed_lines(x);
