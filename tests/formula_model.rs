@@ -148,7 +148,7 @@ fn solve_answers_from_the_formula_where_it_may_and_says_why_not_elsewhere() {
     let a = f.films(&case).unwrap();
     let formula = Some(FormulaRef::leak(f));
     // A target the bound meets with room: the formula answers.
-    let t = (2.0 * a.heldout).max(a.h_c_err.max(a.h_min_err)) * 1.01;
+    let t = (2.0 * a.map).max(a.h_c_err.max(a.h_min_err)) * 1.01;
     let p = SolveParams {
         accuracy: Some(t),
         formula,
@@ -165,13 +165,13 @@ fn solve_answers_from_the_formula_where_it_may_and_says_why_not_elsewhere() {
     assert!(o.p_max.is_nan() && o.x_min.is_nan() && o.grid == 0);
     // A target tighter than twice the map: solved, and the reason says why not the formula.
     let p = SolveParams {
-        accuracy: Some(1.9 * a.heldout),
+        accuracy: Some(1.9 * a.map),
         ..p
     };
     let o = solve(&case, &p).outputs;
     assert_ne!(o.model_used, ModelUsed::Formula);
     assert!(
-        o.reason.contains("formula not used: held-out error"),
+        o.reason.contains("formula not used: error map"),
         "{}",
         o.reason
     );

@@ -14,7 +14,7 @@ use crate::model::dimensional::Derived;
 pub use crate::model::dimensional::Groups;
 use crate::model::lubricant::Viscosity;
 use crate::model::roughness::Roughness;
-use crate::solve::solution::{with_error, Outputs, PointFields, Profile};
+use crate::solve::solution::{with_error, ModelUsed, Outputs, PointFields, Profile};
 use crate::solve::Status;
 use crate::strategy::formula::FormulaRef;
 use crate::strategy::solve_case::{solve as solve_case, solve_rough_beside, SolveParams};
@@ -157,7 +157,8 @@ pub fn report(spec: &CaseSpec, solve: bool) -> Result<CaseReport, CaseError> {
 }
 
 /// Put a converged numerical answer at the head of the film comparison (a failure is still
-/// reported, but is no number to compare with); returns its p_max in Pa.
+/// reported, but is no number to compare with); returns its p_max in Pa (None for a formula's
+/// answer).
 fn add_numerical(
     films: &mut Vec<(String, String, f64)>,
     o: &Outputs,
@@ -167,12 +168,15 @@ fn add_numerical(
     if o.status != Status::Converged {
         return None;
     }
-    films.insert(
-        0,
-        ("ehlmap (numerical)".into(), "h_min".into(), to_h(o.h_min)),
-    );
-    films.insert(0, ("ehlmap (numerical)".into(), "h_c".into(), to_h(o.h_c)));
-    Some(o.p_max * p_h)
+    // A fitted formula's answer (no solve) is named as such, and has no pressure.
+    let name = if o.model_used == ModelUsed::Formula {
+        "ehlmap (fitted formula)"
+    } else {
+        "ehlmap (numerical)"
+    };
+    films.insert(0, (name.into(), "h_min".into(), to_h(o.h_min)));
+    films.insert(0, (name.into(), "h_c".into(), to_h(o.h_c)));
+    Some(o.p_max * p_h).filter(|p| p.is_finite())
 }
 
 /// Fills the film parameter and its reading from the first `h_min` of the films.

@@ -137,10 +137,27 @@ pub struct FitInput {
 
 impl FitInput {
     /// This input with the check set `check` (read like the data; its cases are only compared
-    /// with the fitted formula). A check case that is also a data case (equal M, L, D) is an
-    /// error: it would not check anything.
+    /// with the fitted formula; its rows left out are listed among `excluded`, marked "check
+    /// set"). Errors: a check case that is also a data case (equal contact, M, L, D: it would
+    /// not check anything), or a check set of other model families than the data's.
     pub fn with_check(mut self, check: FitInput) -> Result<FitInput, FitError> {
-        let key = |p: &FitPoint| (p.m.to_bits(), p.l.to_bits(), p.dd().to_bits());
+        for (contact, data, other) in [
+            ("line", &self.line_families, &check.line_families),
+            ("point", &self.point_families, &check.point_families),
+        ] {
+            if !other.is_empty() && !data.is_empty() && data != other {
+                return Err(FitError::Dataset(format!(
+                    "{}: the check set's {contact} cases are {} and the data's {}",
+                    check.datasets.join(", "),
+                    other.join(", "),
+                    data.join(", ")
+                )));
+            }
+        }
+        let key = |p: &FitPoint| {
+            let d = p.d.map(f64::to_bits);
+            (p.m.to_bits(), p.l.to_bits(), d)
+        };
         let data: std::collections::BTreeSet<_> =
             self.line.iter().chain(&self.point).map(key).collect();
         if let Some(p) = check
@@ -159,6 +176,14 @@ impl FitInput {
         }
         self.check_line = check.line;
         self.check_point = check.point;
+        let failed = check.failed_line + check.failed_point;
+        self.excluded.extend(
+            check
+                .excluded
+                .iter()
+                .map(|e| format!("check set: {e}"))
+                .chain((failed > 0).then(|| format!("check set: {failed} rows not converged"))),
+        );
         Ok(self)
     }
 }
@@ -311,4 +336,69 @@ fn domain_truncation(row: &CaseRow) -> f64 {
         ..PointDomainParams::default()
     };
     PointDomain::of_case(&case, &params).truncation_error()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn pt(m: f64, l: f64, d: Option<f64>) -> FitPoint {
+        FitPoint {
+            m,
+            l,
+            d,
+            h_c: 1.0,
+            h_min: 0.8,
+            g: None,
+            h_pm: None,
+            grid: None,
+            h_c_err: Some(1e-3),
+            h_min_err: Some(1e-3),
+        }
+    }
+
+    #[test]
+    fn a_check_set_must_be_new_cases_of_the_same_family() {
+        let family = vec!["elastic barus incompressible".to_string()];
+        let data = FitInput {
+            datasets: vec!["data".into()],
+            line: vec![pt(10.0, 2.0, None)],
+            point: vec![pt(20.0, 0.0, Some(1.0))],
+            line_families: family.clone(),
+            point_families: family.clone(),
+            ..FitInput::default()
+        };
+        // A line check case at the (M, L) of a point data case at D = 1 is a new case.
+        let check = FitInput {
+            datasets: vec!["check".into()],
+            line: vec![pt(20.0, 0.0, None)],
+            line_families: family.clone(),
+            excluded: vec!["x: error estimates above 2 %".into()],
+            failed_line: 2,
+            ..FitInput::default()
+        };
+        let both = data.clone().with_check(check.clone()).unwrap();
+        assert_eq!(both.check_line.len(), 1);
+        assert_eq!(
+            both.excluded,
+            [
+                "check set: x: error estimates above 2 %",
+                "check set: 2 rows not converged"
+            ]
+        );
+        // A data case again is no check.
+        let again = FitInput {
+            line: vec![pt(10.0, 2.0, None)],
+            ..check.clone()
+        };
+        let e = data.clone().with_check(again).unwrap_err().to_string();
+        assert!(e.contains("M = 10, L = 2 is also a data case"), "{e}");
+        // Another family is no check of this formula.
+        let other = FitInput {
+            line_families: vec!["elastic roelands incompressible".into()],
+            ..check
+        };
+        let e = data.with_check(other).unwrap_err().to_string();
+        assert!(e.contains("roelands"), "{e}");
+    }
 }

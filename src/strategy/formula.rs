@@ -1,19 +1,20 @@
 //! The fitted film formula as the cheapest candidate model: a case answered without a solve.
 //!
-//! Contract. A [`FilmFormula`] gives H_c, H_pm and H_min at a case together with its
-//! **held-out error map** there: the largest |held-out error| of the formula at the data cases
-//! around the case (each predicted by a fit that did not see it; [`crate::fit::heldout`]) and,
-//! per film, that error plus the data's own error estimate. It declines (with the reason) a case
-//! whose models differ from the data's, or that lies outside the data, or whose surrounding
-//! cases are not all in the map. With an accuracy target `t` the formula answers
-//! (`model_used = "formula"`) when its held-out map is below `CHECK_FRACTION t` (half the
-//! target, like the other candidates' measured effects, [`crate::strategy::select`]) and the
-//! error bounds of H_c and H_min are at most `t`; those bounds are the answer's `H_c_err`,
-//! `H_min_err` and `error_estimate`. Otherwise the case is solved as without a formula, and the
-//! reason says why the formula did not answer. Verification: where a candidate solve model is
-//! verified by a check-grid solve, the formula is verified by cross-validation (the held-out
-//! map); `tests/formula_model.rs` checks on cases between the data that the bound holds against
-//! fresh solves.
+//! Contract. A [`FilmFormula`] gives H_c, H_pm and H_min at a case together with its **error
+//! map** there (`crate::report::surrogate`: the largest |error| of H_c and H_min at the data cases
+//! around the case, each predicted by a fit that did not see it, at the check cases between them,
+//! which were never fitted, and of the formula against the data interpolated to the case) and,
+//! for H_c and H_min, a bound on the error (from the map and the data's own error estimates). It
+//! declines (with the reason) a case whose models differ from the data's, or that lies outside
+//! the data, or whose surrounding cases are not all in the map. With an accuracy target `t` the
+//! formula answers (`model_used = "formula"`) when its map is below `CHECK_FRACTION t` (half the
+//! target, like the other candidates' measured effects, [`crate::strategy::select`]) and both
+//! bounds are finite and at most `t`; they are the answer's `H_c_err`, `H_min_err` and
+//! `error_estimate` (H_pm, `H_c_pmax`, carries no bound, as from a solve). Otherwise the case is
+//! solved as without a formula, and the reason says why the formula did not answer.
+//! Verification: where a candidate solve model is verified by a check-grid solve, the formula is
+//! verified by its map; `tests/formula_model.rs` checks on cases between the data and check cases
+//! that the bound holds against fresh solves.
 //!
 //! A formula answer has no grid, no pressure and no film position: `P_max`, `X_min`, `H0`, `f`
 //! and `load_error` are NaN (null in Parquet, not invalid).
@@ -32,10 +33,11 @@ pub struct FormulaFilms {
     pub h_pm: f64,
     /// Minimum film.
     pub h_min: f64,
-    /// The held-out map at the case: the largest |relative error| of H_c and H_min at the
-    /// surrounding data cases (held out) and check cases (never fitted).
-    pub heldout: f64,
-    /// Relative error bound of H_c: from its held-out map (with a safety factor) and the data's
+    /// The error map at the case: the largest |relative error| of H_c and H_min at the
+    /// surrounding data cases (held out) and check cases (never fitted), and against the data
+    /// interpolated to the case.
+    pub map: f64,
+    /// Relative error bound of H_c: from its error map (with a safety factor) and the data's
     /// error estimate there.
     pub h_c_err: f64,
     /// Relative error bound of H_min, the same way.
@@ -44,7 +46,7 @@ pub struct FormulaFilms {
     pub support: String,
 }
 
-/// A film formula with its held-out error map (implemented by the fit report's formula,
+/// A film formula with its error map (implemented by the fit report's formula,
 /// `crate::report::surrogate`).
 pub trait FilmFormula: Send + Sync + std::fmt::Debug {
     /// The films at `case`, or why the formula does not know it.
@@ -80,19 +82,19 @@ pub fn formula_answer(
     let t0 = std::time::Instant::now();
     let f = formula.films(case)?;
     let limit = CHECK_FRACTION * target;
-    if f.heldout.is_nan() || f.heldout >= limit {
+    if !f.map.is_finite() || f.map >= limit {
         return Err(format!(
-            "held-out error {:.2} % at {} is not below half the target ({:.2} %)",
-            100.0 * f.heldout,
+            "error map {:.2} % at {} is not below half the target ({:.2} %)",
+            100.0 * f.map,
             f.support,
             100.0 * limit
         ));
     }
     let bound = f.h_c_err.max(f.h_min_err);
-    if bound.is_nan() || bound > target {
+    if !(f.h_c_err.is_finite() && f.h_min_err.is_finite()) || bound > target {
         return Err(format!(
-            "error bound {:.2} % (from the held-out error and the data's estimate) above the \
-             target {:.2} %",
+            "error bound {:.2} % (from the error map and the data's estimate) above the target \
+             {:.2} %",
             100.0 * bound,
             100.0 * target
         ));
@@ -102,10 +104,10 @@ pub fn formula_answer(
         return Err(format!("no positive finite film at the case: {films:?}"));
     }
     let reason = format!(
-        "model formula ({}): held-out error {:.2} % at {}; bounds H_c {:.2} %, H_min {:.2} % \
-         (from the held-out error and the data's estimate)",
+        "model formula ({}): error map {:.2} % at {}; bounds H_c {:.2} %, H_min {:.2} % (from \
+         the error map and the data's estimate)",
         formula.source(),
-        100.0 * f.heldout,
+        100.0 * f.map,
         f.support,
         100.0 * f.h_c_err,
         100.0 * f.h_min_err
@@ -178,7 +180,7 @@ mod tests {
                 h_c: 0.1,
                 h_pm: 0.11,
                 h_min: 0.07,
-                heldout: self.0,
+                map: self.0,
                 h_c_err: self.0 + self.1,
                 h_min_err: self.0 + self.1,
                 support: "4 cases".into(),
@@ -204,7 +206,8 @@ mod tests {
         // Held-out 0.4 % but the data's estimate 0.7 %: the bound 1.1 % misses the target.
         let e = formula_answer(&case, &Fixed(0.004, 0.007), 0.01).unwrap_err();
         assert!(e.contains("above the target"), "{e}");
-        // NaN never answers.
+        // A NaN map or bound never answers.
         assert!(formula_answer(&case, &Fixed(f64::NAN, 0.0), 0.01).is_err());
+        assert!(formula_answer(&case, &Fixed(0.001, f64::NAN), 0.01).is_err());
     }
 }

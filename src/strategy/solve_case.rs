@@ -183,6 +183,7 @@ pub fn solve(case: &Case, params: &SolveParams) -> Solution {
     };
     // Rough surfaces: the full model (no simplified model knows the roughness), and the same
     // case with smooth surfaces beside it.
+    let formula = params.formula.is_some() && params.accuracy.is_some();
     let params = &SolveParams {
         full_model: true,
         ..*params
@@ -194,7 +195,13 @@ pub fn solve(case: &Case, params: &SolveParams) -> Solution {
             ..*params
         },
     );
-    solve_rough_beside(case, params, &smooth.outputs)
+    let mut s = solve_rough_beside(case, params, &smooth.outputs);
+    if formula {
+        let note = "; formula not used: rough surfaces (the formula is the smooth film)";
+        s.outputs.reason.push_str(note);
+        s.info.reason.push_str(note);
+    }
+    s
 }
 
 /// Solve a case with rough surfaces by the full model, its mixed outputs carrying the films of

@@ -196,8 +196,17 @@ fn fill_outputs(row: &mut CaseRow, o: &Outputs, attempt: usize, valid: &mut bool
     row.h_c = finite(o.h_c, valid);
     row.h_c_pmax = finite(o.h_c_pmax, valid);
     row.h_min = finite(o.h_min, valid);
-    row.x_min = opt(o.x_min, valid);
-    row.y_min = o.y_min.and_then(|y| opt(y, valid));
+    // A formula gives no film position or load error; every solve does.
+    let formula = o.model_used == ModelUsed::Formula;
+    let solved = |v: f64, valid: &mut bool| {
+        if formula && v.is_nan() {
+            None
+        } else {
+            finite(v, valid)
+        }
+    };
+    row.x_min = solved(o.x_min, valid);
+    row.y_min = o.y_min.and_then(|y| solved(y, valid));
     row.p_max = opt(o.p_max, valid);
     if let Some(sp) = o.spike {
         row.spike_x = finite(sp.x, valid);
@@ -205,7 +214,7 @@ fn fill_outputs(row: &mut CaseRow, o: &Outputs, attempt: usize, valid: &mut bool
     }
     row.h0 = opt(o.h0, valid);
     row.f = opt(o.f, valid);
-    row.load_error = opt(o.load_error, valid);
+    row.load_error = solved(o.load_error, valid);
     row.status = o.status.into();
     row.reason = o.reason.clone();
     row.attempt = Some(attempt as i64);
