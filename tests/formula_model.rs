@@ -271,6 +271,28 @@ fn a_sweep_with_a_formula_stores_its_rows_and_the_fit_leaves_them_out() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(err.contains("names a grid for every case"), "{err}");
+    // A case of a spec that names a grid (in a sweep whose other cases have a target) is solved
+    // on it, saying why the formula did not answer.
+    let spec = ehlmap::sweep::spec::parse(
+        "g.toml",
+        "name = \"g\"\ncontact = \"line\"\n[axes]\nM = [20]\nL = [2]\n[numerics]\ngrid = 257\n",
+        "g",
+    )
+    .unwrap();
+    let case = &ehlmap::sweep::plan::plan(&spec).unwrap()[0];
+    let formula = FittedFormula::from_report(&report(), "fit").unwrap();
+    let opts = ehlmap::sweep::row::CaseOptions {
+        time_limit: None,
+        formula: Some(FormulaRef::leak(formula)),
+    };
+    let row = ehlmap::sweep::row::solve_case_with(case, "g", opts);
+    assert_eq!(row.model_used, ModelUsed::Full);
+    assert!(
+        row.reason
+            .contains("formula not used: the spec names a grid"),
+        "{}",
+        row.reason
+    );
     // The fit reads the formula row as no datum.
     let input = load_fit_input(&[dir.join("f")]).unwrap();
     assert_eq!(input.line.len(), 1);

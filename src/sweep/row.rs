@@ -134,6 +134,10 @@ pub fn solve_case_with(case: &Case, sweep: &str, opts: CaseOptions) -> CaseRow {
     }
     let mut row = build_row(case, sweep, &s.outputs, s.attempt);
     row.warm_start = warm;
+    if opts.formula.is_some() && n.accuracy.is_none() {
+        row.reason
+            .push_str("; formula not used: the spec names a grid and no accuracy target");
+    }
     row
 }
 
