@@ -3,9 +3,10 @@
 //! (values, grid, the solve's memory) and the `--plot` directory created before the solve.
 
 use crate::cli::error::{input, CliError};
+use crate::cli::formula_arg::formula_arg;
 use crate::cli::limits::{check_memory, estimate, Solver};
 use crate::cli::output::{note, out, outln, prepare_dir, report_plot};
-use crate::cli::solve_args::{formula_arg, time_limit_arg};
+use crate::cli::solve_args::time_limit_arg;
 use ehlmap::strategy::solve_case::default_max_grid;
 use std::path::PathBuf;
 

@@ -11,6 +11,7 @@ pub mod case;
 pub mod chart;
 pub mod error;
 pub mod fit;
+pub mod formula_arg;
 pub mod limits;
 pub mod mixed;
 pub mod output;

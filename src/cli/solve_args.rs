@@ -3,6 +3,7 @@
 //! exit code 2, naming the option), turned into the [`Case`] and the [`SolveParams`] of the solve.
 
 use crate::cli::error::{input, CliError};
+use crate::cli::formula_arg::formula_arg;
 use crate::cli::output::note;
 use clap::ValueEnum;
 use ehlmap::discrete::point::domain::PointDomainParams;
@@ -11,14 +12,11 @@ use ehlmap::model::case::{Case, Contact, Elasticity, LineCase, Models, ParamErro
 use ehlmap::model::error::num;
 use ehlmap::model::lubricant::{Density, Viscosity};
 use ehlmap::model::roughness::Roughness;
-use ehlmap::report::surrogate::FittedFormula;
-use ehlmap::report::FitReport;
 use ehlmap::solve::params::Method;
 use ehlmap::solve::params::{Converge, CycleType};
 use ehlmap::solve::{CycleEvent, Observer};
-use ehlmap::strategy::formula::FormulaRef;
 use ehlmap::strategy::solve_case::{SolveParams, DEFAULT_ACCURACY};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
 pub enum ContactArg {
@@ -515,27 +513,6 @@ pub(crate) fn time_limit_arg(flag: &str, t: f64) -> Result<f64, CliError> {
             num(t)
         )))
     }
-}
-
-/// The formula of the fit report at `path` (`fit.json`, or a report directory holding one),
-/// kept for the rest of the run; bad input names `flag`.
-pub(crate) fn formula_arg(flag: &str, path: &Path) -> Result<FormulaRef, CliError> {
-    let file = if path.is_dir() {
-        path.join("fit.json")
-    } else {
-        path.to_path_buf()
-    };
-    let shown = file.display().to_string();
-    let text = std::fs::read_to_string(&file)
-        .map_err(|e| input(format!("{flag} {shown}: cannot read it: {e}")))?;
-    let report: FitReport = serde_json::from_str(&text).map_err(|e| {
-        input(format!(
-            "{flag} {shown}: not a fit report (fit.json of `ehlmap fit`): {e}"
-        ))
-    })?;
-    let formula =
-        FittedFormula::from_report(&report, &shown).map_err(|e| input(format!("{flag} {e}")))?;
-    Ok(FormulaRef::leak(formula))
 }
 
 /// A valid --max-grid for the contact (with --accuracy).

@@ -18,9 +18,10 @@
 //! while running) or another run holds the shard's lock.
 
 use crate::cli::error::{input, io, CliError};
+use crate::cli::formula_arg::formula_arg;
 use crate::cli::limits::{check_memory, estimate, human, Solver};
 use crate::cli::output::{note, out, write_stderr};
-use crate::cli::solve_args::{formula_arg, time_limit_arg};
+use crate::cli::solve_args::time_limit_arg;
 use clap::ValueEnum;
 use ehlmap::store::results;
 use ehlmap::sweep::executor::{self, Progress, RunOptions};

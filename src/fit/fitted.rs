@@ -2,10 +2,12 @@
 //! its error statistics against the data.
 
 use crate::fit::correction::Correction;
+use crate::fit::dataset::FitPoint;
 use crate::fit::heldout::{CaseError, HeldOut};
 use crate::fit::model::LineModel;
 use crate::fit::point_model::PointModel;
 use crate::fit::stats::{ErrStats, RegionStats, TargetRange};
+use crate::solve::film::Film;
 use serde::{Deserialize, Serialize};
 
 /// A fitted parameter with its one-sigma uncertainty (0: held fixed).
@@ -71,6 +73,25 @@ impl FittedModel {
         let b = &self.blend;
         self.correction
             .apply(b.eval(m, l, d), b.asymptotes(m, l, d), d)
+    }
+
+    /// The relative errors formula / data - 1 of `film` at the cases of `pts` that carry it,
+    /// with the data's film and error estimate (a check set: cases the formula was not fitted
+    /// to).
+    pub fn errors_on(&self, pts: &[FitPoint], film: Film) -> Vec<CaseError> {
+        pts.iter()
+            .filter_map(|p| {
+                let h = p.film(film)?;
+                Some(CaseError {
+                    m: p.m,
+                    l: p.l,
+                    d: p.dd(),
+                    h: Some(h),
+                    error: self.eval(p.m, p.l, p.dd()) / h - 1.0,
+                    estimate: p.estimate(film),
+                })
+            })
+            .collect()
     }
 }
 

@@ -312,17 +312,26 @@ fn plain_rms(plain: &[(SizeScore, Vec<f64>)], n: usize) -> f64 {
         .map_or(f64::INFINITY, |(s, _)| s.rms)
 }
 
+/// The index of the largest |error| and the RMS of non-empty relative errors `e`.
+pub fn worst_and_rms(e: &[f64]) -> (usize, f64) {
+    let worst = (0..e.len())
+        .max_by(|&i, &j| e[i].abs().total_cmp(&e[j].abs()))
+        .expect("non-empty");
+    (
+        worst,
+        (e.iter().map(|v| v * v).sum::<f64>() / e.len() as f64).sqrt(),
+    )
+}
+
 /// The score of `n` terms from each case's held-out error (None when one is not finite).
 fn score(data: &[Sample], n: usize, e: Vec<f64>) -> Option<(SizeScore, Vec<f64>)> {
     if !e.iter().all(|v| v.is_finite()) {
         return None;
     }
-    let worst = (0..e.len())
-        .max_by(|&i, &j| e[i].abs().total_cmp(&e[j].abs()))
-        .expect("non-empty");
+    let (worst, rms) = worst_and_rms(&e);
     let s = SizeScore {
         terms: n,
-        rms: (e.iter().map(|v| v * v).sum::<f64>() / e.len() as f64).sqrt(),
+        rms,
         max: e[worst],
         worst: (data[worst].m, data[worst].l, data[worst].d),
     };

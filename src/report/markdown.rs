@@ -3,6 +3,7 @@
 //! published formulas on the same cases, asymptote checks), or the reason it was skipped.
 
 use crate::fit::correction::{Term, Transition};
+use crate::fit::heldout::worst_and_rms;
 use crate::fit::stats::{ErrStats, RegionStats};
 use crate::report::{ContactReport, FitReport, QuantityFit, ASYMPTOTE_TARGET, MAX_ERROR_TARGET};
 use std::fmt::Write;
@@ -133,17 +134,13 @@ fn heldout(md: &mut String, q: &QuantityFit) {
         }
     }
     if !q.check.is_empty() {
-        let n = q.check.len();
-        let max =
-            q.check
-                .iter()
-                .map(|c| c.error)
-                .fold(0.0f64, |a, e| if e.abs() > a.abs() { e } else { a });
-        let rms = (q.check.iter().map(|c| c.error * c.error).sum::<f64>() / n as f64).sqrt();
+        let errors: Vec<f64> = q.check.iter().map(|c| c.error).collect();
+        let (worst, rms) = worst_and_rms(&errors);
         let _ = writeln!(
             md,
-            "Check set ({n} cases of separate datasets, never fitted): max {}, RMS {:.2} %.\n",
-            pct(max),
+            "Check set ({} cases of separate datasets, never fitted): max {}, RMS {:.2} %.\n",
+            errors.len(),
+            pct(errors[worst]),
             100.0 * rms
         );
     }

@@ -27,7 +27,7 @@ use crate::fit::correction::{line_terms, point_terms, Correction, Term};
 pub use crate::fit::dataset::{FitInput, FitPoint};
 use crate::fit::error::FitError;
 pub use crate::fit::fitted::{Blend, FittedModel, Param, QuantityFit};
-use crate::fit::heldout::{joint, select, CaseError, HeldOut, Refit};
+use crate::fit::heldout::{joint, select, HeldOut, Refit};
 use crate::fit::lsq::{fit, LsqFit, Sample};
 use crate::fit::model::{FilmModel, LineModel, PARAM_NAMES};
 use crate::fit::point_model::{PointModel, POINT_PARAM_NAMES};
@@ -564,21 +564,9 @@ fn add_checks(r: &mut ContactReport, checks: &[FitPoint]) {
         (Film::PressureMax, &mut r.h_pm),
         (Film::Minimum, &mut r.h_min),
     ] {
-        let Some(q) = q else { continue };
-        q.check = checks
-            .iter()
-            .filter_map(|p| {
-                let h = p.film(film)?;
-                Some(CaseError {
-                    m: p.m,
-                    l: p.l,
-                    d: p.dd(),
-                    h: Some(h),
-                    error: q.model.eval(p.m, p.l, p.dd()) / h - 1.0,
-                    estimate: p.estimate(film),
-                })
-            })
-            .collect();
+        if let Some(q) = q {
+            q.check = q.model.errors_on(checks, film);
+        }
     }
 }
 

@@ -87,19 +87,19 @@ impl FilmMap {
                 return Err(format!(
                     "no held-out error, data estimate or data film at {} (a case that failed \
                      or was left out)",
-                    at(*c, point)
+                    place(*c, point)
                 ));
             };
             err = err.max(e.abs());
             est = est.max(*s);
-            ln_h += weight(q, *c, &cell.corners) * h.ln();
+            ln_h += cell.weight(q, *c) * h.ln();
         }
         let mut checked = 0;
         for c in self.checks.iter().filter(|c| cell.checks([c.m, c.l, c.d])) {
             let Some(s) = c.estimate else {
                 return Err(format!(
                     "no data estimate at the check case {}",
-                    at([c.m, c.l, c.d], point)
+                    place([c.m, c.l, c.d], point)
                 ));
             };
             err = err.max(c.error.abs());
@@ -126,7 +126,7 @@ impl FilmMap {
             return Err(format!(
                 "no check case between {} (fit with --check on datasets of the cells' \
                  midpoints and centres, e.g. {sets})",
-                describe(&cell.corners, point)
+                cell.describe(point)
             ));
         }
         Ok((err, est, checked))
@@ -136,7 +136,9 @@ impl FilmMap {
 /// The data cell around a case: its corners, and where the check cases that count for it lie.
 #[derive(Clone, Debug, PartialEq)]
 struct Cell {
-    /// The corners: on each axis the data value the case is on, or the two bracketing it.
+    /// Per axis, the data values bracketing the case (lo, hi), equal when it is on one.
+    span: [(f64, f64); 3],
+    /// The corners: every combination of the span's values.
     corners: Vec<[f64; 3]>,
     /// Per axis, the open interval a check case must lie in (tolerance [`ON_AXIS`]), and the
     /// axis value a check case may also equal: strictly between the two bracketing values; on
@@ -152,6 +154,45 @@ impl Cell {
             let between = *x > a + tol(*a) && *x < b - tol(*b);
             between || on.is_some_and(|v| (x - v).abs() <= tol(v))
         })
+    }
+
+    /// The multilinear weight of `corner` at `q` in (ln M, L, ln D).
+    fn weight(&self, q: [f64; 3], corner: [f64; 3]) -> f64 {
+        let scale = [f64::ln, |x: f64| x, f64::ln];
+        (0..3)
+            .map(|k| {
+                let (lo, hi) = self.span[k];
+                if lo == hi {
+                    return 1.0;
+                }
+                let t = (scale[k](q[k]) - scale[k](lo)) / (scale[k](hi) - scale[k](lo));
+                if corner[k] == lo {
+                    1.0 - t
+                } else {
+                    t
+                }
+            })
+            .product()
+    }
+
+    /// "the 4 data cases around it (M 19.3-51.8, L 5-10, D 1)".
+    fn describe(&self, point: bool) -> String {
+        let range = |k: usize| match self.span[k] {
+            (lo, hi) if lo == hi => sig3(lo),
+            (lo, hi) => format!("{}-{}", sig3(lo), sig3(hi)),
+        };
+        let d = if point {
+            format!(", D {}", range(2))
+        } else {
+            String::new()
+        };
+        let n = self.corners.len();
+        let cases = if n == 1 { "case" } else { "cases" };
+        format!(
+            "the {n} data {cases} around it (M {}, L {}{d})",
+            range(0),
+            range(1)
+        )
     }
 }
 
@@ -202,7 +243,7 @@ impl ContactFormula {
     /// The data cell around `q` ([`Cell`]), or why the case lies outside the data.
     fn cell(&self, q: [f64; 3]) -> Result<Cell, String> {
         let names = ["M", "L", "D"];
-        let mut sides: Vec<Vec<f64>> = vec![];
+        let mut span = [(0.0, 0.0); 3];
         let mut boxes = [(0.0, 0.0, None); 3];
         for (k, ((axis, x), name)) in self.axes.iter().zip(q).zip(names).enumerate() {
             let (lo, hi) = (axis[0], axis[axis.len() - 1]);
@@ -212,7 +253,7 @@ impl ContactFormula {
             let near = |v: f64| (x - v).abs() <= ON_AXIS * v.abs().max(1e-300);
             if let Some(i) = axis.iter().position(|v| near(*v)) {
                 let v = axis[i];
-                sides.push(vec![v]);
+                span[k] = (v, v);
                 let prev = if i > 0 { axis[i - 1] } else { v };
                 let next = axis.get(i + 1).copied().unwrap_or(v);
                 boxes[k] = (prev, next, Some(v));
@@ -220,19 +261,25 @@ impl ContactFormula {
                 return Err(format!("{name} = {x} outside the data ({lo} to {hi})"));
             } else {
                 let i = axis.partition_point(|v| *v < x);
-                sides.push(vec![axis[i - 1], axis[i]]);
+                span[k] = (axis[i - 1], axis[i]);
                 boxes[k] = (axis[i - 1], axis[i], None);
             }
         }
+        // Each axis contributes its one value, or both bracketing values.
+        let values = |(lo, hi): (f64, f64)| if lo == hi { vec![lo] } else { vec![lo, hi] };
         let mut corners = vec![];
-        for m in &sides[0] {
-            for l in &sides[1] {
-                for d in &sides[2] {
-                    corners.push([*m, *l, *d]);
+        for m in values(span[0]) {
+            for l in values(span[1]) {
+                for d in values(span[2]) {
+                    corners.push([m, l, d]);
                 }
             }
         }
-        Ok(Cell { corners, boxes })
+        Ok(Cell {
+            span,
+            corners,
+            boxes,
+        })
     }
 }
 
@@ -262,60 +309,8 @@ impl FittedFormula {
     }
 }
 
-/// "M 19.3-51.8, L 5-10, D 1": the cell of `corners`.
-fn describe(corners: &[[f64; 3]], point: bool) -> String {
-    let range = |k: usize| {
-        let lo = corners.iter().map(|c| c[k]).fold(f64::INFINITY, f64::min);
-        let hi = corners
-            .iter()
-            .map(|c| c[k])
-            .fold(f64::NEG_INFINITY, f64::max);
-        if lo == hi {
-            sig3(lo)
-        } else {
-            format!("{}-{}", sig3(lo), sig3(hi))
-        }
-    };
-    let d = if point {
-        format!(", D {}", range(2))
-    } else {
-        String::new()
-    };
-    let n = corners.len();
-    let cases = if n == 1 { "case" } else { "cases" };
-    format!(
-        "the {n} data {cases} around it (M {}, L {}{d})",
-        range(0),
-        range(1)
-    )
-}
-
-/// The multilinear weight of `corner` at `q` in (ln M, L, ln D) among `corners` (the cell of
-/// [`ContactFormula::cell`]: on each axis one value, or the two bracketing `q`).
-fn weight(q: [f64; 3], corner: [f64; 3], corners: &[[f64; 3]]) -> f64 {
-    let scale = [f64::ln, |x: f64| x, f64::ln];
-    (0..3)
-        .map(|k| {
-            let lo = corners.iter().map(|c| c[k]).fold(f64::INFINITY, f64::min);
-            let hi = corners
-                .iter()
-                .map(|c| c[k])
-                .fold(f64::NEG_INFINITY, f64::max);
-            if lo == hi {
-                return 1.0;
-            }
-            let t = (scale[k](q[k]) - scale[k](lo)) / (scale[k](hi) - scale[k](lo));
-            if corner[k] == lo {
-                1.0 - t
-            } else {
-                t
-            }
-        })
-        .product()
-}
-
 /// "M = .., L = .." (and ", D = .." for a point contact).
-fn at(q: [f64; 3], point: bool) -> String {
+fn place(q: [f64; 3], point: bool) -> String {
     let d = if point {
         format!(", D = {}", q[2])
     } else {
@@ -354,7 +349,7 @@ impl FilmFormula for FittedFormula {
         let (err_min, est_min, n_min) = map_min.at([m, l, d], &cell, point)?;
         let support = format!(
             "{} and {} check case(s) there",
-            describe(&cell.corners, point),
+            cell.describe(point),
             n_c.max(n_min)
         );
         Ok(FormulaFilms {

@@ -181,6 +181,42 @@ pub struct Outputs {
 }
 
 impl Outputs {
+    /// The outputs of an answer without a solve (closed form, fitted formula): the films
+    /// [H_c, H_c_pmax, H_min], the model and the reason; converged, no grid and no cost,
+    /// algebraic error 0, error estimates 0 (met); everything else NaN or none, for the caller to
+    /// set where its answer gives it.
+    pub fn without_solve(model_used: ModelUsed, films: [f64; 3], reason: String) -> Outputs {
+        let [h_c, h_c_pmax, h_min] = films;
+        Outputs {
+            h_c,
+            h_c_pmax,
+            h_min,
+            x_min: f64::NAN,
+            y_min: None,
+            d: None,
+            k: None,
+            p_max: f64::NAN,
+            spike: None,
+            h0: f64::NAN,
+            f: f64::NAN,
+            load_error: f64::NAN,
+            status: Status::Converged,
+            reason,
+            grid: 0,
+            levels: 0,
+            level: None,
+            model_used,
+            work_units: 0.0,
+            wall_s: 0.0,
+            algebraic_error: Some(0.0),
+            h_c_err: Some(0.0),
+            h_min_err: Some(0.0),
+            error_estimate: Some(0.0),
+            accuracy_met: Some(true),
+            mixed: None,
+        }
+    }
+
     /// Set the relative error estimates of H_c and H_min; `error_estimate` is the larger.
     pub fn set_errors(&mut self, h_c_err: f64, h_min_err: f64) {
         self.h_c_err = Some(h_c_err);
@@ -415,6 +451,31 @@ pub struct PointFields {
     pub h: Vec<f64>,
     /// Rough surfaces: the asperity pressure p_a/p_h, row-major with X fastest.
     pub p_asperity: Option<Vec<f64>>,
+}
+
+impl Solution {
+    /// An answer without a solve ([`Outputs::without_solve`]): its info repeats the outputs'
+    /// status, reason, cost and algebraic error, with `discretisation_error`; no history.
+    pub fn without_solve(outputs: Outputs, discretisation_error: Option<f64>) -> Solution {
+        let info = SolveInfo {
+            status: outputs.status,
+            reason: outputs.reason.clone(),
+            history: vec![],
+            work_units: outputs.work_units,
+            wall_s: outputs.wall_s,
+            grid: outputs.grid,
+            levels: outputs.levels,
+            algebraic_error: outputs.algebraic_error,
+            discretisation_error,
+        };
+        Solution {
+            outputs,
+            info,
+            profile: None,
+            attempt: 1,
+            fields: None,
+        }
+    }
 }
 
 /// Everything a solve returns, line or point contact.

@@ -21,7 +21,6 @@
 
 use crate::model::case::Case;
 use crate::solve::solution::{ModelUsed, Outputs, Solution};
-use crate::solve::{SolveInfo, Status};
 use crate::strategy::select::CHECK_FRACTION;
 
 /// A formula's films at one case and the bounds of their errors.
@@ -116,53 +115,17 @@ pub fn formula_answer(
         Case::Line(_) => (None, None),
         Case::Point(c) => (Some(c.d), Some(c.ellipse().k)),
     };
-    let wall_s = t0.elapsed().as_secs_f64();
     let outputs = Outputs {
-        h_c: f.h_c,
-        h_c_pmax: f.h_pm,
-        h_min: f.h_min,
-        x_min: f64::NAN,
         y_min: d.map(|_| f64::NAN),
         d,
         k,
-        p_max: f64::NAN,
-        spike: None,
-        h0: f64::NAN,
-        f: f64::NAN,
-        load_error: f64::NAN,
-        status: Status::Converged,
-        reason: reason.clone(),
-        grid: 0,
-        levels: 0,
-        level: None,
-        model_used: ModelUsed::Formula,
-        work_units: 0.0,
-        wall_s,
-        algebraic_error: Some(0.0),
         h_c_err: Some(f.h_c_err),
         h_min_err: Some(f.h_min_err),
         error_estimate: Some(bound),
-        accuracy_met: Some(true),
-        mixed: None,
+        wall_s: t0.elapsed().as_secs_f64(),
+        ..Outputs::without_solve(ModelUsed::Formula, [f.h_c, f.h_pm, f.h_min], reason)
     };
-    let info = SolveInfo {
-        status: Status::Converged,
-        reason,
-        history: vec![],
-        work_units: 0.0,
-        wall_s,
-        grid: 0,
-        levels: 0,
-        algebraic_error: Some(0.0),
-        discretisation_error: None,
-    };
-    Ok(Solution {
-        outputs,
-        info,
-        profile: None,
-        attempt: 1,
-        fields: None,
-    })
+    Ok(Solution::without_solve(outputs, None))
 }
 
 #[cfg(test)]

@@ -188,27 +188,23 @@ fn fill_outputs(row: &mut CaseRow, o: &Outputs, attempt: usize, valid: &mut bool
         o.model_used,
         ModelUsed::ClosedForm | ModelUsed::SlenderLine | ModelUsed::Formula
     );
-    let opt = |v: f64, valid: &mut bool| {
-        if partial && v.is_nan() {
+    // A formula gives no film position or load error either; every solve does.
+    let formula = o.model_used == ModelUsed::Formula;
+    // NaN is null (not invalid) for a value the model may lack.
+    let may_lack = |lacks: bool, v: f64, valid: &mut bool| {
+        if lacks && v.is_nan() {
             None
         } else {
             finite(v, valid)
         }
     };
+    let opt = |v: f64, valid: &mut bool| may_lack(partial, v, valid);
+    let solved = |v: f64, valid: &mut bool| may_lack(formula, v, valid);
     row.grid = (o.grid > 0).then_some(o.grid as i64);
     row.levels = (o.levels > 0).then_some(o.levels as i64);
     row.h_c = finite(o.h_c, valid);
     row.h_c_pmax = finite(o.h_c_pmax, valid);
     row.h_min = finite(o.h_min, valid);
-    // A formula gives no film position or load error; every solve does.
-    let formula = o.model_used == ModelUsed::Formula;
-    let solved = |v: f64, valid: &mut bool| {
-        if formula && v.is_nan() {
-            None
-        } else {
-            finite(v, valid)
-        }
-    };
     row.x_min = solved(o.x_min, valid);
     row.y_min = o.y_min.and_then(|y| solved(y, valid));
     row.p_max = opt(o.p_max, valid);
