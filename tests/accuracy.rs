@@ -103,3 +103,144 @@ fn point_error_estimates_are_honest_on_a_validation_set() {
     // At least 95 %: with 5 cases, all of them.
     assert_eq!(honest, total, "{honest}/{total} honest");
 }
+
+/// The accuracy ladder seeds each grid's FMG ascent with the previous grid's converged solve
+/// (`Seed`): on the same grid the seeded solve agrees with the cold one within their algebraic
+/// error estimates, for less work; a seed that matches no level (another case's domain) is
+/// ignored, bit for bit.
+#[test]
+fn a_seeded_solve_agrees_with_the_cold_one_for_less_work() {
+    use ehlmap::model::case::PointCase;
+    use ehlmap::solve::line::solve_line_seeded;
+    use ehlmap::solve::multilevel::Seed;
+    use ehlmap::solve::point::{solve_point, solve_point_seeded, PointSolveParams};
+    let case = PointCase::new(100.0, 10.0, 1.0).unwrap();
+    let params = |g: usize, keep: bool| {
+        let mut p = PointSolveParams::default();
+        p.mg.grid = g;
+        p.keep_fields = keep;
+        p
+    };
+    let coarse = solve_point(&case, &params(129, true));
+    let seed = Seed::of(&coarse).expect("a converged solve with fields");
+    let cold = solve_point(&case, &params(257, false)).outputs;
+    let warm = solve_point_seeded(&case, &params(257, false), Some(&seed)).outputs;
+    assert_eq!(warm.status, Status::Converged, "{}", warm.reason);
+    let alg = cold.algebraic_error.unwrap() + warm.algebraic_error.unwrap();
+    for (a, b) in [(cold.h_c, warm.h_c), (cold.h_min, warm.h_min)] {
+        assert!((a / b - 1.0).abs() <= alg, "{a} {b} (algebraic {alg:.1e})");
+    }
+    assert!(
+        warm.work_units < 0.8 * cold.work_units,
+        "seeded {} WU, cold {} WU",
+        warm.work_units,
+        cold.work_units
+    );
+    // Another case has another domain: no level matches, the solve is the cold one.
+    let other = PointCase::new(50.0, 10.0, 1.0).unwrap();
+    let a = solve_point(&other, &params(129, false)).outputs;
+    let b = solve_point_seeded(&other, &params(129, false), Some(&seed)).outputs;
+    assert_eq!(
+        (a.h_c, a.h_min, a.work_units),
+        (b.h_c, b.h_min, b.work_units)
+    );
+    // The line twin.
+    let line = LineCase::new(1000.0, 20.0).unwrap();
+    let lp = |g: usize, keep: bool| {
+        let mut p = LineSolveParams::default();
+        p.mg.grid = g;
+        p.keep_fields = keep;
+        p
+    };
+    let seed = Seed::of(&solve_line(&line, &lp(4097, true))).expect("a line seed");
+    let cold = solve_line(&line, &lp(8193, false)).outputs;
+    let warm = solve_line_seeded(&line, &lp(8193, false), Some(&seed)).outputs;
+    let alg = cold.algebraic_error.unwrap() + warm.algebraic_error.unwrap();
+    for (a, b) in [(cold.h_c, warm.h_c), (cold.h_min, warm.h_min)] {
+        assert!(
+            (a / b - 1.0).abs() <= alg,
+            "line: {a} {b} (algebraic {alg:.1e})"
+        );
+    }
+    assert!(
+        warm.work_units < cold.work_units,
+        "{} {}",
+        warm.work_units,
+        cold.work_units
+    );
+}
+
+/// Issue 23's cases: with the library defaults (1 % target, the ladder capped at 16385 line
+/// points and 1025^2 point nodes) each answer is within 1 % of its grid-converged film, and its
+/// error bars bound the error. Reference: cold solves on the answer's grid g, on (g + 1)/2 and
+/// on 2 g - 1, extrapolated at their observed order (clamped to [1, 3]; two grids' second order
+/// where the differences do not shrink).
+#[test]
+fn issue_23_default_answers_are_within_one_percent_of_the_limit() {
+    use ehlmap::model::case::{Case, PointCase};
+    use ehlmap::solve::point::{solve_point, PointSolveParams};
+    use ehlmap::strategy::solve_case::{solve, SolveParams};
+    let at = |case: &Case, g: usize| {
+        let o = match case {
+            Case::Line(c) => {
+                let mut p = LineSolveParams::default();
+                p.mg.grid = g;
+                solve_line(c, &p).outputs
+            }
+            Case::Point(c) => {
+                let mut p = PointSolveParams::default();
+                p.mg.grid = g;
+                solve_point(c, &p).outputs
+            }
+        };
+        assert_eq!(
+            o.status,
+            Status::Converged,
+            "reference on {g}: {}",
+            o.reason
+        );
+        [o.h_c, o.h_min]
+    };
+    let point = |m: f64, l: f64, d: f64| Case::Point(PointCase::new(m, l, d).unwrap());
+    let line = |m: f64, l: f64| Case::Line(LineCase::new(m, l).unwrap());
+    for (name, case) in [
+        ("point (20, 10, 1)", point(20.0, 10.0, 1.0)),
+        ("point (100, 10, 1)", point(100.0, 10.0, 1.0)),
+        ("point (200, 10, 1)", point(200.0, 10.0, 1.0)),
+        ("point (10, 0, 1)", point(10.0, 0.0, 1.0)),
+        ("point (1000, 0, 1)", point(1000.0, 0.0, 1.0)),
+        ("point (100, 10, 0.25)", point(100.0, 10.0, 0.25)),
+        ("point (500, 10, 0.5)", point(500.0, 10.0, 0.5)),
+        ("line (1000, 20)", line(1000.0, 20.0)),
+        ("line (300, 0)", line(300.0, 0.0)),
+        ("line (10, 20)", line(10.0, 20.0)),
+    ] {
+        let o = solve(&case, &SolveParams::default()).outputs;
+        assert_eq!(o.status, Status::Converged, "{name}: {}", o.reason);
+        let g = o.grid;
+        let (a, b, c) = (at(&case, (g + 1) / 2), at(&case, g), at(&case, 2 * g - 1));
+        for (q, (film, h, err)) in [("H_c", o.h_c, o.h_c_err), ("H_min", o.h_min, o.h_min_err)]
+            .into_iter()
+            .enumerate()
+        {
+            let ratio = (a[q] - b[q]) / (b[q] - c[q]);
+            let order = if ratio > 1.0 {
+                ratio.log2().clamp(1.0, 3.0)
+            } else {
+                2.0
+            };
+            let limit = c[q] + (c[q] - b[q]) / (2f64.powf(order) - 1.0);
+            let truth = (h / limit - 1.0).abs();
+            let err = err.expect("an error bar");
+            println!(
+                "{name} {film} on {g}: {h:.6}, limit {limit:.6} (order {order:.2}), true error \
+                 {truth:.2e}, estimate {err:.2e}"
+            );
+            assert!(truth < 0.01, "{name} {film}: true error {truth}");
+            assert!(
+                truth <= err,
+                "{name} {film}: true {truth} above the estimate {err}"
+            );
+        }
+    }
+}

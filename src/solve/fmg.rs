@@ -97,6 +97,13 @@ pub trait Fas {
     fn install_guess(&mut self, _l: usize) -> bool {
         false
     }
+    /// Install the seed ([`crate::solve::multilevel::Seed`]) on the coarser level whose nodes
+    /// are its nodes, with its H0; the level's index, or None (no seed, or no level matches).
+    /// The fast rule's FMG ascent then continues from that level, which also serves as the
+    /// first coarser level of the discretisation estimate.
+    fn install_seed(&mut self) -> Option<usize> {
+        None
+    }
     /// A warm start's estimate of the finest level's relative discretisation error (from an
     /// earlier cold solve of nearly the same problem), used where there is no coarser level to
     /// estimate it from.

@@ -214,9 +214,15 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
     // The largest residual of the coarser levels' cycles (see [`LEVEL_RESIDUAL_GROWTH`]).
     let mut coarser_max_res = 0.0f64;
     let mut level_max_res = 0.0f64;
-    let mut h0_end = vec![s.h0()];
     let warm = s.install_guess(top);
-    let mut coarser = if warm { None } else { Some(s.record(0)) };
+    // A seed (a converged coarser grid of the same case) replaces the ascent up to its level.
+    let seeded = if warm { None } else { s.install_seed() };
+    let mut h0_end = vec![s.h0()];
+    let mut coarser = if warm {
+        None
+    } else {
+        Some(s.record(seeded.unwrap_or(0)))
+    };
     let (mut status, mut reason) = (
         Status::MaxIterations,
         format!("no convergence in {} cycles", c.max_cycles),
@@ -224,7 +230,12 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
     let (mut e_a, mut e_d) = (None, None);
     // The cycle damping: once the cycles oscillate, it holds on the finer levels too.
     let mut beta = 1.0;
-    for l in (if warm { top } else { 1 })..=top {
+    let first = match (warm, seeded) {
+        (true, _) => top,
+        (false, Some(l)) => l + 1,
+        (false, None) => 1,
+    };
+    for l in first..=top {
         if !warm {
             start_level(s, l, &h0_end);
         }

@@ -141,6 +141,8 @@ pub trait Contact: Sized {
     fn install_guess(_mg: &mut Multigrid<Self>, _l: usize) -> bool {
         false
     }
+    /// Whether level `l`'s nodes are those of `seed` ([`Seed::matches`]).
+    fn seed_matches(mg: &Multigrid<Self>, l: usize, seed: &Seed) -> bool;
 }
 
 /// A domain built by a rule with parameters [`DomainRule::Params`].
@@ -190,6 +192,57 @@ pub struct Multigrid<C: Contact> {
     /// The discretisation error of an earlier cold solve, for resumed solves
     /// ([`Fas::discretisation_hint`]).
     pub(crate) discretisation_hint: Option<f64>,
+    /// A converged solution on one of the coarser levels to start the FMG ascent from
+    /// ([`Fas::install_seed`]).
+    pub(crate) seed: Option<Seed>,
+}
+
+/// A converged solution of the same case on a coarser grid of the same domain (the accuracy
+/// ladder's previous grid): the FMG ascent starts from it on the level whose nodes are its
+/// nodes, instead of from the coarsest level ([`Fas::install_seed`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Seed {
+    /// Node coordinates X.
+    pub x: Vec<f64>,
+    /// Node coordinates Y (point contacts; empty for line contacts).
+    pub y: Vec<f64>,
+    /// The pressure P at the nodes (row-major with X fastest for point contacts).
+    pub p: Vec<f64>,
+    /// H0 in Moes units ([`crate::solve::solution::Outputs::h0`]).
+    pub h0_moes: f64,
+}
+
+impl Seed {
+    /// The seed of a converged smooth solve that kept its line profile or point fields; None
+    /// otherwise.
+    pub fn of(s: &crate::solve::solution::Solution) -> Option<Seed> {
+        let o = &s.outputs;
+        if o.status != crate::solve::Status::Converged || o.mixed.is_some() || !o.h0.is_finite() {
+            return None;
+        }
+        let (x, y, p) = match (&s.profile, &s.fields) {
+            (Some(pr), _) => (pr.x.clone(), vec![], pr.p.clone()),
+            (None, Some(f)) => (f.x.clone(), f.y.clone(), f.p.clone()),
+            (None, None) => return None,
+        };
+        Some(Seed {
+            x,
+            y,
+            p,
+            h0_moes: o.h0,
+        })
+    }
+
+    /// Whether a level with these node coordinates is the seed's grid.
+    pub fn matches(&self, x: &[f64], y: &[f64]) -> bool {
+        let same = |a: &[f64], b: &[f64]| {
+            a.len() == b.len()
+                && a.iter()
+                    .zip(b)
+                    .all(|(u, v)| (u - v).abs() <= 1e-12 * (1.0 + v.abs()))
+        };
+        same(&self.x, x) && same(&self.y, y)
+    }
 }
 
 /// A finest-level state the next [`Multigrid::solve`] starts its finest cycles from, instead
@@ -231,6 +284,7 @@ impl<C: Contact> Multigrid<C> {
             extra,
             resume: None,
             discretisation_hint: None,
+            seed: None,
         }
     }
 
@@ -440,6 +494,22 @@ impl<C: Contact> Fas for Multigrid<C> {
             }
         }
         C::install_guess(self, l)
+    }
+    fn install_seed(&mut self) -> Option<usize> {
+        let seed = self.seed.take()?;
+        let top = self.levels.len() - 1;
+        let l = (0..top).find(|&l| C::seed_matches(self, l, &seed))?;
+        let centre = C::centre_index(self, l);
+        let h0 = seed.h0_moes / C::h_scale(self);
+        let lv = &mut self.levels[l];
+        lv.pressure().copy_from_slice(&seed.p);
+        let nodes = lv.nodes_mut();
+        nodes.f.fill(0.0);
+        nodes.frozen.fill(false);
+        lv.refresh(&self.phys, h0);
+        self.h0 = h0;
+        debug_assert!(lv.film()[centre].is_finite());
+        Some(l)
     }
     fn coarse_load_failed(&self) -> bool {
         self.coarse_load_failed

@@ -10,9 +10,10 @@
 use crate::discrete::point::domain::PointDomain;
 use crate::model::case::{LineCase, PointCase};
 use crate::solve::ladder::Attempt;
-use crate::solve::line::{solve_line, LineSolveParams};
+use crate::solve::line::{solve_line_seeded, LineSolveParams};
+use crate::solve::multilevel::Seed;
 use crate::solve::params::ContactParams;
-use crate::solve::point::{solve_point, PointSolveParams};
+use crate::solve::point::{solve_point_seeded, PointSolveParams};
 use crate::solve::solution::{Outputs, Solution};
 use crate::solve::Status;
 use serde::{Deserialize, Serialize};
@@ -291,8 +292,8 @@ pub fn solve_line_to_accuracy(
     target: f64,
     max_grid: usize,
 ) -> Solution {
-    refine(257, ESTIMATE_ORDER, params, target, max_grid, |p| {
-        solve_line(case, p)
+    refine(257, ESTIMATE_ORDER, params, target, max_grid, |p, seed| {
+        solve_line_seeded(case, p, seed)
     })
 }
 
@@ -323,7 +324,7 @@ pub fn solve_point_to_accuracy(
         params,
         grid_target,
         max_grid,
-        |p| solve_point(case, p),
+        |p, seed| solve_point_seeded(case, p, seed),
     );
     if grid_target < target {
         let note = format!(
@@ -350,16 +351,21 @@ pub fn solve_point_to_accuracy(
 }
 
 /// [`refine_to_accuracy`] of a contact's solve from `start` points: the fallback ladder only on
-/// the finest allowed grid, and at most [`COARSE_LADDER_CYCLES`] cycles below it.
+/// the finest allowed grid, and at most [`COARSE_LADDER_CYCLES`] cycles below it. The finest grid
+/// converged so far seeds the FMG ascent of the next one ([`Seed`]: the ascent starts from that
+/// converged solution instead of from the coarsest level, and it is the first coarser level of
+/// the stopping rule's discretisation estimate). The fields or profile the ladder keeps for this
+/// are dropped from the answer unless `params.keep_fields`.
 fn refine<D: Copy>(
     start: usize,
     order: f64,
     params: &ContactParams<D>,
     target: f64,
     max_grid: usize,
-    solve: impl Fn(&ContactParams<D>) -> Solution,
+    solve: impl Fn(&ContactParams<D>, Option<&Seed>) -> Solution,
 ) -> Solution {
-    refine_to_accuracy(
+    let mut seed: Option<Seed> = None;
+    let mut s = refine_to_accuracy(
         start,
         max_grid,
         target,
@@ -369,15 +375,27 @@ fn refine<D: Copy>(
             let mut p = *params;
             p.mg.grid = grid;
             p.fallback = params.fallback && last;
+            p.keep_fields = true;
             if !last {
                 p.mg.max_cycles = p.mg.max_cycles.min(COARSE_LADDER_CYCLES);
             }
             // Two solves' algebraic errors enter the estimate: each may use a small part of the
             // target only.
             p.mg.max_algebraic = p.mg.max_algebraic.min(LADDER_ALGEBRAIC_FRACTION * target);
-            solve(&p)
+            let s = solve(&p, seed.as_ref());
+            if let Some(new) = Seed::of(&s) {
+                if seed.as_ref().is_none_or(|old| new.p.len() > old.p.len()) {
+                    seed = Some(new);
+                }
+            }
+            s
         },
-    )
+    );
+    if !params.keep_fields {
+        s.fields = None;
+        s.profile = None;
+    }
+    s
 }
 
 #[cfg(test)]

@@ -25,6 +25,7 @@ use crate::model::formulas::moes_line_hc;
 use crate::solve::ladder::run_rungs;
 use crate::solve::line::multigrid::{LineMgParams, LineMultigrid, WarmGuess};
 use crate::solve::mixed::{set_mixed_outputs, solve_mixed, MixedState};
+use crate::solve::multilevel::Seed;
 use crate::solve::params::{ContactParams, Method, Rung};
 use crate::solve::single_grid::solve_relax;
 use crate::solve::solution::{line_outputs, Profile, Solution};
@@ -48,8 +49,10 @@ fn run(
     p: &LineMgParams,
     keep_fields: bool,
     guess: Option<&WarmGuess>,
+    seed: Option<&Seed>,
 ) -> Solution {
     let mut mg = LineMultigrid::new(case, p);
+    mg.seed = seed.cloned();
     if let Some(g) = guess {
         mg.set_guess(g.clone());
     }
@@ -124,12 +127,32 @@ pub fn solve_line_from(
     params: &LineSolveParams,
     guess: Option<&WarmGuess>,
 ) -> Solution {
+    solve_line_with(case, params, guess, None)
+}
+
+/// [`solve_line`], the first multigrid attempt starting its FMG ascent from `seed` (a converged
+/// solve of the case on a coarser grid of the same domain, [`Seed`]) where one of its levels is
+/// the seed's grid; the fallback attempts start cold.
+pub fn solve_line_seeded(
+    case: &LineCase,
+    params: &LineSolveParams,
+    seed: Option<&Seed>,
+) -> Solution {
+    solve_line_with(case, params, None, seed)
+}
+
+fn solve_line_with(
+    case: &LineCase,
+    params: &LineSolveParams,
+    guess: Option<&WarmGuess>,
+    seed: Option<&Seed>,
+) -> Solution {
     match params.method {
         Method::Multigrid => {}
         Method::Newton => {
             let mut p = single_level(&params.mg);
             p.newton_max_iter = p.newton_max_iter.max(200);
-            return run(case, &p, params.keep_fields, None);
+            return run(case, &p, params.keep_fields, None, None);
         }
         Method::Relax => {
             let mut mg = LineMultigrid::new(case, &single_level(&params.mg));
@@ -137,7 +160,8 @@ pub fn solve_line_from(
             return package(case, &mg, info, params.keep_fields, None);
         }
     }
+    let mut seed = seed;
     run_rungs(&LADDER, &params.mg, params.fallback, |p| {
-        run(case, p, params.keep_fields, guess)
+        run(case, p, params.keep_fields, guess, seed.take())
     })
 }

@@ -20,7 +20,7 @@ use crate::discrete::line::operator::{LineLevel, LinePhysics};
 use crate::model::case::LineCase;
 use crate::solve::deadline::past;
 use crate::solve::line::relax::{relax, LineScratch};
-use crate::solve::multilevel::{grid_level, Contact, DomainRule, Multigrid};
+use crate::solve::multilevel::{grid_level, Contact, DomainRule, Multigrid, Seed};
 use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
 use crate::solve::params::{FinerCoarsest, MgParams};
 use std::f64::consts::PI;
@@ -333,4 +333,8 @@ impl Contact for LineContact {
     }
 
     const COARSE_BUDGET_GROWTH: usize = 1;
+
+    fn seed_matches(mg: &LineMultigrid, l: usize, seed: &Seed) -> bool {
+        seed.matches(&mg.levels[l].x, &[])
+    }
 }

@@ -20,6 +20,7 @@ use crate::discrete::point::domain::BIAS_CAUTION;
 use crate::model::case::PointCase;
 use crate::solve::ladder::run_rungs;
 use crate::solve::mixed::{set_mixed_outputs, solve_mixed, MixedState};
+use crate::solve::multilevel::Seed;
 use crate::solve::params::{ContactParams, Method, Rung};
 pub use crate::solve::point::multigrid::PointMgParams;
 use crate::solve::point::multigrid::PointMultigrid;
@@ -105,8 +106,9 @@ pub fn point_outputs(mg: &PointMultigrid, info: &SolveInfo) -> Outputs {
     out
 }
 
-fn run(case: &PointCase, p: &PointMgParams, keep_fields: bool) -> Solution {
+fn run(case: &PointCase, p: &PointMgParams, keep_fields: bool, seed: Option<&Seed>) -> Solution {
     let mut mg = PointMultigrid::new(case, p);
+    mg.seed = seed.cloned();
     let (info, mixed) = solve_mixed(&mut mg);
     package(case, &mg, info, keep_fields, mixed.as_ref())
 }
@@ -159,12 +161,23 @@ fn single_level(p: &PointMgParams) -> PointMgParams {
 
 /// Solve a point contact. Never panics on a valid case; numerical failure is a status.
 pub fn solve_point(case: &PointCase, params: &PointSolveParams) -> Solution {
+    solve_point_seeded(case, params, None)
+}
+
+/// [`solve_point`], the first multigrid attempt starting its FMG ascent from `seed` (a converged
+/// solve of the case on a coarser grid of the same domain, [`Seed`]) where one of its levels is
+/// the seed's grid; the fallback attempts start cold.
+pub fn solve_point_seeded(
+    case: &PointCase,
+    params: &PointSolveParams,
+    seed: Option<&Seed>,
+) -> Solution {
     match params.method {
         Method::Multigrid => {}
         Method::Newton => {
             let mut p = single_level(&params.mg);
             p.newton_max_iter = p.newton_max_iter.max(200);
-            return run(case, &p, params.keep_fields);
+            return run(case, &p, params.keep_fields, None);
         }
         Method::Relax => {
             let mut mg = PointMultigrid::new(case, &single_level(&params.mg));
@@ -172,7 +185,8 @@ pub fn solve_point(case: &PointCase, params: &PointSolveParams) -> Solution {
             return package(case, &mg, info, params.keep_fields, None);
         }
     }
+    let mut seed = seed;
     run_rungs(&LADDER, &params.mg, params.fallback, |p| {
-        run(case, p, params.keep_fields)
+        run(case, p, params.keep_fields, seed.take())
     })
 }

@@ -16,7 +16,7 @@ use crate::discrete::point::domain::PointDomainParams;
 use crate::discrete::point::operator::{for_each_row, PointLevel, PointPhysics};
 use crate::model::case::{Elasticity, PointCase};
 use crate::solve::deadline::past;
-use crate::solve::multilevel::{grid_level, Contact, DomainRule, Multigrid};
+use crate::solve::multilevel::{grid_level, Contact, DomainRule, Multigrid, Seed};
 use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
 use crate::solve::params::{FinerCoarsest, MgParams};
 use crate::solve::point::relax::{point_line_sweep, PointScratch};
@@ -320,6 +320,9 @@ impl Contact for PointContact {
         mg.load_slope = slope;
         mg.work_units += PointContact::newton_cost(mg, iterations);
         out
+    }
+    fn seed_matches(mg: &PointMultigrid, l: usize, seed: &Seed) -> bool {
+        seed.matches(&mg.levels[l].x, &mg.levels[l].y)
     }
     fn fmg_interpolate(mg: &mut PointMultigrid, l: usize) {
         let (lo, hi) = mg.levels.split_at_mut(l);
