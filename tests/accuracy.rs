@@ -218,7 +218,7 @@ fn issue_23_default_answers_are_within_one_percent_of_the_limit() {
         let o = solve(&case, &SolveParams::default()).outputs;
         assert_eq!(o.status, Status::Converged, "{name}: {}", o.reason);
         let g = o.grid;
-        let (a, b, c) = (at(&case, (g + 1) / 2), at(&case, g), at(&case, 2 * g - 1));
+        let (a, b, c) = (at(&case, g.div_ceil(2)), at(&case, g), at(&case, 2 * g - 1));
         for (q, (film, h, err)) in [("H_c", o.h_c, o.h_c_err), ("H_min", o.h_min, o.h_min_err)]
             .into_iter()
             .enumerate()

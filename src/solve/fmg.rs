@@ -100,7 +100,8 @@ pub trait Fas {
     /// Install the seed ([`crate::solve::multilevel::Seed`]) on the coarser level whose nodes
     /// are its nodes, with its H0; the level's index, or None (no seed, or no level matches).
     /// The fast rule's FMG ascent then continues from that level, which also serves as the
-    /// first coarser level of the discretisation estimate.
+    /// first coarser level of the discretisation estimate (the tight rule does not call it: its
+    /// solves start cold).
     fn install_seed(&mut self) -> Option<usize> {
         None
     }

@@ -499,7 +499,6 @@ impl<C: Contact> Fas for Multigrid<C> {
         let seed = self.seed.take()?;
         let top = self.levels.len() - 1;
         let l = (0..top).find(|&l| C::seed_matches(self, l, &seed))?;
-        let centre = C::centre_index(self, l);
         let h0 = seed.h0_moes / C::h_scale(self);
         let lv = &mut self.levels[l];
         lv.pressure().copy_from_slice(&seed.p);
@@ -508,7 +507,6 @@ impl<C: Contact> Fas for Multigrid<C> {
         nodes.frozen.fill(false);
         lv.refresh(&self.phys, h0);
         self.h0 = h0;
-        debug_assert!(lv.film()[centre].is_finite());
         Some(l)
     }
     fn coarse_load_failed(&self) -> bool {
