@@ -1,5 +1,5 @@
-//! The error bars are honest: on 35 cases spread over the line box (M 0.3 to 2000, L 0 to 20)
-//! and the point box (M 5 to 300, L 0 to 10, D 1 to 0.25), the error estimate a fixed-grid solve
+//! The error bars are honest: on 46 cases spread over the line box (M 0.01 to 2000, L 0 to 40)
+//! and the point box (M 1 to 300, L 0 to 20, D 1 to 0.1), the error estimate a fixed-grid solve
 //! reports for H_c and for H_min (`H_c_err`, `H_min_err`: the half-grid Richardson estimate plus
 //! the algebraic errors) bounds the true error of that solve, measured against a reference two
 //! grids finer: Richardson (order 2) over the solves on 4 and 8 times the intervals (line: 1025
@@ -87,6 +87,12 @@ fn line_error_bars_bound_the_true_error() {
         (1000.0, 10.0),
         (1000.0, 20.0),
         (2000.0, 10.0),
+        // Toward the corners of the line box (M 0.01-1e5, L 0-40).
+        (0.01, 0.0),
+        (0.01, 40.0),
+        (0.1, 20.0),
+        (0.1, 40.0),
+        (1000.0, 30.0),
     ];
     let results: Vec<_> = cases
         .iter()
@@ -109,6 +115,17 @@ fn point_error_bars_bound_the_true_error() {
         for d in [1.0, 0.5, 0.25] {
             cases.push(Case::Point(PointCase::new(m, l, d).unwrap()));
         }
+    }
+    // Toward the corners of the point box (M 0.01-3e4, L 0-30, D 0.01-1).
+    for (m, l, d) in [
+        (1.0, 0.0, 1.0),
+        (1.0, 20.0, 1.0),
+        (3.0, 10.0, 0.1),
+        (30.0, 20.0, 0.1),
+        (100.0, 0.0, 0.1),
+        (200.0, 20.0, 0.5),
+    ] {
+        cases.push(Case::Point(PointCase::new(m, l, d).unwrap()));
     }
     // The cases on the rayon pool (each solve on one thread: the same numbers as serially).
     let results: Vec<_> = cases.par_iter().map(|c| check(c, 129)).collect();
