@@ -3,10 +3,11 @@
 //! median wall time over repeats, with the grid picked, the error estimates of H_c and H_min and
 //! whether the target was met.
 //!
-//! The targets checked: each case meets 1 % (`accuracy_met`); circular M = 20, L = 10 in under
-//! 1 s; circular M = 1000, L = 0 in under 10 s; the ball-bearing case file
-//! (`sweeps/cases/ball-bearing.toml`, M = 8729, L = 16.4, D = 0.031) in under 30 s. Each line of
-//! the summary says `met` or `NOT met`.
+//! The targets checked: each case meets 1 % by its own estimate (`accuracy_met`; issue 23 asks
+//! for 1 % of the grid-converged value, which `tests/accuracy.rs` checks against finer grids);
+//! circular M = 20, L = 10 in under 1 s; circular M = 1000, L = 0 in under 10 s; the
+//! ball-bearing case file (`sweeps/cases/ball-bearing.toml`, M = 8729, L = 16.4, D = 0.031) in
+//! under 30 s. Each line of the summary says `met` or `NOT met`.
 
 mod common;
 use common::{time, verdict};
@@ -79,6 +80,11 @@ fn main() {
         met + usize::from(bb_met),
         cases.len() + 1,
         verdict(met + usize::from(bb_met) == cases.len() + 1)
+    );
+    println!(
+        "  (issue 23 asks each answer within 1 % of its grid-converged value with an estimate that \
+         bounds the error, within the grid caps: tests/accuracy.rs checks that against finer \
+         grids; a case at the 1025^2 cap may keep an estimate above 1 %)"
     );
     println!(
         "  circular M=20 L=10 under 1 s: {:.3} s: {}",
