@@ -288,6 +288,18 @@ impl<C: Contact> Multigrid<C> {
         }
     }
 
+    /// Put a solved state on level `l`: its pressure `p` (no FAS right-hand side, no frozen
+    /// nodes) and H0, the film and coefficients refreshed (a resumed solve, a seed).
+    fn install_state(&mut self, l: usize, p: &[f64], h0: f64) {
+        let lv = &mut self.levels[l];
+        lv.pressure().copy_from_slice(p);
+        let nodes = lv.nodes_mut();
+        nodes.f.fill(0.0);
+        nodes.frozen.fill(false);
+        lv.refresh(&self.phys, h0);
+        self.h0 = h0;
+    }
+
     /// One relaxation sweep on level `l`, counted in work units.
     pub fn relax_level(&mut self, l: usize) {
         let cost = C::sweep(self, l);
@@ -482,14 +494,8 @@ impl<C: Contact> Fas for Multigrid<C> {
     fn install_guess(&mut self, l: usize) -> bool {
         if l + 1 == self.levels.len() {
             if let Some(r) = self.resume.take() {
-                let lv = &mut self.levels[l];
-                lv.pressure().copy_from_slice(&r.p);
-                let nodes = lv.nodes_mut();
-                nodes.f.fill(0.0);
-                nodes.frozen.fill(false);
-                lv.set_load_rhs(r.g);
-                self.h0 = r.h0;
-                lv.refresh(&self.phys, r.h0);
+                self.levels[l].set_load_rhs(r.g);
+                self.install_state(l, &r.p, r.h0);
                 return true;
             }
         }
@@ -500,13 +506,7 @@ impl<C: Contact> Fas for Multigrid<C> {
         let top = self.levels.len() - 1;
         let l = (0..top).find(|&l| C::seed_matches(self, l, &seed))?;
         let h0 = seed.h0_moes / C::h_scale(self);
-        let lv = &mut self.levels[l];
-        lv.pressure().copy_from_slice(&seed.p);
-        let nodes = lv.nodes_mut();
-        nodes.f.fill(0.0);
-        nodes.frozen.fill(false);
-        lv.refresh(&self.phys, h0);
-        self.h0 = h0;
+        self.install_state(l, &seed.p, h0);
         Some(l)
     }
     fn coarse_load_failed(&self) -> bool {
