@@ -431,8 +431,8 @@ fn table() -> Vec<Bad> {
             "solve --M 20 --accuracy 0.01 --max-grid 2000000",
         ),
         input(
-            "--max-grid 2049",
-            "solve --contact point --D 1 --M 20 --accuracy 0.01 --max-grid 2049",
+            "--max-grid 4097",
+            "solve --contact point --D 1 --M 20 --accuracy 0.01 --max-grid 4097",
         ),
         input("--grid 1025", "solve --M 20 --accuracy 0.01 --grid 1025"),
         input("--max-cycles 0", "solve --M 20 --max-cycles 0"),

@@ -411,7 +411,10 @@ fn run_box(a: &StabilityArgs) -> Result<(), CliError> {
         Some(t) => time_limit_arg("--time-limit", t)?,
     };
     for contact in [Contact::Line, Contact::Point] {
-        let g = ehlmap::strategy::solve_case::default_max_grid(contact);
+        let g = ehlmap::strategy::solve_case::default_max_grid(
+            contact,
+            ehlmap::strategy::solve_case::DEFAULT_ACCURACY,
+        );
         check_memory(
             &format!("--box ({contact} contacts up to {g} points)"),
             &format!("a {contact} solve on the largest grid"),

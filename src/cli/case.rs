@@ -7,7 +7,7 @@ use crate::cli::formula_arg::formula_arg;
 use crate::cli::limits::{check_memory, estimate, Solver};
 use crate::cli::output::{note, out, outln, prepare_dir, report_plot};
 use crate::cli::solve_args::time_limit_arg;
-use ehlmap::strategy::solve_case::default_max_grid;
+use ehlmap::strategy::solve_case::{default_max_grid, DEFAULT_ACCURACY};
 use std::path::PathBuf;
 
 #[derive(clap::Args, Debug)]
@@ -51,7 +51,7 @@ pub fn run_case(a: &CaseArgs) -> Result<(), CliError> {
         let (grid, what) = match derived.grid {
             Some(g) => (g, format!("{path}: grid = {g}")),
             None => {
-                let g = default_max_grid(contact);
+                let g = default_max_grid(contact, DEFAULT_ACCURACY);
                 (g, format!("{path}: the accuracy ladder's largest grid {g}"))
             }
         };

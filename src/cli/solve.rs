@@ -20,8 +20,8 @@ use ehlmap::strategy::solve_case::{default_max_grid, solve, SolveParams};
 fn check_solve_memory(a: &SolveArgs, case: &Case, p: &SolveParams) -> Result<(), CliError> {
     let contact = case.contact();
     let (grid, flag) = match (p.accuracy, p.grid) {
-        (Some(_), _) => {
-            let g = p.max_grid.unwrap_or(default_max_grid(contact));
+        (Some(t), _) => {
+            let g = p.max_grid.unwrap_or(default_max_grid(contact, t));
             (g, format!("--max-grid {g}"))
         }
         (None, Some(g)) => (g, format!("--grid {g}")),

@@ -158,8 +158,9 @@ pub struct SolveArgs {
     /// Always solve the full model (no model selection; not with --grid).
     #[arg(long)]
     pub full_model: bool,
-    /// The largest grid the accuracy ladder may use (default 16385 line points, 1025 point
-    /// nodes per direction; line 513 to 1048577, point 65 to 1025; not with --grid).
+    /// The largest grid the accuracy ladder may use (default 16385 line points; point nodes per
+    /// direction 1025 for targets of 1 % and looser, 2049 for tighter ones; line 513 to
+    /// 1048577, point 65 to 2049; not with --grid).
     #[arg(long)]
     pub max_grid: Option<usize>,
     /// Cycles allowed on the finest level, 1 to 100000 (default: the contact's, 60 for line
@@ -212,10 +213,10 @@ pub(crate) const LINE_GRID: (usize, usize, usize) = (2049, 33, (1 << 20) + 1);
 /// The same for point contacts, points per direction.
 pub(crate) const POINT_GRID: (usize, usize, usize) = (129, 17, 2049);
 /// `--max-grid` range: two grids of the ladder (257 then 513 line points, 33 then 65 point
-/// nodes) up to the finest a line solve takes, or 1025 per direction for point contacts.
+/// nodes) up to the finest a line solve takes, or 2049 per direction for point contacts.
 const LINE_MAX_GRID: (usize, usize) = (513, (1 << 20) + 1);
 /// The same for point contacts.
-const POINT_MAX_GRID: (usize, usize) = (65, 1025);
+const POINT_MAX_GRID: (usize, usize) = (65, 2049);
 /// Most cycles `--max-cycles` takes (as a sweep spec's `max_cycles`).
 const MAX_CYCLES: usize = 100_000;
 /// Most threads `--threads` takes (as `ehlmap sweep --threads`).

@@ -98,9 +98,9 @@ pub(super) fn parse(
         if !grid_named && n.accuracy.is_none() {
             // No grid named: the default accuracy target picks it, up to the ladder's largest.
             n.accuracy = Some(DEFAULT_ACCURACY);
-            n.grid = default_max_grid(contact);
+            n.grid = default_max_grid(contact, DEFAULT_ACCURACY);
         } else if !grid_named {
-            n.grid = default_max_grid(contact);
+            n.grid = default_max_grid(contact, n.accuracy.unwrap_or(DEFAULT_ACCURACY));
         }
         let grid_min = contact.grid_range().0;
         if let (true, Some((span, key))) = (n.error_estimate, &estimate_key) {
