@@ -296,7 +296,7 @@ fn issue_22_half_percent_targets_are_met_with_an_estimate() {
         let e = o.error_estimate.expect("an error estimate");
         assert!(e <= 0.005, "{name}: estimate {e}");
         let g = o.grid;
-        let refs = [(g + 3) / 4, g.div_ceil(2), g].map(|r| cold_films(&case, r));
+        let refs = [g.div_ceil(4), g.div_ceil(2), g].map(|r| cold_films(&case, r));
         check_against_limit(name, &o, refs, 0.005);
     }
 }
