@@ -41,11 +41,6 @@ pub struct RelaxParams {
     /// so in a few sweeps instead of by 2/alpha_bar per sweep. The point contact keeps 0: at
     /// L = 20 on 513^2 the larger steps make its cycles diverge.
     pub relative_step: f64,
-    /// Point contacts: a row is solved narrow (half bandwidth 2, no local film update) when at
-    /// each of its active nodes a bound of the kernel terms a narrow solve drops is below this
-    /// fraction of the diagonal's local part (`crate::solve::point::relax::NARROW_BW`); 0 solves
-    /// every row with the full band. Line contacts ignore it.
-    pub narrow_tolerance: f64,
 }
 
 impl Default for RelaxParams {
@@ -59,7 +54,6 @@ impl Default for RelaxParams {
             band: 4,
             picard: false,
             relative_step: 0.0,
-            narrow_tolerance: 0.1,
         }
     }
 }

@@ -94,18 +94,6 @@ impl PointJacRow {
         }
     }
 
-    /// A bound of the row's kernel weights: |c| times the sum of |g_h| and |g_y|, so that every
-    /// kernel term of [`PointJacRow::entry`] is at most this times the largest kernel value read.
-    pub fn kernel_weight(&self) -> f64 {
-        let g: f64 = self.g_h.iter().chain(&self.g_y).map(|g| g.abs()).sum();
-        self.coef.abs() * g
-    }
-
-    /// The local (non-kernel) part of the diagonal dL_ij/dP_ij.
-    pub fn local_diagonal(&self) -> f64 {
-        self.local[2]
-    }
-
     /// A zero row for the node (i, j) whose equation is not relaxed (frozen or cavitated).
     pub fn pinned(i: usize, j: usize) -> Self {
         PointJacRow {
@@ -254,14 +242,6 @@ impl KernelWindow {
         self.reach = reach;
         mirror_kernel(&kernel[..nx], reach, &mut self.row0);
         mirror_kernel(&kernel[nx..2 * nx], reach, &mut self.row1);
-    }
-
-    /// The largest |value| held (the kernel's peak, K at offset 0 of row 0).
-    pub fn peak(&self) -> f64 {
-        self.row0
-            .iter()
-            .chain(&self.row1)
-            .fold(0.0f64, |a, v| a.max(v.abs()))
     }
 }
 

@@ -39,17 +39,11 @@ pub struct PointScratch {
     /// The kernel near the diagonal, in order.
     window: KernelWindow,
     change: Vec<f64>,
-    /// Whether the last row solved was narrow ([`RelaxParams::narrow_tolerance`]).
-    narrow: bool,
     /// The changes of one colour in zebra order.
     zebra: Vec<f64>,
     /// One row scratch per zebra job (rayon thread).
     jobs: Vec<PointScratch>,
 }
-
-/// The half bandwidth of a narrow row ([`RelaxParams::narrow_tolerance`]): every local term of
-/// the Jacobian (offsets up to 2, the second-order wedge) and the kernel terms within it kept.
-pub const NARROW_BW: usize = 2;
 
 /// One sweep of x-line relaxation over all interior rows: Gauss-Seidel from row to row, or, on a
 /// `parallel` level ([`PointLevel::parallel`]), zebra order (all odd rows from the same state, then all even rows; the rows of one
@@ -103,15 +97,13 @@ pub fn point_line_sweep(
         s.jobs = jobs;
         return;
     }
+    let reach = 2 * (rp.band + 1);
     for j in 1..ny - 1 {
         row_changes(lv, phys, rp, j, s);
         for i in 1..nx - 1 {
             let c = lv.at(i, j);
             lv.p[c] += s.change[i];
         }
-        // The film within twice the row's band (a narrow row's changes, where the film barely
-        // matters, wait for the FFT product after the sweep).
-        let reach = if s.narrow { 0 } else { 2 * (rp.band + 1) };
         local_film_update(lv, phys, j, reach, &s.change);
     }
     // Every changed row has set its rho and eta lambda: only H and eps are left to refresh.
@@ -128,7 +120,8 @@ fn row_changes(
 ) {
     let nx = lv.nx;
     let m = nx - 2;
-    let full_bw = rp.band + 1;
+    let bw = rp.band + 1;
+    let w = 2 * bw + 1;
     let hx2 = lv.hx * lv.hx;
     // Each change is limited to one Hertz pressure, and to a viscosity change by e^2 (Barus):
     // far from the solution a full Newton change is not to be trusted.
@@ -142,10 +135,9 @@ fn row_changes(
         ent,
         change,
         window,
-        narrow: row_narrow,
         ..
     } = s;
-    window.fill(&lv.kernel, nx, (full_bw + 3).min(nx - 1));
+    window.fill(&lv.kernel, nx, (bw + 3).min(nx - 1));
     rows.clear();
     kind.clear();
     kind.resize(nx, Kind::Frozen);
@@ -171,24 +163,6 @@ fn row_changes(
             rows.push(row);
         }
     }
-    // A narrow row (RelaxParams::narrow_tolerance): far from the contact, where the Poiseuille
-    // terms dominate, the kernel terms beyond NARROW_BW (each at most the row's kernel weight
-    // times the kernel's peak, 2 full_bw - 2 of them after the distribution) are bounded below
-    // the tolerance times the diagonal at every active node.
-    let dropped = 2 * full_bw - 2;
-    let peak = window.peak();
-    let narrow = rp.narrow_tolerance > 0.0
-        && !phys.dry
-        && full_bw > NARROW_BW
-        && (1..nx - 1).all(|i| {
-            let r = &rows[i - 1];
-            kind[i] != Kind::Active
-                || dropped as f64 * r.kernel_weight() * peak
-                    <= rp.narrow_tolerance * r.local_diagonal().abs()
-        });
-    let bw = if narrow { NARROW_BW } else { full_bw };
-    *row_narrow = narrow;
-    let w = 2 * bw + 1;
     jset.clear();
     jset.extend((0..nx).map(|i| {
         distributed(kind, i, || {
