@@ -2,11 +2,18 @@
 //!
 //! Levels l = 0 (coarsest, n0 x n0 intervals) .. finest (n0 2^l per direction) on one domain
 //! ([`crate::discrete::point::domain`]). A cycle on level l > 0: `pre` x-line relaxations
-//! ([`crate::solve::point::relax`]); the full residual (the complementarity margin included on the
-//! cavitated set) is restricted by 9-point full weighting; P is injected; the coarse right-hand
-//! sides are f_H = L_H(P^_H) + R r and g_H = hx hy sum P^_H + (g_h - load_h); `gamma` coarse
-//! cycles; the correction is interpolated bilinearly, added and projected on P >= 0; `post`
-//! relaxations. Coarse nodes whose fine 3 x 3 neighbourhood touches the cavitated set are frozen.
+//! ([`crate::solve::point::relax`]); the residual is restricted by 9-point full weighting, at a
+//! coarse node whose fine node is pressurised over the pressurised fine nodes only, at a cavitated
+//! one with the complementarity margin of the cavitated fine nodes included; P is injected; the
+//! coarse right-hand sides are f_H = L_H(P^_H) + R r and g_H = hx hy sum P^_H + (g_h - load_h);
+//! `gamma` coarse cycles; the correction is interpolated bilinearly, added and projected on
+//! P >= 0; `post` relaxations. With that restriction a converged fine solution is a fixed point of
+//! the cycle (R r = 0 at pressurised coarse nodes, R r < 0 keeps the cavitated ones at P = 0), so
+//! below alpha_bar = [`FREEZE_ALPHA_BAR`] no coarse node is frozen and the coarse grids correct
+//! the outlet region up to the cavitation boundary; from it on (a pressure spike next to the
+//! cavitation boundary, under-resolved on the coarse grids) coarse nodes whose fine 3 x 3
+//! neighbourhood touches the cavitated set or a frozen node are frozen (docs/method.md, "The free
+//! boundary on the coarse grids").
 //! The coarsest level is solved at fixed H0 by semi-smooth Newton on its ~(n0-1)^2 unknowns. FMG
 //! (the driver in [`crate::solve::fmg`]) starts from the Hertz pressure with a full Newton solve
 //! and interpolates each level's result to the next (cubic along each direction).
@@ -132,16 +139,35 @@ pub struct PointExtra {
     scratch: PointScratch,
 }
 
-/// 9-point full weighting of a fine field at the interior coarse node (i, j).
+/// The dimensionless pressure-viscosity coefficient alpha p_h from which coarse nodes next to the
+/// cavitated set are frozen (module docs). Below it the consistent restriction alone converges
+/// faster (M = 20, L = 0, D = 1: 11 instead of 48 work units on 513^2, 23 instead of 52 on
+/// 1025^2); from it on the spike cases need the frozen band (without it M = 19.3, L = 20, D = 1
+/// and M = 200, L = 20, D = 0.5 no longer converge at their usual attempt). Measured:
+/// docs/performance.md, "The free boundary on the point coarse grids".
+pub const FREEZE_ALPHA_BAR: f64 = 5.0;
+
+/// 9-point full weighting of the fine residual `r` at the interior coarse node (i, j), over the
+/// pressurised fine nodes only where the coinciding fine node is pressurised (module docs).
 fn full_weight(fine: &PointLevel, r: &[f64], i: usize, j: usize) -> f64 {
     let c = fine.at(2 * i, 2 * j);
     let nx = fine.nx;
-    (4.0 * r[c]
-        + 2.0 * (r[c - 1] + r[c + 1] + r[c - nx] + r[c + nx])
-        + r[c - nx - 1]
-        + r[c - nx + 1]
-        + r[c + nx - 1]
-        + r[c + nx + 1])
+    // At a pressurised coarse node the complementarity margins of cavitated fine nodes are left
+    // out: they would push it towards cavitation even where the fine solution has converged.
+    let active = fine.p[c] > 0.0;
+    let v = |q: usize| {
+        if active && fine.p[q] <= 0.0 {
+            0.0
+        } else {
+            r[q]
+        }
+    };
+    (4.0 * v(c)
+        + 2.0 * (v(c - 1) + v(c + 1) + v(c - nx) + v(c + nx))
+        + v(c - nx - 1)
+        + v(c - nx + 1)
+        + v(c + nx - 1)
+        + v(c + nx + 1))
         / 16.0
 }
 
@@ -165,8 +191,9 @@ impl Contact for PointContact {
         (iterations * (lv.nx - 1)) as f64 * ((lv.nx - 1) * (lv.ny - 1)) as f64 / mg.extra.fine_cells
     }
 
-    /// Injection of P, 9-point full weighting of the residual, frozen nodes where the fine
-    /// 3 x 3 neighbourhood touches the cavitated set.
+    /// Injection of P and 9-point full weighting of the residual ([`full_weight`]); from
+    /// alpha_bar = [`FREEZE_ALPHA_BAR`] on, frozen nodes where the fine 3 x 3 neighbourhood
+    /// touches the cavitated set or a frozen node (module docs).
     fn restrict(
         coarse: &mut PointLevel,
         fine: &PointLevel,
@@ -189,13 +216,15 @@ impl Contact for PointContact {
         );
         let cl = &*coarse;
         let (nx, interior) = (fine.nx, |j: usize| j > 0 && j + 1 < cl.ny);
+        let freeze = phys.fluid.alpha_bar >= FREEZE_ALPHA_BAR;
         for_each_row(cl.parallel, &mut frozen, cl.nx, |j, frozen| {
             if interior(j) {
                 for (i, fr) in frozen.iter_mut().enumerate().take(cl.nx - 1).skip(1) {
                     let fc = fine.at(2 * i, 2 * j);
-                    *fr = [fc - nx, fc, fc + nx]
-                        .iter()
-                        .any(|&b| (b - 1..=b + 1).any(|q| fine.p[q] <= 0.0 || fine.frozen[q]));
+                    *fr = freeze
+                        && [fc - nx, fc, fc + nx]
+                            .iter()
+                            .any(|&b| (b - 1..=b + 1).any(|q| fine.p[q] <= 0.0 || fine.frozen[q]));
                 }
             }
         });
