@@ -107,7 +107,10 @@ fn point_error_estimates_are_honest_on_a_validation_set() {
 /// The accuracy ladder seeds each grid's FMG ascent with the previous grid's converged solve
 /// (`Seed`): on the same grid the seeded solve agrees with the cold one within their algebraic
 /// error estimates, for less work; a seed that matches no level (another case's domain) is
-/// ignored, bit for bit.
+/// ignored, bit for bit. (The point case asked for less than 0.8 times the cold work units
+/// before the finest level's residual bound: the seeded solve then stopped after 17.1 work
+/// units claiming an algebraic error of 7.2e-5 with H_min 1.1e-4 off the tight answer; with
+/// the bound it stops after 25.3 against the cold 26.2, claiming 2.8e-4 with 1.8e-5 off.)
 #[test]
 fn a_seeded_solve_agrees_with_the_cold_one_for_less_work() {
     use ehlmap::model::case::PointCase;
@@ -131,7 +134,7 @@ fn a_seeded_solve_agrees_with_the_cold_one_for_less_work() {
         assert!((a / b - 1.0).abs() <= alg, "{a} {b} (algebraic {alg:.1e})");
     }
     assert!(
-        warm.work_units < 0.8 * cold.work_units,
+        warm.work_units < cold.work_units,
         "seeded {} WU, cold {} WU",
         warm.work_units,
         cold.work_units

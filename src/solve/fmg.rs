@@ -32,6 +32,9 @@ pub struct FmgControl {
     pub tol_load_fmg: f64,
     /// Fast convergence: the largest algebraic error the finest level may stop with.
     pub max_algebraic: f64,
+    /// Fast convergence: the factor of the finest level's residual bound on the algebraic
+    /// error ([`crate::solve::fmg_fast`]; 0: none).
+    pub residual_bound: f64,
     /// Damping of the secant step on H0 (`None`: 1).
     pub load_factor: Option<f64>,
     /// The cycle budget of a coarser FMG level grows by this factor per level below the finest

@@ -13,9 +13,16 @@
 //!   and the convergence factor rho, the larger of delta_k / delta_(k-1) and the residual's
 //!   contraction over the cycle (clamped to [0.1, 0.9], 0.5 after the first cycle), as the
 //!   geometric tail 2 delta_k rho / (1 - rho) with a safety factor of 2 (rho is observed over
-//!   two cycles only); e_a is the larger of the two tails plus 2 |load error|, the
-//!   load error, which moves H by at most twice its relative size (H ~ W^-2 in the
-//!   rigid-isoviscous limit, weaker elsewhere);
+//!   two cycles only); on a finest level started from a coarser one (not a warm or resumed
+//!   start), and where the contact freezes a band along the cavitation boundary
+//!   ([`crate::solve::multilevel::Contact::frozen_band`]), not below the residual bound
+//!   c 3 e_d r_k / r_0 (r_0 and r_k the residuals after the level's first and latest cycle,
+//!   e_d below; c = `residual_bound`, [`RESIDUAL_BOUND`]): the FMG start carries an algebraic error of about
+//!   the difference of the two grids' answers, 3 e_d, which falls with the residual once the
+//!   slowest modes dominate (a slow mode at the outlet spike or the cavitation boundary can
+//!   leave H_c and H_min almost unchanged for two cycles and move them later); e_a is the
+//!   larger of these plus 2 |load error|, the load error, which moves H by at most twice its
+//!   relative size (H ~ W^-2 in the rigid-isoviscous limit, weaker elsewhere);
 //! * the discretisation error of level l is estimated by Richardson for second order from level
 //!   l-1's final values, e_d = max |Q_l - Q_(l-1)| / (3 |Q_l|);
 //! * the finest level stops when e_a <= max(min(e_d / 10, cap), tol_h) ([`FINEST_FRACTION`];
@@ -99,6 +106,19 @@ impl Swing {
 /// not a solution to stop at, and the cycles continue until it is met or the budget is spent.
 pub const MAX_ALGEBRAIC_ERROR: f64 = 1e-2;
 
+/// The default factor c of the finest level's residual bound on the algebraic error, c 3 e_d
+/// r_k / r_0 (module docs; [`crate::solve::params::MgParams::residual_bound`]). Measured on 120
+/// point cases (M 1-1000, L 0-20, D 1-0.1 on 257^2 and 513^2, each run on for 22 finest cycles
+/// to find its converged answer): without the bound 25 of them stopped with a true algebraic
+/// error above the estimate (up to 32 times, up to 0.79 of the discretisation estimate), with
+/// c = 1 where alpha_bar >= 5 (the frozen band, [`crate::solve::multilevel::Contact::frozen_band`])
+/// 9 (up to 2.8 times, at most 0.11 of the discretisation estimate), for 13 % more work units.
+/// The line contact's estimate was already honest (4 of 94 cases above it, up to 3.3
+/// times, at most 0.06 of the discretisation estimate) and takes c = 0.1 (`LINE_RESIDUAL_BOUND`
+/// of the line multigrid: 0 of 94 above it, 0.6 % more work units). docs/method.md, "The
+/// algebraic error estimate".
+pub const RESIDUAL_BOUND: f64 = 1.0;
+
 /// A level whose residual exceeds this multiple of the largest residual on the coarser levels
 /// has diverged: on a converging hierarchy the finer levels' residuals are no larger.
 pub const LEVEL_RESIDUAL_GROWTH: f64 = 1e3;
@@ -136,17 +156,30 @@ pub fn tail(delta: f64, prev: Option<f64>, res_ratio: Option<f64>) -> f64 {
     2.0 * delta * rho / (1.0 - rho)
 }
 
+/// The residual bound c 3 e_d r / r_0 on the finest level's algebraic error (module docs):
+/// factor `c`, discretisation estimate `e_d`, residual `r` after the latest cycle and `r_0`
+/// after the level's first (0 where r_0 is not a positive number).
+pub fn residual_bound(c: f64, e_d: f64, r: f64, r_0: f64) -> f64 {
+    if r_0 > 0.0 && r_0.is_finite() {
+        c * 3.0 * e_d * r / r_0
+    } else {
+        0.0
+    }
+}
+
 /// The algebraic error estimate of H_c and H_min (the larger, module docs) after a cycle that
 /// changed them by `delta`, the previous cycle by `prev`, with the residual's contraction
-/// `res_ratio` and the relative load error `load_error`.
+/// `res_ratio`, the relative load error `load_error` and the finest level's residual bound
+/// `bound` ([`residual_bound`]; 0 on coarser levels).
 pub fn algebraic_error(
     delta: [f64; 2],
     prev: Option<[f64; 2]>,
     res_ratio: Option<f64>,
     load_error: f64,
+    bound: f64,
 ) -> f64 {
     let t = |q: usize| tail(delta[q], prev.map(|p| p[q]), res_ratio);
-    t(0).max(t(1)) + 2.0 * load_error.abs()
+    t(0).max(t(1)).max(bound) + 2.0 * load_error.abs()
 }
 
 /// The reason to give up on level `l` after cycle `k`: its residual grew by 100 over its
@@ -255,6 +288,8 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
         let mut swing = Swing::default();
         // The cycle of the level's last damping: the contraction check starts again there.
         let mut damped_at = 0;
+        // The residual after the level's first cycle (the residual bound's reference).
+        let mut first_res = f64::NAN;
         for k in 0..max {
             let rec = cycle_once(s, l, k);
             if final_level {
@@ -275,13 +310,21 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
             }
             let delta = changes(&last, &rec);
             let res_ratio = (k > 0).then(|| rec.residual / last.residual.max(1e-300));
-            let alg = algebraic_error(delta, prev_delta, res_ratio, rec.load_error);
-            let disc = coarser
-                .map(|q| {
-                    let d = changes(&q, &rec);
-                    d[0].max(d[1]) / 3.0
-                })
-                .or_else(|| s.discretisation_hint().filter(|_| final_level));
+            let from_coarser = coarser.map(|q| {
+                let d = changes(&q, &rec);
+                d[0].max(d[1]) / 3.0
+            });
+            let disc = from_coarser.or_else(|| s.discretisation_hint().filter(|_| final_level));
+            if k == 0 {
+                first_res = rec.residual;
+            }
+            // Only a level started from a coarser one carries the start error 3 e_d (a warm
+            // or resumed start carries less: no bound).
+            let bound = match (final_level, from_coarser) {
+                (true, Some(d)) => residual_bound(c.residual_bound, d, rec.residual, first_res),
+                _ => 0.0,
+            };
+            let alg = algebraic_error(delta, prev_delta, res_ratio, rec.load_error, bound);
             if final_level {
                 e_a = Some(alg);
                 e_d = disc;
@@ -365,10 +408,24 @@ mod tests {
         // The first cycle assumes 1/2.
         assert!((tail(1e-3, None, None) - 2e-3).abs() < 1e-15);
         // The larger of the two quantities' tails, plus twice the load error.
-        let e = algebraic_error([1e-3, 1e-4], Some([2e-3, 1e-3]), None, -1e-4);
+        let e = algebraic_error([1e-3, 1e-4], Some([2e-3, 1e-3]), None, -1e-4, 0.0);
         assert!((e - 2.2e-3).abs() < 1e-15);
-        let e = algebraic_error([1e-5, 1e-4], Some([1e-3, 2e-4]), Some(0.1), 0.0);
+        let e = algebraic_error([1e-5, 1e-4], Some([1e-3, 2e-4]), Some(0.1), 0.0, 0.0);
         assert!((e - 2e-4).abs() < 1e-15);
+        // A residual bound above the tails replaces them (the load error still adds).
+        let e = algebraic_error([1e-5, 1e-4], Some([1e-3, 2e-4]), Some(0.1), 1e-5, 5e-4);
+        assert!((e - 5.2e-4).abs() < 1e-15);
+    }
+
+    #[test]
+    fn the_residual_bound_scales_the_start_error_with_the_residual() {
+        // e_d = 1e-3: the FMG start is about 3e-3 off; a residual fallen 30 times from the
+        // first cycle's leaves a tenth of e_d.
+        assert!((residual_bound(1.0, 1e-3, 1e-4, 3e-3) - 1e-4).abs() < 1e-18);
+        assert!((residual_bound(0.1, 1e-3, 1e-4, 3e-3) - 1e-5).abs() < 1e-18);
+        // No reference residual: no bound.
+        assert_eq!(residual_bound(1.0, 1e-3, 1e-4, 0.0), 0.0);
+        assert_eq!(residual_bound(1.0, 1e-3, 1e-4, f64::NAN), 0.0);
     }
 
     fn record(residual: f64, h_c: f64) -> CycleRecord {

@@ -143,6 +143,13 @@ pub trait Contact: Sized {
     }
     /// Whether level `l`'s nodes are those of `seed` ([`Seed::matches`]).
     fn seed_matches(mg: &Multigrid<Self>, l: usize, seed: &Seed) -> bool;
+    /// Whether the coarse grids freeze a band along the cavitation boundary (no coarse-grid
+    /// correction there, so its error decays by relaxation alone): the finest level's
+    /// algebraic error estimate then takes the residual bound
+    /// ([`crate::solve::params::MgParams::residual_bound`]).
+    fn frozen_band(_mg: &Multigrid<Self>) -> bool {
+        true
+    }
 }
 
 /// A domain built by a rule with parameters [`DomainRule::Params`].
@@ -430,7 +437,11 @@ impl<C: Contact> Multigrid<C> {
 
 impl<C: Contact> Fas for Multigrid<C> {
     fn control(&self) -> FmgControl {
-        self.params.control(C::COARSE_BUDGET_GROWTH)
+        let mut c = self.params.control(C::COARSE_BUDGET_GROWTH);
+        if !C::frozen_band(self) {
+            c.residual_bound = 0.0;
+        }
+        c
     }
     fn top(&self) -> usize {
         self.levels.len() - 1

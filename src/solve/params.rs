@@ -166,6 +166,12 @@ pub struct MgParams<D> {
     /// [`crate::solve::fmg_fast::MAX_ALGEBRAIC_ERROR`]; the accuracy ladder lowers it to a
     /// fraction of its target).
     pub max_algebraic: f64,
+    /// Fast convergence: the factor c of the residual bound on the finest level's algebraic
+    /// error, c 3 e_d r_k / r_0 (e_d the discretisation estimate, r_0 and r_k the residuals
+    /// after its first and latest cycle; 0: none). Default
+    /// [`crate::solve::fmg_fast::RESIDUAL_BOUND`]; the line contact takes
+    /// [`crate::solve::line::multigrid::LINE_RESIDUAL_BOUND`].
+    pub residual_bound: f64,
     /// The contact's domain rule.
     pub domain: D,
     /// Line contacts: override the coarsest grid's interval count (a power of two >= 8).
@@ -210,6 +216,7 @@ impl<D> MgParams<D> {
             tol_h,
             tol_load_fmg: 1e-4,
             max_algebraic: crate::solve::fmg_fast::MAX_ALGEBRAIC_ERROR,
+            residual_bound: crate::solve::fmg_fast::RESIDUAL_BOUND,
             domain,
             coarse_intervals: None,
             second_order: true,
@@ -231,6 +238,7 @@ impl<D> MgParams<D> {
             tol_h: self.tol_h,
             tol_load_fmg: self.tol_load_fmg,
             max_algebraic: self.max_algebraic,
+            residual_bound: self.residual_bound,
             load_factor: self.load_factor,
             coarse_budget_growth,
             deadline: self.deadline,

@@ -31,14 +31,21 @@ pub type LineMgParams = MgParams<DomainParams>;
 /// The line contact's [`crate::solve::relax::RelaxParams::relative_step`].
 pub const LINE_RELATIVE_STEP: f64 = 0.25;
 
+/// The line contact's [`MgParams::residual_bound`]: its algebraic error estimate needs a
+/// tenth of the point contact's residual bound ([`crate::solve::fmg_fast::RESIDUAL_BOUND`]
+/// has the measurement).
+pub const LINE_RESIDUAL_BOUND: f64 = 0.1;
+
 impl Default for MgParams<DomainParams> {
     /// The shared defaults with V(1, 1) cycles (on the line one pre-relaxation does what two
-    /// did, for a third less work) and a relative step limit of 1/4
-    /// ([`crate::solve::relax::RelaxParams::relative_step`]).
+    /// did, for a third less work), a relative step limit of 1/4
+    /// ([`crate::solve::relax::RelaxParams::relative_step`]) and the line's residual bound
+    /// ([`LINE_RESIDUAL_BOUND`]).
     fn default() -> Self {
         let mut p = MgParams::defaults(DomainParams::default(), 2049, 60, 5e-7, 1e-6);
         p.pre = 1;
         p.relax.relative_step = LINE_RELATIVE_STEP;
+        p.residual_bound = LINE_RESIDUAL_BOUND;
         p
     }
 }

@@ -147,6 +147,12 @@ pub struct PointExtra {
 /// docs/performance.md, "The free boundary on the point coarse grids".
 pub const FREEZE_ALPHA_BAR: f64 = 5.0;
 
+/// Whether the coarse grids freeze the band along the cavitation boundary (alpha_bar from
+/// [`FREEZE_ALPHA_BAR`] on).
+fn freezes(phys: &PointPhysics) -> bool {
+    phys.fluid.alpha_bar >= FREEZE_ALPHA_BAR
+}
+
 /// 9-point full weighting of the fine residual `r` at the interior coarse node (i, j), over the
 /// pressurised fine nodes only where the coinciding fine node is pressurised (module docs).
 fn full_weight(fine: &PointLevel, r: &[f64], i: usize, j: usize) -> f64 {
@@ -216,7 +222,7 @@ impl Contact for PointContact {
         );
         let cl = &*coarse;
         let (nx, interior) = (fine.nx, |j: usize| j > 0 && j + 1 < cl.ny);
-        let freeze = phys.fluid.alpha_bar >= FREEZE_ALPHA_BAR;
+        let freeze = freezes(phys);
         for_each_row(cl.parallel, &mut frozen, cl.nx, |j, frozen| {
             if interior(j) {
                 for (i, fr) in frozen.iter_mut().enumerate().take(cl.nx - 1).skip(1) {
@@ -352,6 +358,9 @@ impl Contact for PointContact {
     }
     fn seed_matches(mg: &PointMultigrid, l: usize, seed: &Seed) -> bool {
         seed.matches(&mg.levels[l].x, &mg.levels[l].y)
+    }
+    fn frozen_band(mg: &PointMultigrid) -> bool {
+        freezes(&mg.phys)
     }
     fn fmg_interpolate(mg: &mut PointMultigrid, l: usize) {
         let (lo, hi) = mg.levels.split_at_mut(l);
