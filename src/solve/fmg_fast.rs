@@ -17,12 +17,13 @@
 //!   start), and where the contact freezes a band along the cavitation boundary
 //!   ([`crate::solve::multilevel::Contact::frozen_band`]), not below the residual bound
 //!   c 3 e_d r_k / r_0 (r_0 and r_k the residuals after the level's first and latest cycle,
-//!   e_d below; c = `residual_bound`, [`RESIDUAL_BOUND`]): the FMG start carries an algebraic error of about
-//!   the difference of the two grids' answers, 3 e_d, which falls with the residual once the
-//!   slowest modes dominate (a slow mode at the outlet spike or the cavitation boundary can
-//!   leave H_c and H_min almost unchanged for two cycles and move them later); e_a is the
-//!   larger of these plus 2 |load error|, the load error, which moves H by at most twice its
-//!   relative size (H ~ W^-2 in the rigid-isoviscous limit, weaker elsewhere);
+//!   e_d below; c = `residual_bound`, [`RESIDUAL_BOUND`]): the FMG start carries an
+//!   algebraic error of about the difference of the two grids' answers, 3 e_d, which falls
+//!   with the residual once the slowest modes dominate (a slow mode at the outlet spike or the
+//!   cavitation boundary can leave H_c and H_min almost unchanged for two cycles and move them
+//!   later); e_a is the larger of these plus 2 |load error|, the load error, which moves H by
+//!   at most twice its relative size (H ~ W^-2 in the rigid-isoviscous limit, weaker
+//!   elsewhere);
 //! * the discretisation error of level l is estimated by Richardson for second order from level
 //!   l-1's final values, e_d = max |Q_l - Q_(l-1)| / (3 |Q_l|);
 //! * the finest level stops when e_a <= max(min(e_d / 10, cap), tol_h) ([`FINEST_FRACTION`];
@@ -111,12 +112,13 @@ pub const MAX_ALGEBRAIC_ERROR: f64 = 1e-2;
 /// point cases (M 1-1000, L 0-20, D 1-0.1 on 257^2 and 513^2, each run on for 22 finest cycles
 /// to find its converged answer): without the bound 25 of them stopped with a true algebraic
 /// error above the estimate (up to 32 times, up to 0.79 of the discretisation estimate), with
-/// c = 1 where alpha_bar >= 5 (the frozen band, [`crate::solve::multilevel::Contact::frozen_band`])
-/// 9 (up to 2.8 times, at most 0.11 of the discretisation estimate), for 13 % more work units.
-/// The line contact's estimate was already honest (4 of 94 cases above it, up to 3.3
-/// times, at most 0.06 of the discretisation estimate) and takes c = 0.1 (`LINE_RESIDUAL_BOUND`
-/// of the line multigrid: 0 of 94 above it, 0.6 % more work units). docs/method.md, "The
-/// algebraic error estimate".
+/// c = 1 where alpha_bar >= 5 (the frozen band,
+/// [`crate::solve::multilevel::Contact::frozen_band`]) 9 (up to 2.8 times, at most 0.11 of
+/// the discretisation estimate), for 13 % more work units. The line contact's estimate was
+/// already honest (4 of 94 cases above it, up to 3.3 times, at most 0.06 of the
+/// discretisation estimate) and takes c = 0.1 (`LINE_RESIDUAL_BOUND` of the line multigrid:
+/// 0 of 94 above it, 0.6 % more work units). docs/method.md, "The algebraic error estimate
+/// and its residual bound".
 pub const RESIDUAL_BOUND: f64 = 1.0;
 
 /// A level whose residual exceeds this multiple of the largest residual on the coarser levels
