@@ -290,8 +290,6 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
         let mut swing = Swing::default();
         // The cycle of the level's last damping: the contraction check starts again there.
         let mut damped_at = 0;
-        // The residual after the level's first cycle (the residual bound's reference).
-        let mut first_res = f64::NAN;
         for k in 0..max {
             let rec = cycle_once(s, l, k);
             if final_level {
@@ -317,13 +315,13 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
                 d[0].max(d[1]) / 3.0
             });
             let disc = from_coarser.or_else(|| s.discretisation_hint().filter(|_| final_level));
-            if k == 0 {
-                first_res = rec.residual;
-            }
             // Only a level started from a coarser one carries the start error 3 e_d (a warm
-            // or resumed start carries less: no bound).
-            let bound = match (final_level, from_coarser) {
-                (true, Some(d)) => residual_bound(c.residual_bound, d, rec.residual, first_res),
+            // or resumed start carries less: no bound). `history` holds the finest level's
+            // cycles: its first is the bound's reference.
+            let bound = match (final_level, from_coarser, history.first()) {
+                (true, Some(d), Some(r_0)) => {
+                    residual_bound(c.residual_bound, d, rec.residual, r_0.residual)
+                }
                 _ => 0.0,
             };
             let alg = algebraic_error(delta, prev_delta, res_ratio, rec.load_error, bound);
