@@ -87,7 +87,15 @@ fn deviations(ratio: f64) -> (f64, f64) {
         ));
         let x = o.mixed.clone().expect("mixed outputs");
         assert_eq!(o.status, Status::Converged, "{case:?}: {}", o.reason);
-        assert!(x.lambda_min > ratio, "{case:?}: Lambda {}", x.lambda_min);
+        // Lambda = H_min / sigma with sigma = H_min(smooth) / ratio: above `ratio` up to the
+        // two solves' algebraic errors (where the film is the smooth one, H_min may come out
+        // below the smooth solve's by them).
+        let alg = smooth.algebraic_error.unwrap_or(0.0) + o.algebraic_error.unwrap_or(0.0);
+        assert!(
+            x.lambda_min > ratio * (1.0 - alg),
+            "{case:?}: Lambda {} (algebraic errors {alg:.1e})",
+            x.lambda_min
+        );
         assert!(x.asperity_load_fraction < 0.01, "{case:?}: {x:?}");
         assert_eq!(x.h_c_smooth, Some(smooth.h_c));
         let (dc, dm) = (o.h_c / smooth.h_c - 1.0, o.h_min / smooth.h_min - 1.0);

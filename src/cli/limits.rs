@@ -6,7 +6,8 @@
 //!
 //! Per finest-grid node, measured with `/usr/bin/time` (peak resident set, multigrid and
 //! relaxation; docs/cli.md): line contacts about 630 bytes (65537 points 45 MB, 262145 points
-//! 166 MB), point contacts about 170 bytes (513^2 nodes 50 MB); the dense Newton baseline about
+//! 166 MB), point contacts about 205 bytes (513^2 nodes 60 MB, 1025^2 nodes 214 MB, with the
+//! Anderson step's three vectors); the dense Newton baseline about
 //! 16 N^2 bytes for N unknowns (line 4097 points: 269 MB). The estimate adds a margin over these
 //! and rounds the grid up as the solver does (2^k intervals).
 
@@ -15,7 +16,7 @@ use ehlmap::model::case::Contact;
 
 /// Bytes per node of a line solve (measured about 630).
 const LINE_BYTES_PER_NODE: u64 = 800;
-/// Bytes per node of a point solve (measured about 170).
+/// Bytes per node of a point solve (measured about 205).
 const POINT_BYTES_PER_NODE: u64 = 220;
 /// Bytes per Jacobian entry of the dense Newton baseline (measured about 16).
 const NEWTON_BYTES_PER_ENTRY: u64 = 20;

@@ -124,6 +124,10 @@ pub trait Fas {
     fn coarse_load_failed(&self) -> bool {
         false
     }
+    /// Forget the history of the finest level's cycle acceleration
+    /// ([`crate::solve::params::MgParams::anderson`]): its last step did not contract the
+    /// residual ([`crate::solve::fmg_fast::ACCELERATION_RESTART`]).
+    fn restart_acceleration(&mut self) {}
     /// Work units spent so far (relaxation sweeps in finest-grid equivalents).
     fn work_units(&self) -> f64;
     /// Points (per direction for point contacts) of level `l`.

@@ -32,6 +32,12 @@
 //!   most `max_cycles` cycles (status max-iterations then); a coarser level when
 //!   e_a <= max(e_d, tol_h) ([`COARSE_FRACTION`]), after at most 2 `fmg_cycles` cycles.
 //!
+//! Where the contact asks for it ([`crate::solve::params::MgParams::anderson`], point contacts),
+//! each finest-level cycle is followed by an Anderson step of depth one
+//! ([`crate::solve::anderson`]), and its history is forgotten after a cycle whose residual
+//! contracted by less than [`ACCELERATION_RESTART`]; the changes and contractions above are
+//! those of the accelerated iterates.
+//!
 //! A level whose cycles oscillate with period two ([`Swing`]: H_c alternating while the
 //! residual stalls, as where a pressure spike is under-resolved on the coarser grids) has the
 //! change of each later cycle halved ([`Fas::damp_cycles`], again at each new detection, down
@@ -120,6 +126,11 @@ pub const MAX_ALGEBRAIC_ERROR: f64 = 1e-2;
 /// 0 of 94 above it, 0.6 % more work units). docs/method.md, "The algebraic error estimate
 /// and its residual bound".
 pub const RESIDUAL_BOUND: f64 = 1.0;
+
+/// The finest level's cycle acceleration ([`Fas::restart_acceleration`]) forgets its history
+/// after a cycle whose residual fell by less than this factor: its extrapolation overshot (at
+/// a pressure spike still moving to its place, or where the cavitation boundary moved).
+pub const ACCELERATION_RESTART: f64 = 0.9;
 
 /// A level whose residual exceeds this multiple of the largest residual on the coarser levels
 /// has diverged: on a converging hierarchy the finer levels' residuals are no larger.
@@ -310,6 +321,9 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
             }
             let delta = changes(&last, &rec);
             let res_ratio = (k > 0).then(|| rec.residual / last.residual.max(1e-300));
+            if final_level && res_ratio.is_some_and(|r| r > ACCELERATION_RESTART) {
+                s.restart_acceleration();
+            }
             let from_coarser = coarser.map(|q| {
                 let d = changes(&q, &rec);
                 d[0].max(d[1]) / 3.0

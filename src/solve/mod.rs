@@ -1,6 +1,7 @@
 //! Solvers and what every solve returns: a [`Status`] with a reason, the convergence history and
 //! the cost (work units, wall time). Numerical failure is a result, never a panic.
 
+pub mod anderson;
 pub mod banded;
 pub mod deadline;
 pub mod film;

@@ -14,6 +14,7 @@
 //! fails. Invariant: after every step each level's film and coefficients are up to date with its
 //! P and the current H0.
 
+use crate::solve::anderson::Anderson;
 use crate::solve::fmg::{fmg_solve, Fas, FmgControl};
 use crate::solve::fmg_fast::fmg_fast_solve;
 use crate::solve::newton::{
@@ -192,6 +193,8 @@ pub struct Multigrid<C: Contact> {
     /// before the cycle (allocated when damping starts).
     cycle_damping: f64,
     cycle_backup: Vec<f64>,
+    /// The acceleration of the finest level's cycles ([`MgParams::anderson`]).
+    anderson: Anderson,
     /// The contact's own state.
     pub(crate) extra: C::Extra,
     /// The finest level's state to resume the next solve from (see [`Resume`]).
@@ -288,6 +291,7 @@ impl<C: Contact> Multigrid<C> {
             coarse_backup,
             cycle_damping: 1.0,
             cycle_backup: vec![],
+            anderson: Anderson::default(),
             extra,
             resume: None,
             discretisation_hint: None,
@@ -428,6 +432,7 @@ impl<C: Contact> Multigrid<C> {
     /// Run FMG: to the discretisation error ([`crate::solve::fmg_fast::fmg_fast_solve`]) or
     /// to the tolerances ([`crate::solve::fmg::fmg_solve`]), as `params.converge` says.
     pub fn solve(&mut self) -> SolveInfo {
+        self.anderson.reset();
         match self.params.converge {
             Converge::Fast => fmg_fast_solve(self),
             Converge::Tight => fmg_solve(self),
@@ -462,6 +467,18 @@ impl<C: Contact> Fas for Multigrid<C> {
         self.relax_level(l)
     }
     fn cycle(&mut self, l: usize) {
+        // The finest level's fast cycles with the Anderson step (not once damping has started:
+        // a damped cycle is the conservative one).
+        let accelerate = self.params.anderson && self.params.converge == Converge::Fast;
+        if accelerate && self.cycle_damping == 1.0 && l + 1 == self.levels.len() {
+            self.anderson.begin(self.levels[l].p(), self.h0);
+            self.fas_cycle(l);
+            let lv = &mut self.levels[l];
+            if self.anderson.mix(lv.pressure(), &mut self.h0) {
+                lv.refresh(&self.phys, self.h0);
+            }
+            return;
+        }
         if self.cycle_damping == 1.0 {
             return self.fas_cycle(l);
         }
@@ -531,6 +548,9 @@ impl<C: Contact> Fas for Multigrid<C> {
     }
     fn work_units(&self) -> f64 {
         self.work_units
+    }
+    fn restart_acceleration(&mut self) {
+        self.anderson.reset();
     }
     fn points(&self, l: usize) -> usize {
         self.levels[l].points()

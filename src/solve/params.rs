@@ -172,6 +172,11 @@ pub struct MgParams<D> {
     /// [`crate::solve::fmg_fast::RESIDUAL_BOUND`]; the line contact takes
     /// [`crate::solve::line::multigrid::LINE_RESIDUAL_BOUND`].
     pub residual_bound: f64,
+    /// Fast convergence: accelerate the finest level's cycles (Anderson acceleration of depth
+    /// one, [`crate::solve::anderson`]; restarted after a cycle that raised the residual). On
+    /// for point contacts, off for line contacts (docs/performance.md, "Anderson acceleration
+    /// of the finest cycles").
+    pub anderson: bool,
     /// The contact's domain rule.
     pub domain: D,
     /// Line contacts: override the coarsest grid's interval count (a power of two >= 8).
@@ -217,6 +222,7 @@ impl<D> MgParams<D> {
             tol_load_fmg: 1e-4,
             max_algebraic: crate::solve::fmg_fast::MAX_ALGEBRAIC_ERROR,
             residual_bound: crate::solve::fmg_fast::RESIDUAL_BOUND,
+            anderson: false,
             domain,
             coarse_intervals: None,
             second_order: true,
