@@ -18,12 +18,10 @@
 /// cycle's f and G.
 #[derive(Default)]
 pub struct Anderson {
-    /// The state before the current cycle ([`Anderson::begin`]), then its f.
+    /// The pressures before the current cycle ([`Anderson::begin`]), then their f.
     x: Vec<f64>,
-    x_h0: f64,
     f_prev: Vec<f64>,
     g_prev: Vec<f64>,
-    f_prev_h0: f64,
     g_prev_h0: f64,
     has_prev: bool,
 }
@@ -34,11 +32,11 @@ impl Anderson {
         self.has_prev = false;
     }
 
-    /// Record the state (P, H0) before a cycle.
-    pub fn begin(&mut self, p: &[f64], h0: f64) {
+    /// Record the pressures before a cycle (H0 enters through G only: gamma is fitted on the
+    /// pressures).
+    pub fn begin(&mut self, p: &[f64]) {
         self.x.clear();
         self.x.extend_from_slice(p);
-        self.x_h0 = h0;
     }
 
     /// Replace the state (P, H0) after the cycle by the accelerated one. Returns false when it
@@ -56,12 +54,10 @@ impl Anderson {
                 df += d * *f;
             }
         }
-        let f_h0 = *h0 - self.x_h0;
         let gamma = (self.has_prev && dd > 0.0)
             .then(|| df / dd)
             .filter(|g| g.is_finite());
         std::mem::swap(&mut self.x, &mut self.f_prev);
-        self.f_prev_h0 = f_h0;
         let first = !self.has_prev;
         self.has_prev = true;
         if first {
@@ -108,7 +104,7 @@ mod tests {
         let mut a = Anderson::default();
         let (mut x, mut h0) = (vec![0.0], 0.0);
         for _ in 0..2 {
-            a.begin(&x, h0);
+            a.begin(&x);
             x[0] = 0.9 * x[0] + 1.0;
             h0 = 0.9 * h0 + 1.0;
             a.mix(&mut x, &mut h0);
@@ -125,7 +121,7 @@ mod tests {
         let mut a = Anderson::default();
         let (mut x, mut plain, mut h0) = (vec![0.0, 0.0], vec![0.0, 0.0], 0.0);
         for _ in 0..12 {
-            a.begin(&x, h0);
+            a.begin(&x);
             x = g(&x);
             a.mix(&mut x, &mut h0);
             plain = g(&plain);
@@ -140,14 +136,14 @@ mod tests {
     fn a_reset_starts_the_history_again() {
         let mut a = Anderson::default();
         let (mut x, mut h0) = (vec![1.0], 0.0);
-        a.begin(&x, h0);
+        a.begin(&x);
         x[0] = 2.0;
         assert!(!a.mix(&mut x, &mut h0), "the first cycle has no history");
-        a.begin(&x, h0);
+        a.begin(&x);
         x[0] = 2.5;
         assert!(a.mix(&mut x, &mut h0));
         a.reset();
-        a.begin(&x, h0);
+        a.begin(&x);
         x[0] = 4.0;
         assert!(!a.mix(&mut x, &mut h0));
         assert_eq!(x[0], 4.0);

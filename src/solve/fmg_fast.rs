@@ -32,8 +32,9 @@
 //!   most `max_cycles` cycles (status max-iterations then); a coarser level when
 //!   e_a <= max(e_d, tol_h) ([`COARSE_FRACTION`]), after at most 2 `fmg_cycles` cycles.
 //!
-//! Where the contact asks for it ([`crate::solve::params::MgParams::anderson`], point contacts),
-//! each finest-level cycle is followed by an Anderson step of depth one
+//! Where the contact asks for it ([`crate::solve::params::MgParams::anderson`], point contacts
+//! whose coarse grids freeze no band), each finest-level cycle is followed by an Anderson step
+//! of depth one
 //! ([`crate::solve::anderson`]), and its history is forgotten after a cycle whose residual
 //! contracted by less than [`ACCELERATION_RESTART`]; the changes and contractions above are
 //! those of the accelerated iterates.

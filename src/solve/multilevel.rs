@@ -467,11 +467,14 @@ impl<C: Contact> Fas for Multigrid<C> {
         self.relax_level(l)
     }
     fn cycle(&mut self, l: usize) {
-        // The finest level's fast cycles with the Anderson step (not once damping has started:
-        // a damped cycle is the conservative one).
-        let accelerate = self.params.anderson && self.params.converge == Converge::Fast;
+        // The finest level's fast cycles with the Anderson step, where the coarse grids freeze
+        // no band (there the slow mode is smooth and global, which the step extrapolates; at a
+        // frozen band it is the spike or the cavitation boundary, which it does not), and not
+        // once damping has started (a damped cycle is the conservative one).
+        let accelerate =
+            self.params.anderson && self.params.converge == Converge::Fast && !C::frozen_band(self);
         if accelerate && self.cycle_damping == 1.0 && l + 1 == self.levels.len() {
-            self.anderson.begin(self.levels[l].p(), self.h0);
+            self.anderson.begin(self.levels[l].p());
             self.fas_cycle(l);
             let lv = &mut self.levels[l];
             if self.anderson.mix(lv.pressure(), &mut self.h0) {

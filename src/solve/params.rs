@@ -172,10 +172,12 @@ pub struct MgParams<D> {
     /// [`crate::solve::fmg_fast::RESIDUAL_BOUND`]; the line contact takes
     /// [`crate::solve::line::multigrid::LINE_RESIDUAL_BOUND`].
     pub residual_bound: f64,
-    /// Fast convergence: accelerate the finest level's cycles (Anderson acceleration of depth
-    /// one, [`crate::solve::anderson`]; restarted after a cycle that raised the residual). On
-    /// for point contacts, off for line contacts (docs/performance.md, "Anderson acceleration
-    /// of the finest cycles").
+    /// Fast convergence: accelerate the finest level's cycles where the coarse grids freeze no
+    /// band ([`crate::solve::multilevel::Contact::frozen_band`]) by Anderson acceleration of
+    /// depth one ([`crate::solve::anderson`]; restarted after a cycle contracting the residual
+    /// by less than [`crate::solve::fmg_fast::ACCELERATION_RESTART`]). On for point contacts
+    /// (alpha_bar < 5), off for line contacts (docs/performance.md, "Anderson acceleration of
+    /// the finest cycles").
     pub anderson: bool,
     /// The contact's domain rule.
     pub domain: D,
