@@ -27,7 +27,7 @@ pub struct Anderson {
 }
 
 impl Anderson {
-    /// Forget the history (a new solve, or a step that raised the residual).
+    /// Forget the history (a new solve, or a cycle that hardly contracted the residual).
     pub fn reset(&mut self) {
         self.has_prev = false;
     }

@@ -125,7 +125,7 @@ pub trait Fas {
         false
     }
     /// Forget the history of the finest level's cycle acceleration
-    /// ([`crate::solve::params::MgParams::anderson`]): its last step did not contract the
+    /// ([`crate::solve::params::MgParams::anderson`]) after a cycle that hardly contracted the
     /// residual ([`crate::solve::fmg_fast::ACCELERATION_RESTART`]).
     fn restart_acceleration(&mut self) {}
     /// Work units spent so far (relaxation sweeps in finest-grid equivalents).

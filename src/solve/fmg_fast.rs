@@ -34,9 +34,8 @@
 //!
 //! Where the contact asks for it ([`crate::solve::params::MgParams::anderson`], point contacts
 //! whose coarse grids freeze no band), each finest-level cycle is followed by an Anderson step
-//! of depth one
-//! ([`crate::solve::anderson`]), and its history is forgotten after a cycle whose residual
-//! contracted by less than [`ACCELERATION_RESTART`]; the changes and contractions above are
+//! of depth one ([`crate::solve::anderson`]), whose history is forgotten after a cycle whose
+//! residual ratio exceeds [`ACCELERATION_RESTART`]; the changes and contractions above are
 //! those of the accelerated iterates.
 //!
 //! A level whose cycles oscillate with period two ([`Swing`]: H_c alternating while the
@@ -129,8 +128,8 @@ pub const MAX_ALGEBRAIC_ERROR: f64 = 1e-2;
 pub const RESIDUAL_BOUND: f64 = 1.0;
 
 /// The finest level's cycle acceleration ([`Fas::restart_acceleration`]) forgets its history
-/// after a cycle whose residual fell by less than this factor: its extrapolation overshot (at
-/// a pressure spike still moving to its place, or where the cavitation boundary moved).
+/// after a cycle whose residual ratio (latest over previous) exceeds this: its extrapolation
+/// overshot, or the cycles have stopped contracting.
 pub const ACCELERATION_RESTART: f64 = 0.9;
 
 /// A level whose residual exceeds this multiple of the largest residual on the coarser levels

@@ -39,7 +39,8 @@ pub const PARALLEL_MIN_ROWS: usize = 65;
 pub type PointMgParams = MgParams<PointDomainParams>;
 
 impl Default for MgParams<PointDomainParams> {
-    /// The shared defaults with the finest cycles accelerated ([`MgParams::anderson`]).
+    /// The shared defaults with the finest cycles accelerated where alpha_bar < 5
+    /// ([`MgParams::anderson`]).
     fn default() -> Self {
         let mut p = MgParams::defaults(PointDomainParams::default(), 129, 40, 1e-6, 1e-5);
         p.anderson = true;
