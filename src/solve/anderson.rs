@@ -58,33 +58,21 @@ impl Anderson {
             .then(|| df / dd)
             .filter(|g| g.is_finite());
         std::mem::swap(&mut self.x, &mut self.f_prev);
-        let first = !self.has_prev;
         self.has_prev = true;
-        if first {
+        let prev_h0 = std::mem::replace(&mut self.g_prev_h0, *h0);
+        let Some(gamma) = gamma else {
+            // No step: G(x) is kept and becomes the previous G.
             self.g_prev.clear();
             self.g_prev.extend_from_slice(p);
+            return false;
+        };
+        *h0 -= gamma * (*h0 - prev_h0);
+        for (q, gp) in p.iter_mut().zip(self.g_prev.iter_mut()) {
+            let g = *q;
+            *q = (g - gamma * (g - *gp)).max(0.0);
+            *gp = g;
         }
-        let g_h0 = *h0;
-        if let Some(gamma) = gamma {
-            *h0 -= gamma * (g_h0 - self.g_prev_h0);
-        }
-        self.g_prev_h0 = g_h0;
-        match gamma {
-            Some(gamma) if !first => {
-                for (q, gp) in p.iter_mut().zip(self.g_prev.iter_mut()) {
-                    let g = *q;
-                    *q = (g - gamma * (g - *gp)).max(0.0);
-                    *gp = g;
-                }
-                true
-            }
-            _ => {
-                if !first {
-                    self.g_prev.copy_from_slice(p);
-                }
-                false
-            }
-        }
+        true
     }
 }
 
