@@ -8,7 +8,7 @@
 //!   it, so its held-out errors are never below the fitted ones; and the formula's asymptotes are
 //!   the blend's, so far into each asymptotic corner the formula equals its asymptote.
 
-use ehlmap::fit::correction::{Coordinates, TAIL};
+use ehlmap::fit::correction::{lattice_terms, Coordinates, TAIL};
 use ehlmap::fit::dataset::load_fit_input;
 use ehlmap::report::formula_py::formula_py;
 use ehlmap::report::{fit_report, FitReport, QuantityFit};
@@ -32,9 +32,32 @@ fn films(r: &FitReport) -> Vec<(bool, &QuantityFit)> {
         .collect()
 }
 
+/// The committed line data choose nested terms; the line H_pm formula gets a lattice correction
+/// too (Shifted and Cell bumps over a grid of cases, fixed coefficients), so that formula.py is
+/// checked on every kind of term.
+fn with_lattice(mut r: FitReport) -> FitReport {
+    let q = r.line.h_pm.as_mut().expect("line H_pm fitted");
+    let mut z = vec![];
+    for i in 0..30 {
+        for l in [0.0, 0.5, 2.0, 8.0, 20.0] {
+            let m = 10f64.powf(-1.0 + 0.15 * f64::from(i));
+            z.push(Coordinates::new(q.model.blend.asymptotes(m, l, 1.0), 1.0));
+        }
+    }
+    let lattice = lattice_terms(&z);
+    let kinds: std::collections::HashSet<_> = lattice.iter().map(|t| t.transition).collect();
+    assert_eq!(kinds.len(), 2, "both lattice kinds: {kinds:?}");
+    let c = &mut q.model.correction;
+    for (k, t) in lattice.into_iter().enumerate() {
+        c.terms.push(t);
+        c.coef.push(0.01 * ((k % 7) as f64 - 3.0));
+    }
+    r
+}
+
 #[test]
 fn formula_py_reproduces_the_rust_evaluation() {
-    let r = report();
+    let r = with_lattice(report());
     let dir = std::env::temp_dir().join(format!("ehlmap-formula-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("formula.py"), formula_py(&r)).unwrap();

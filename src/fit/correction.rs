@@ -14,6 +14,12 @@
 //! Tail: t(a) (1 - w), t(a) = e^(-a/TAIL) / (1 + e^-a) (0 in the rigid limit, decaying like
 //! e^(-a/TAIL) into the elastic-isoviscous one, which the data approach slowly).
 //!
+//! Lattice bumps (line contacts, where the data are dense enough to place them): Shifted
+//! g(a/W - i) (1 - w) and Cell g(a/W - i) g(c/W - j) (0 at L = 0), centred on the lattice
+//! (a, c) = (i W, j W), W = [`LATTICE`]; [`lattice_terms`] keeps those some data case sees. Each
+//! tends to 0 at every corner, since a or c goes to infinity there, and they are fitted with a
+//! ridge penalty (lambda |c|^2, chosen by held-out error) instead of being tried in order.
+//!
 //! A basis function is a bump times a monomial in (a, b, c, ln D, w) ([`Term`]); a polynomial
 //! grows slower than the bump decays, so every phi_k tends to 0 at each of the four corners
 //! (RI: a, c -> -infinity; EI: a -> infinity, c -> -infinity; RP: b, c -> infinity; EP:
@@ -28,7 +34,7 @@ use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 
 /// Which transition a basis function lives on.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Transition {
     /// Rigid to elastic, isoviscous: g(a) (1 - w).
@@ -40,7 +46,17 @@ pub enum Transition {
     /// The slow approach to the elastic-isoviscous limit: t(a) (1 - w), t(a) = e^(-a/TAIL) /
     /// (1 + e^-a) (0 at the rigid corner, decaying like e^(-a/TAIL) into the elastic one).
     Tail,
+    /// A lattice bump on the isoviscous transition: g(a/W - i) (1 - w), W = [`LATTICE`].
+    Shifted,
+    /// A lattice bump in the (a, c) plane: g(a/W - i) g(c/W - j) (0 at L = 0).
+    Cell,
 }
+
+/// The spacing (and width) W of the lattice bumps in the coordinates a and c.
+pub const LATTICE: f64 = 0.75;
+
+/// A lattice bump is kept when it reaches at least this value at some data case.
+pub const LATTICE_REACH: f64 = 0.1;
 
 /// The decay length of the [`Transition::Tail`] bump in a = ln(H_EI/H_RI).
 pub const TAIL: f64 = 8.0;
@@ -61,6 +77,9 @@ pub struct Term {
     pub transition: Transition,
     /// Powers of (a, b, c, ln D, w).
     pub powers: [u8; 5],
+    /// The lattice centre (i, j) of a Shifted or Cell bump (unused by the other transitions).
+    #[serde(default)]
+    pub at: [i8; 2],
 }
 
 /// The coordinates of one case (module doc).
@@ -115,8 +134,13 @@ impl Term {
         let base = match self.transition {
             Transition::Isoviscous => bump(z.a) * (1.0 - z.w),
             Transition::Tail => tail(z.a) * (1.0 - z.w),
+            Transition::Shifted => bump(z.a / LATTICE - f64::from(self.at[0])) * (1.0 - z.w),
             Transition::Piezoviscous if piezo => bump(z.b) * z.w,
             Transition::Outer if piezo => bump(z.c),
+            Transition::Cell if piezo => {
+                bump(z.a / LATTICE - f64::from(self.at[0]))
+                    * bump(z.c / LATTICE - f64::from(self.at[1]))
+            }
             _ => return 0.0,
         };
         if base == 0.0 {
@@ -137,8 +161,53 @@ use Transition::{Isoviscous as I, Outer as O, Piezoviscous as P, Tail as T};
 /// The terms of a (transition, powers) list, in its order.
 fn terms(list: &[(Transition, [u8; 5])]) -> Vec<Term> {
     list.iter()
-        .map(|&(transition, powers)| Term { transition, powers })
+        .map(|&(transition, powers)| Term {
+            transition,
+            powers,
+            at: [0, 0],
+        })
         .collect()
+}
+
+/// The lattice bumps over the data's coordinates `z`: Shifted bumps on the a range and Cell
+/// bumps on the (a, c) range (finite c only), each range widened by one spacing, keeping those
+/// that reach [`LATTICE_REACH`] at some case; in (kind, i, j) order. Empty when `z` is.
+pub fn lattice_terms(z: &[Coordinates]) -> Vec<Term> {
+    let range = |v: &mut dyn Iterator<Item = f64>| {
+        v.filter(|x| x.is_finite())
+            .fold(None, |r: Option<(f64, f64)>, x| {
+                Some(r.map_or((x, x), |(lo, hi)| (lo.min(x), hi.max(x))))
+            })
+    };
+    let index = |(lo, hi): (f64, f64)| {
+        let clamp = |v: f64| v.clamp(f64::from(i8::MIN), f64::from(i8::MAX)) as i8;
+        clamp((lo / LATTICE).floor() - 1.0)..=clamp((hi / LATTICE).ceil() + 1.0)
+    };
+    let reaches = |t: &Term| z.iter().any(|zi| t.eval(zi).abs() >= LATTICE_REACH);
+    let term = |transition, i, j| Term {
+        transition,
+        powers: [0; 5],
+        at: [i, j],
+    };
+    let mut out = vec![];
+    let Some(a) = range(&mut z.iter().map(|zi| zi.a)) else {
+        return out;
+    };
+    out.extend(
+        index(a)
+            .map(|i| term(Transition::Shifted, i, 0))
+            .filter(|t| reaches(t)),
+    );
+    if let Some(c) = range(&mut z.iter().map(|zi| zi.c)) {
+        for i in index(a) {
+            out.extend(
+                index(c)
+                    .map(|j| term(Transition::Cell, i, j))
+                    .filter(|t| reaches(t)),
+            );
+        }
+    }
+    out
 }
 
 /// The line terms, in the order they are tried.
@@ -207,11 +276,15 @@ impl Correction {
         if self.terms.is_empty() {
             return 0.0;
         }
-        let z = Coordinates::new(asym, d);
+        self.log_factor_at(&Coordinates::new(asym, d))
+    }
+
+    /// sum_k c_k phi_k at coordinates `z`.
+    pub fn log_factor_at(&self, z: &Coordinates) -> f64 {
         self.terms
             .iter()
             .zip(&self.coef)
-            .map(|(t, c)| c * t.eval(&z))
+            .map(|(t, c)| c * t.eval(z))
             .sum()
     }
 
@@ -225,17 +298,29 @@ impl Correction {
 const SVD_EPS: f64 = 1e-10;
 
 /// The coefficients of `terms` that fit the log residuals `r` (ln H_data - ln H_blend) at the
-/// coordinates `z`: min |Phi c - r|^2 by SVD (singular values below 1e-10 of the largest are
-/// dropped). None when the solve fails or gives a non-finite coefficient.
-pub fn fit_correction(z: &[Coordinates], r: &[f64], terms: &[Term]) -> Option<Correction> {
+/// coordinates `z`: min |Phi c - r|^2 + ridge |c|^2; with ridge = 0 by SVD (singular values
+/// below 1e-10 of the largest are dropped), else by the Cholesky factor of Phi^T Phi + ridge I.
+/// None when the solve fails or gives a non-finite coefficient.
+pub fn fit_correction(
+    z: &[Coordinates],
+    r: &[f64],
+    terms: &[Term],
+    ridge: f64,
+) -> Option<Correction> {
     if terms.is_empty() {
         return Some(Correction::default());
     }
     let phi = DMatrix::from_fn(z.len(), terms.len(), |i, k| terms[k].eval(&z[i]));
     let rhs = DVector::from_column_slice(r);
-    let svd = phi.svd(true, true);
-    let tol = SVD_EPS * svd.singular_values.max();
-    let c = svd.solve(&rhs, tol).ok()?;
+    let c = if ridge > 0.0 {
+        let n = terms.len();
+        let normal = phi.tr_mul(&phi) + DMatrix::<f64>::identity(n, n) * ridge;
+        normal.cholesky()?.solve(&phi.tr_mul(&rhs))
+    } else {
+        let svd = phi.svd(true, true);
+        let tol = SVD_EPS * svd.singular_values.max();
+        svd.solve(&rhs, tol).ok()?
+    };
     c.iter().all(|v| v.is_finite()).then(|| Correction {
         terms: terms.to_vec(),
         coef: c.iter().copied().collect(),
@@ -272,12 +357,18 @@ mod tests {
             ("RP", 1.0, 1e120),
             ("EP", 1e60, 1e12),
         ];
-        for t in point_terms().iter().chain(&line_terms()) {
+        let lattice = lattice_terms(&interior_cases());
+        assert!(lattice.len() > 20, "{}", lattice.len());
+        for t in point_terms().iter().chain(&line_terms()).chain(&lattice) {
             for (name, m, l) in corners {
                 let v = t.eval(&Coordinates::new(line_asym(m, l), 0.5));
                 assert!(v.abs() < 1e-3, "{t:?} at {name}: {v}");
             }
-            // And it is not zero everywhere: some interior case sees it.
+            // And it is not zero everywhere: some interior case sees it (for the lattice bumps:
+            // `the_lattice_covers_the_data_and_only_the_data`).
+            if matches!(t.transition, Transition::Shifted | Transition::Cell) {
+                continue;
+            }
             let interior = [
                 (1.0, 0.0),
                 (3.0, 5.0),
@@ -290,6 +381,78 @@ mod tests {
             .fold(0.0f64, f64::max);
             assert!(interior > 1e-3, "{t:?} is 0 in the interior");
         }
+    }
+
+    /// Line cases M 0.1 ... 3000 x L {0, 1, 5, 20} (seeded grid).
+    fn interior_cases() -> Vec<Coordinates> {
+        let mut z = vec![];
+        for i in 0..24 {
+            for l in [0.0, 1.0, 5.0, 20.0] {
+                let m = 10f64.powf(-1.0 + 0.2 * f64::from(i));
+                z.push(Coordinates::new(line_asym(m, l), 1.0));
+            }
+        }
+        z
+    }
+
+    #[test]
+    fn the_lattice_covers_the_data_and_only_the_data() {
+        let z = interior_cases();
+        let lattice = lattice_terms(&z);
+        // Every case is reached by some Shifted bump (its isoviscous part) or, at L > 0, by some
+        // Cell bump; and every term kept reaches some case.
+        for zi in &z {
+            let best = |kind| {
+                lattice
+                    .iter()
+                    .filter(|t| t.transition == kind)
+                    .map(|t| t.eval(zi))
+                    .fold(0.0f64, f64::max)
+            };
+            if zi.c == f64::NEG_INFINITY {
+                assert!(best(Transition::Shifted) > 0.5, "{zi:?}");
+                assert_eq!(best(Transition::Cell), 0.0, "{zi:?}");
+            } else {
+                assert!(
+                    best(Transition::Shifted).max(best(Transition::Cell)) > 0.3,
+                    "{zi:?}"
+                );
+            }
+        }
+        for t in &lattice {
+            assert!(z.iter().any(|zi| t.eval(zi) >= LATTICE_REACH), "{t:?}");
+        }
+        assert!(lattice_terms(&[]).is_empty());
+    }
+
+    #[test]
+    fn a_small_ridge_recovers_known_lattice_coefficients_and_a_large_one_shrinks_them() {
+        let z = interior_cases();
+        let lattice = lattice_terms(&z);
+        let truth: Vec<f64> = (0..lattice.len())
+            .map(|k| 0.02 * ((k * 5 % 11) as f64 - 5.0))
+            .collect();
+        let r: Vec<f64> = z
+            .iter()
+            .map(|zi| {
+                lattice
+                    .iter()
+                    .zip(&truth)
+                    .map(|(t, c)| c * t.eval(zi))
+                    .sum()
+            })
+            .collect();
+        let fitted = |ridge| {
+            let c = fit_correction(&z, &r, &lattice, ridge).unwrap();
+            z.iter()
+                .zip(&r)
+                .map(|(zi, ri)| (c.log_factor_at(zi) - ri).abs())
+                .fold(0.0f64, f64::max)
+        };
+        // The residuals are reproduced (the coefficients themselves are not all identifiable from
+        // 96 cases), and the ridge trades fit for size.
+        assert!(fitted(1e-12) < 1e-6, "{}", fitted(1e-12));
+        assert!(fitted(1.0) > 10.0 * fitted(1e-12));
     }
 
     #[test]
@@ -320,7 +483,7 @@ mod tests {
             .iter()
             .map(|zi| (0..3).map(|k| truth[k] * terms[k].eval(zi)).sum())
             .collect();
-        let c = fit_correction(&z, &r, &terms[..3]).unwrap();
+        let c = fit_correction(&z, &r, &terms[..3], 0.0).unwrap();
         for k in 0..3 {
             assert!((c.coef[k] - truth[k]).abs() < 1e-12, "{:?}", c.coef);
         }

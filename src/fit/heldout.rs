@@ -2,15 +2,16 @@
 //!
 //! K-fold cross-validation ([`FOLDS`] folds): the cases are ranked by (M, L, D) and case k goes to
 //! fold k mod K, so every fold spans the whole map. For each fold the blend is refitted on the
-//! other folds (the caller's `fit_blend`), then for each n the correction with the first n terms
-//! of the nested list ([`crate::fit::correction`]), alone on that blend (cheap); the blend alone
-//! and the [`JOINT_CANDIDATES`] best sizes are then cross-validated again with blend and
-//! correction fitted together ([`joint`]: what the final formula is). The fold's cases are
-//! predicted by each formula: each case is predicted exactly once per size, by a formula that
-//! never saw it. The size kept is the smallest joint one whose held-out RMS relative error is
-//! within [`RMS_SLACK`] of the best (fewer terms when more buy almost nothing). Inputs: the
-//! samples (M, L, D, H), the nested term list and how the blend is refitted ([`Refit`]); output:
-//! [`HeldOut`] (per size: RMS, max; the size kept; each case's held-out error at that size).
+//! other folds (the caller's `fit_blend`), then each candidate correction ([`Basis`]: the first n
+//! terms of a nested list, [`nested`], or a lattice fitted with a ridge weight;
+//! [`crate::fit::correction`]) alone on that blend (cheap); the blend alone and the
+//! [`JOINT_CANDIDATES`] best candidates are then cross-validated again with blend and correction
+//! fitted together ([`joint`]: what the final formula is). The fold's cases are predicted by each
+//! formula: each case is predicted exactly once per candidate, by a formula that never saw it. The
+//! candidate kept is the first joint one (in the caller's order, simplest first) whose held-out
+//! RMS relative error is within [`RMS_SLACK`] of the best. Inputs: the samples (M, L, D, H), the
+//! candidates and how the blend is refitted ([`Refit`]); output: [`HeldOut`] (per candidate: RMS,
+//! max; the one kept; each case's held-out error with it).
 
 use crate::fit::correction::{fit_correction, Coordinates, Correction, Term};
 use crate::fit::lsq::{fit, Sample};
@@ -30,11 +31,37 @@ pub const JOINT_CANDIDATES: usize = 4;
 /// Each fold's training set must have this many more cases than the correction has terms.
 const SPARE: usize = 10;
 
-/// Held-out errors of one correction size.
+/// One candidate correction: its terms and the ridge weight lambda of their fit (min |Phi c -
+/// r|^2 + lambda |c|^2; 0: plain least squares).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Basis {
+    /// The basis functions.
+    pub terms: Vec<Term>,
+    /// The ridge weight.
+    pub ridge: f64,
+}
+
+/// The candidates of a nested term list: its first n terms for n = 0 ..= len, no ridge.
+pub fn nested(terms: &[Term]) -> Vec<Basis> {
+    (0..=terms.len())
+        .map(|n| Basis {
+            terms: terms[..n].to_vec(),
+            ridge: 0.0,
+        })
+        .collect()
+}
+
+/// Held-out errors of one candidate correction.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SizeScore {
     /// Number of correction terms (0: the blend alone).
     pub terms: usize,
+    /// The candidate's ridge weight (0: plain least squares).
+    #[serde(default)]
+    pub ridge: f64,
+    /// The candidate's index in the list given to [`select`].
+    #[serde(default)]
+    pub candidate: usize,
     /// RMS of the held-out relative errors formula/data - 1.
     pub rms: f64,
     /// Largest |held-out relative error|, sign kept.
@@ -68,17 +95,18 @@ pub struct CaseError {
 pub struct HeldOut {
     /// Folds used.
     pub folds: usize,
-    /// Every size tried with the correction alone on each fold's blend, in increasing number of
-    /// terms.
+    /// Every candidate tried with the correction alone on each fold's blend, in the caller's
+    /// order.
     pub sizes: Vec<SizeScore>,
-    /// The sizes tried with the blend and the correction fitted together ([`joint`]): the
+    /// The candidates tried with the blend and the correction fitted together ([`joint`]): the
     /// blend alone and the [`JOINT_CANDIDATES`] best of `sizes`.
     #[serde(default)]
     pub joint: Vec<SizeScore>,
-    /// The size kept (an entry of `joint`: its held-out errors are those of the formula as
+    /// The candidate kept (an entry of `joint`: its held-out errors are those of the formula as
     /// fitted).
     pub chosen: SizeScore,
-    /// Each case's held-out error at the size kept, in the data's order (the validity map).
+    /// Each case's held-out error with the candidate kept, in the data's order (the validity
+    /// map).
     #[serde(default)]
     pub cases: Vec<CaseError>,
 }
@@ -130,7 +158,7 @@ pub struct Refit<'a, Mo> {
 /// Rounds of the alternating fit in [`joint`].
 pub const JOINT_ROUNDS: usize = 2;
 
-/// The blend and the correction with `terms` fitted together to `data`, by alternating: the
+/// The blend and the correction of `basis` fitted together to `data`, by alternating: the
 /// correction on the blend's residuals (linear), then the blend's `refit.free` parameters under
 /// that correction (Levenberg-Marquardt), [`JOINT_ROUNDS`] times; a blend step is kept only when
 /// it is physical and lowers the RMS log error. Returns the blend, the correction and the
@@ -139,13 +167,13 @@ pub const JOINT_ROUNDS: usize = 2;
 pub fn joint<Mo: FilmModel>(
     data: &[Sample],
     blend: &Mo,
-    terms: &[Term],
+    basis: &Basis,
     refit: &Refit<Mo>,
 ) -> Option<(Mo, Correction, Option<Vec<f64>>)> {
     let mut blend = blend.clone();
-    let mut c = correction_for(&blend, data, terms)?;
+    let mut c = correction_for(&blend, data, basis)?;
     let mut sigma = None;
-    if terms.is_empty() {
+    if basis.terms.is_empty() {
         return Some((blend, c, sigma));
     }
     let rms = |b: &Mo, c: &Correction| {
@@ -172,7 +200,7 @@ pub fn joint<Mo: FilmModel>(
                 sigma = Some(f.sigma);
             }
         }
-        match correction_for(&blend, data, terms) {
+        match correction_for(&blend, data, basis) {
             Some(next) if rms(&blend, &next) <= rms(&blend, &c) => c = next,
             _ => {}
         }
@@ -184,26 +212,26 @@ fn coords<Mo: FilmModel>(model: &Mo, s: &Sample) -> Coordinates {
     Coordinates::new(model.asymptotes(s.m, s.l, s.d), s.d)
 }
 
-/// The correction with the first `n` of `terms` fitted to `data` on top of `blend`; None when the
-/// solve fails.
+/// The correction of `basis` fitted to `data` on top of `blend`; None when the solve fails.
 pub fn correction_for<Mo: FilmModel>(
     blend: &Mo,
     data: &[Sample],
-    terms: &[Term],
+    basis: &Basis,
 ) -> Option<Correction> {
     let z: Vec<_> = data.iter().map(|s| coords(blend, s)).collect();
     let r: Vec<_> = data
         .iter()
         .map(|s| s.h.ln() - blend.film(s.m, s.l, s.d).ln())
         .collect();
-    fit_correction(&z, &r, terms)
+    fit_correction(&z, &r, &basis.terms, basis.ridge)
 }
 
-/// Cross-validate the sizes 0..=terms.len() (those the folds have enough cases for). None when
-/// there are fewer than 2 [`FOLDS`] cases or a fold's blend fit fails.
+/// Cross-validate the `candidates` (those without a ridge only when the folds have [`SPARE`] more
+/// cases than terms). None when there are fewer than 2 [`FOLDS`] cases, a fold's blend fit fails
+/// or no candidate without terms (the blend alone) is scored.
 pub fn select<Mo: FilmModel>(
     data: &[Sample],
-    terms: &[Term],
+    candidates: &[Basis],
     fit_blend: &dyn Fn(&[Sample]) -> Option<Mo>,
     refit: &Refit<Mo>,
 ) -> Option<HeldOut> {
@@ -224,9 +252,11 @@ pub fn select<Mo: FilmModel>(
     let smallest_train = (0..FOLDS)
         .map(|f| fold.iter().filter(|&&g| g != f).count())
         .min()?;
-    let sizes = (0..=terms.len())
-        .filter(|n| n + SPARE <= smallest_train)
-        .count();
+    let usable: Vec<usize> = (0..candidates.len())
+        .filter(|&k| {
+            candidates[k].ridge > 0.0 || candidates[k].terms.len() + SPARE <= smallest_train
+        })
+        .collect();
     let trains: Vec<Vec<Sample>> = (0..FOLDS)
         .map(|f| {
             (0..data.len())
@@ -236,15 +266,16 @@ pub fn select<Mo: FilmModel>(
         })
         .collect();
     let blends: Vec<Mo> = trains.iter().map(|t| fit_blend(t)).collect::<Option<_>>()?;
-    // errors[n][i]: the held-out relative error of case i with n terms; `plain`: the correction
-    // alone on each fold's blend, `joint`: blend and correction fitted together.
-    let held_out = |n: usize, together: bool| -> Vec<f64> {
+    // The held-out relative error of each case with candidate k; `plain`: the correction alone
+    // on each fold's blend, `joint`: blend and correction fitted together.
+    let held_out = |k: usize, together: bool| -> Vec<f64> {
         let mut row = vec![f64::NAN; data.len()];
+        let basis = &candidates[k];
         for f in 0..FOLDS {
             let fitted = if together {
-                joint(&trains[f], &blends[f], &terms[..n], refit).map(|(b, c, _)| (b, c))
+                joint(&trains[f], &blends[f], basis, refit).map(|(b, c, _)| (b, c))
             } else {
-                correction_for(&blends[f], &trains[f], &terms[..n]).map(|c| (blends[f].clone(), c))
+                correction_for(&blends[f], &trains[f], basis).map(|c| (blends[f].clone(), c))
             };
             let Some((b, c)) = fitted else {
                 continue;
@@ -260,21 +291,24 @@ pub fn select<Mo: FilmModel>(
         }
         row
     };
-    let plain: Vec<(SizeScore, Vec<f64>)> = (0..sizes)
-        .filter_map(|n| score(data, n, held_out(n, false)))
-        .collect();
-    // The joint fit is costly (a Levenberg-Marquardt refit per fold and size): it is
-    // cross-validated for the blend alone and the JOINT_CANDIDATES sizes best without it.
-    let mut ranked: Vec<usize> = plain.iter().map(|(s, _)| s.terms).collect();
+    let scored = |k: usize, together: bool| score(data, &candidates[k], k, held_out(k, together));
+    let plain: Vec<(SizeScore, Vec<f64>)> =
+        usable.iter().filter_map(|&k| scored(k, false)).collect();
+    // The joint fit is costly (a Levenberg-Marquardt refit per fold and candidate): it is
+    // cross-validated for the blend alone and the JOINT_CANDIDATES candidates best without it.
+    let mut ranked: Vec<usize> = plain.iter().map(|(s, _)| s.candidate).collect();
     ranked.sort_by(|&i, &j| plain_rms(&plain, i).total_cmp(&plain_rms(&plain, j)));
-    let mut candidates: Vec<usize> = ranked.into_iter().take(JOINT_CANDIDATES).collect();
-    candidates.push(0);
-    candidates.sort_unstable();
-    candidates.dedup();
-    let joint_scores: Vec<(SizeScore, Vec<f64>)> = candidates
-        .iter()
-        .filter_map(|&n| score(data, n, held_out(n, true)))
-        .collect();
+    let mut chosen_k: Vec<usize> = ranked.into_iter().take(JOINT_CANDIDATES).collect();
+    chosen_k.push(
+        usable
+            .iter()
+            .copied()
+            .find(|&k| candidates[k].terms.is_empty())?,
+    );
+    chosen_k.sort_unstable();
+    chosen_k.dedup();
+    let joint_scores: Vec<(SizeScore, Vec<f64>)> =
+        chosen_k.iter().filter_map(|&k| scored(k, true)).collect();
     let best = joint_scores
         .iter()
         .map(|(s, _)| s.rms)
@@ -304,11 +338,11 @@ pub fn select<Mo: FilmModel>(
     })
 }
 
-/// The held-out RMS of size `n` among the `plain` scores.
-fn plain_rms(plain: &[(SizeScore, Vec<f64>)], n: usize) -> f64 {
+/// The held-out RMS of candidate `k` among the `plain` scores.
+fn plain_rms(plain: &[(SizeScore, Vec<f64>)], k: usize) -> f64 {
     plain
         .iter()
-        .find(|(s, _)| s.terms == n)
+        .find(|(s, _)| s.candidate == k)
         .map_or(f64::INFINITY, |(s, _)| s.rms)
 }
 
@@ -323,14 +357,17 @@ pub fn worst_and_rms(e: &[f64]) -> (usize, f64) {
     )
 }
 
-/// The score of `n` terms from each case's held-out error (None when one is not finite).
-fn score(data: &[Sample], n: usize, e: Vec<f64>) -> Option<(SizeScore, Vec<f64>)> {
+/// The score of candidate `k` (`basis`) from each case's held-out error (None when one is not
+/// finite).
+fn score(data: &[Sample], basis: &Basis, k: usize, e: Vec<f64>) -> Option<(SizeScore, Vec<f64>)> {
     if !e.iter().all(|v| v.is_finite()) {
         return None;
     }
     let (worst, rms) = worst_and_rms(&e);
     let s = SizeScore {
-        terms: n,
+        terms: basis.terms.len(),
+        ridge: basis.ridge,
+        candidate: k,
         rms,
         max: e[worst],
         worst: (data[worst].m, data[worst].l, data[worst].d),

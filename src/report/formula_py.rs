@@ -6,7 +6,7 @@
 //! Rust agree to rounding (tests/formula_py.rs: 1e-12 relative). Overflow in Python (which raises
 //! where Rust gives infinity) is caught and mapped to infinity, as in the Rust evaluation.
 
-use crate::fit::correction::{Correction, Transition, TAIL};
+use crate::fit::correction::{Correction, Transition, LATTICE, TAIL};
 use crate::fit::fitted::{Blend, FittedModel};
 use crate::report::{ContactReport, FitReport};
 use std::fmt::Write;
@@ -22,6 +22,7 @@ import math
 
 INF = float("inf")
 TAIL = {TAIL}
+LATTICE = {LATTICE}
 
 
 def _pow(a, b):
@@ -108,7 +109,7 @@ def _tail(a):
 
 
 def _correction(terms, asym, D):
-    """sum c_k phi_k; terms = [(transition, (i, j, k, l, n), c), ...]."""
+    """sum c_k phi_k; terms = [(transition, (i, j, k, l, n), c, (lattice i, lattice j)), ...]."""
     if not terms:
         return 0.0
     ri, ei, rp, ep = asym
@@ -124,15 +125,19 @@ def _correction(terms, asym, D):
     w = 1.0 / (1.0 + _exp(-c))
     variables = (a, b, c, math.log(D), w)
     total = 0.0
-    for transition, powers, coef in terms:
+    for transition, powers, coef, at in terms:
         if transition == "isoviscous":
             base = _bump(a) * (1.0 - w)
         elif transition == "tail":
             base = _tail(a) * (1.0 - w)
+        elif transition == "shifted":
+            base = _bump(a / LATTICE - at[0]) * (1.0 - w)
         elif c == -INF:
             base = 0.0
         elif transition == "piezoviscous":
             base = _bump(b) * w
+        elif transition == "cell":
+            base = _bump(a / LATTICE - at[0]) * _bump(c / LATTICE - at[1])
         else:
             base = _bump(c)
         if base != 0.0:
@@ -154,6 +159,8 @@ fn transition(t: Transition) -> &'static str {
         Transition::Piezoviscous => "piezoviscous",
         Transition::Outer => "outer",
         Transition::Tail => "tail",
+        Transition::Shifted => "shifted",
+        Transition::Cell => "cell",
     }
 }
 
@@ -165,14 +172,16 @@ fn terms(c: &Correction) -> String {
         .map(|(t, k)| {
             let p = t.powers;
             format!(
-                "(\"{}\", ({}, {}, {}, {}, {}), {})",
+                "(\"{}\", ({}, {}, {}, {}, {}), {}, ({}, {}))",
                 transition(t.transition),
                 p[0],
                 p[1],
                 p[2],
                 p[3],
                 p[4],
-                f(*k)
+                f(*k),
+                t.at[0],
+                t.at[1]
             )
         })
         .collect();
@@ -224,7 +233,9 @@ def H(M, L, D=None, film="H_c"):
 /// The text of `formula.py` for the report's fitted formulas (a contact not fitted gives an
 /// empty table, and `H` then names the films it has).
 pub fn formula_py(r: &FitReport) -> String {
-    let mut s = HEADER.replace("{TAIL}", &f(TAIL));
+    let mut s = HEADER
+        .replace("{TAIL}", &f(TAIL))
+        .replace("{LATTICE}", &f(LATTICE));
     s.push_str(&table("LINE", &r.line));
     s.push('\n');
     s.push_str(&table("POINT", &r.point));

@@ -2,8 +2,8 @@
 //! coefficients and uncertainties, error tables overall / per (M, L) region / per D, the
 //! published formulas on the same cases, asymptote checks), or the reason it was skipped.
 
-use crate::fit::correction::{Term, Transition};
-use crate::fit::heldout::worst_and_rms;
+use crate::fit::correction::{Term, Transition, LATTICE};
+use crate::fit::heldout::{worst_and_rms, SizeScore};
 use crate::fit::stats::{ErrStats, RegionStats};
 use crate::report::{ContactReport, FitReport, QuantityFit, ASYMPTOTE_TARGET, MAX_ERROR_TARGET};
 use std::fmt::Write;
@@ -79,11 +79,14 @@ pub fn sig5(v: f64) -> String {
 }
 
 fn term_name(t: &Term) -> String {
+    let [i, j] = t.at;
     let bump = match t.transition {
-        Transition::Isoviscous => "g(a)(1-w)",
-        Transition::Piezoviscous => "g(b) w",
-        Transition::Outer => "g(c)",
-        Transition::Tail => "t(a)(1-w)",
+        Transition::Isoviscous => "g(a)(1-w)".to_string(),
+        Transition::Piezoviscous => "g(b) w".to_string(),
+        Transition::Outer => "g(c)".to_string(),
+        Transition::Tail => "t(a)(1-w)".to_string(),
+        Transition::Shifted => format!("g(a/W - {i})(1-w)"),
+        Transition::Cell => format!("g(a/W - {i}) g(c/W - {j})"),
     };
     let vars = ["a", "b", "c", "ln D", "w"];
     let mono: Vec<String> = vars
@@ -99,9 +102,30 @@ fn term_name(t: &Term) -> String {
         })
         .collect();
     if mono.is_empty() {
-        bump.to_string()
+        bump
     } else {
         format!("{bump} {}", mono.join(" "))
+    }
+}
+
+/// A candidate in the list of those tried: its number of terms, and its ridge weight if any.
+fn short_name(s: &SizeScore) -> String {
+    if s.ridge > 0.0 {
+        format!("{} (lattice, ridge {:.0e})", s.terms, s.ridge)
+    } else {
+        s.terms.to_string()
+    }
+}
+
+/// The candidate kept, in words.
+pub fn candidate_name(s: &SizeScore) -> String {
+    if s.ridge > 0.0 {
+        format!(
+            "{} lattice terms (W = {LATTICE}, ridge {:.0e})",
+            s.terms, s.ridge
+        )
+    } else {
+        format!("{} correction terms", s.terms)
     }
 }
 
@@ -115,9 +139,9 @@ fn heldout(md: &mut String, q: &QuantityFit) {
             let base = &h.sizes[0];
             let _ = writeln!(
                 md,
-                "Held-out errors ({}-fold, each case predicted by a fit that never saw it): with {} correction terms max {}, RMS {:.2} % (worst at M = {:.4}, L = {:.3}, D = {}); the blend alone max {}, RMS {:.2} %. Tried (terms: RMS / max): {}.\n",
+                "Held-out errors ({}-fold, each case predicted by a fit that never saw it): with {} max {}, RMS {:.2} % (worst at M = {:.4}, L = {:.3}, D = {}); the blend alone max {}, RMS {:.2} %. Tried (terms: RMS / max): {}.\n",
                 h.folds,
-                h.chosen.terms,
+                candidate_name(&h.chosen),
                 pct(h.chosen.max),
                 100.0 * h.chosen.rms,
                 h.chosen.worst.0,
@@ -127,7 +151,7 @@ fn heldout(md: &mut String, q: &QuantityFit) {
                 100.0 * base.rms,
                 h.sizes
                     .iter()
-                    .map(|s| format!("{}: {:.2} / {:.1} %", s.terms, 100.0 * s.rms, 100.0 * s.max.abs()))
+                    .map(|s| format!("{}: {:.2} / {:.1} %", short_name(s), 100.0 * s.rms, 100.0 * s.max.abs()))
                     .collect::<Vec<_>>()
                     .join(", ")
             );
@@ -208,10 +232,10 @@ fn summary(md: &mut String, c: &ContactReport) {
         if let Some(h) = &q.heldout {
             let _ = write!(
                 line,
-                "; held-out max {:.2} %, RMS {:.2} % ({} correction terms)",
+                "; held-out max {:.2} %, RMS {:.2} % ({})",
                 100.0 * h.chosen.max.abs(),
                 100.0 * h.chosen.rms,
-                h.chosen.terms
+                candidate_name(&h.chosen)
             );
         }
         for p in c.published.iter().filter(|p| p.against == q.quantity) {

@@ -23,11 +23,11 @@ pub mod markdown;
 pub mod mixed;
 pub mod surrogate;
 
-use crate::fit::correction::{line_terms, point_terms, Correction, Term};
+use crate::fit::correction::{lattice_terms, line_terms, point_terms, Coordinates, Correction};
 pub use crate::fit::dataset::{FitInput, FitPoint};
 use crate::fit::error::FitError;
 pub use crate::fit::fitted::{Blend, FittedModel, Param, QuantityFit};
-use crate::fit::heldout::{joint, select, HeldOut, Refit};
+use crate::fit::heldout::{joint, nested, select, Basis, HeldOut, Refit};
 use crate::fit::lsq::{fit, LsqFit, Sample};
 use crate::fit::model::{FilmModel, LineModel, PARAM_NAMES};
 use crate::fit::point_model::{PointModel, POINT_PARAM_NAMES};
@@ -357,8 +357,29 @@ struct Recipe<Mo> {
     physical: fn(&Mo) -> bool,
     names: &'static [&'static str],
     wrap: fn(Mo) -> Blend,
-    /// The correction's nested term list ([`crate::fit::correction`]).
-    terms: fn() -> Vec<Term>,
+    /// The candidate corrections for data at these coordinates ([`crate::fit::heldout`]).
+    bases: fn(&[Coordinates]) -> Vec<Basis>,
+}
+
+/// Ridge weights of the line lattice candidates ([`line_bases`]).
+pub const LINE_RIDGES: [f64; 3] = [1e-5, 1e-4, 1e-3];
+
+/// The line candidates: the nested terms, then the lattice over the data with each of
+/// [`LINE_RIDGES`].
+fn line_bases(z: &[Coordinates]) -> Vec<Basis> {
+    let mut out = nested(&line_terms());
+    let lattice = lattice_terms(z);
+    out.extend(LINE_RIDGES.iter().map(|&ridge| Basis {
+        terms: lattice.clone(),
+        ridge,
+    }));
+    out
+}
+
+/// The point candidates: the nested terms (the data are too sparse in three dimensions for a
+/// lattice).
+fn point_bases(_: &[Coordinates]) -> Vec<Basis> {
+    nested(&point_terms())
 }
 
 /// The interior correction of the blend fitted in `f`: its size chosen by held-out error
@@ -372,7 +393,11 @@ fn corrected<Mo: FilmModel>(
     start: &Mo,
     r: &Recipe<Mo>,
 ) -> (Correction, Option<HeldOut>) {
-    let terms = (r.terms)();
+    let z: Vec<Coordinates> = data
+        .iter()
+        .map(|s| Coordinates::new(f.model.asymptotes(s.m, s.l, s.d), s.d))
+        .collect();
+    let bases = (r.bases)(&z);
     let fit_blend = |train: &[Sample]| staged(train, start, r).ok().map(|f| f.model);
     let free = if data.len() >= FULL_FIT_MIN_POINTS {
         &r.stage2
@@ -383,10 +408,10 @@ fn corrected<Mo: FilmModel>(
         free,
         physical: &r.physical,
     };
-    let Some(h) = select(data, &terms, &fit_blend, &refit) else {
+    let Some(h) = select(data, &bases, &fit_blend, &refit) else {
         return (Correction::default(), None);
     };
-    match joint(data, &f.model, &terms[..h.chosen.terms], &refit) {
+    match joint(data, &f.model, &bases[h.chosen.candidate], &refit) {
         Some((b, c, sigma)) => {
             f.model = b;
             if let Some(sigma) = sigma {
@@ -468,7 +493,7 @@ fn line_report(
         physical: line_physical,
         names: &PARAM_NAMES,
         wrap: Blend::Line,
-        terms: line_terms,
+        bases: line_bases,
     };
     let (mut report, models) = fit_films(&recipe, pts, failed)?;
     if limit_solves {
@@ -542,7 +567,7 @@ fn point_report(
         physical: PointModel::physical,
         names: &POINT_PARAM_NAMES,
         wrap: Blend::Point,
-        terms: point_terms,
+        bases: point_bases,
     };
     let (mut report, models) = fit_films(&recipe, pts, failed)?;
     if limit_solves {

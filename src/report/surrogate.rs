@@ -376,6 +376,8 @@ mod tests {
     fn score() -> SizeScore {
         SizeScore {
             terms: 0,
+            ridge: 0.0,
+            candidate: 0,
             rms: 0.0,
             max: 0.0,
             worst: (0.0, 0.0, 0.0),

@@ -1,0 +1,81 @@
+//! The line fit on `tests/data/fit-line` (the output of `sweeps/fit-line.toml`, committed: 506
+//! line cases, M 0.1 ... 3000 (46, log) x 11 L in 0 ... 20, each refined to a 0.5 % error
+//! estimate): the lattice correction against issue 24's held-out targets (1 % for every line film),
+//! with the 5-fold held-out procedure of `ehlmap::fit::heldout`.
+//!
+//! * H_min meets the target: held-out max below 1 %, RMS below 0.3 %, with the lattice chosen.
+//! * H_pm: held-out RMS below 0.5 %, max below 1.5 % (the target is missed at a few low-M,
+//!   high-L cases; rows whose pressure maximum is the outlet spike are not fitted).
+//! * H_c: the film at X = 0 jumps where the pressure peak crosses X = 0 (M about 1.8 at L = 20:
+//!   9.27 to 9.90 between M = 1.7 and 1.8, both converged to 3e-4): the cases above 1 % lie in
+//!   M 0.3 ... 10 at L >= 2, and its RMS is below 1 %.
+//! * For every film the lattice is chosen and beats the blend alone by more than a factor of 2 in
+//!   held-out RMS.
+
+use ehlmap::fit::dataset::load_fit_input;
+use ehlmap::report::{fit_report, QuantityFit};
+use std::path::PathBuf;
+
+fn fitted() -> ehlmap::report::ContactReport {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/fit-line");
+    let input = load_fit_input(&[dir]).unwrap();
+    assert_eq!(input.line.len(), 506, "{:?}", input.excluded);
+    fit_report(&input, false).unwrap().line
+}
+
+/// Held-out max and RMS of the formula kept, the blend alone's RMS, and the ridge kept.
+fn held_out(q: &QuantityFit) -> (f64, f64, f64, f64) {
+    let h = q.heldout.as_ref().expect("held-out errors");
+    let blend = h
+        .joint
+        .iter()
+        .find(|s| s.terms == 0)
+        .expect("the blend alone");
+    (h.chosen.max.abs(), h.chosen.rms, blend.rms, h.chosen.ridge)
+}
+
+#[test]
+fn the_lattice_correction_meets_the_held_out_targets_where_the_films_are_smooth() {
+    let r = fitted();
+    let (h_c, h_pm, h_min) = (
+        r.h_c.as_ref().unwrap(),
+        r.h_pm.as_ref().unwrap(),
+        r.h_min.as_ref().unwrap(),
+    );
+    for q in [h_c, h_pm, h_min] {
+        let (max, rms, blend_rms, ridge) = held_out(q);
+        eprintln!(
+            "{}: held-out max {:.2} %, RMS {:.3} % (blend alone RMS {:.2} %), ridge {ridge:e}",
+            q.quantity,
+            100.0 * max,
+            100.0 * rms,
+            100.0 * blend_rms
+        );
+        assert!(ridge > 0.0, "{}: the lattice is chosen", q.quantity);
+        assert!(
+            rms < 0.5 * blend_rms,
+            "{}: {rms} vs {blend_rms}",
+            q.quantity
+        );
+    }
+    let (max, rms, ..) = held_out(h_min);
+    assert!(max < 0.01 && rms < 0.003, "H_min: {max} {rms}");
+    let (max, rms, ..) = held_out(h_pm);
+    assert!(max < 0.015 && rms < 0.005, "H_pm: {max} {rms}");
+    let (_, rms, ..) = held_out(h_c);
+    assert!(rms < 0.01, "H_c: {rms}");
+    let above: Vec<_> = h_c
+        .heldout
+        .as_ref()
+        .unwrap()
+        .cases
+        .iter()
+        .filter(|c| c.error.abs() > 0.01)
+        .collect();
+    for c in &above {
+        assert!(
+            (0.3..10.0).contains(&c.m) && c.l >= 2.0,
+            "H_c above 1 % outside the jump region: {c:?}"
+        );
+    }
+}
