@@ -90,7 +90,8 @@ fn line_asymptotes_agree_with_the_limit_solves() {
     assert!((ri_c.solver.unwrap() - 2.4475).abs() < 0.005);
     let ri_pm = check("H_pm", "rigid-isoviscous");
     assert!((ri_pm.solver.unwrap() - 3.0).abs() < 0.006);
-    assert_eq!(ri_pm.grid, Some(4097));
+    // Line limit solves are refined to a 0.2 % estimate (the rigid one stops on 2049 points).
+    assert!(ri_pm.grid.is_some_and(|g| g >= 1025), "{:?}", ri_pm.grid);
     // The EI law is held at the solver's own limit (2.488 M^-1/5, 1.984 for H_min, from solves
     // beyond the nightly data): its ratio falls toward 1 over the data (H_pm 1.0184, 1.0073,
     // 1.0014 at M = 50, 158, 500) and is within 0.5 % at the data's largest M. Measured (H_pm):
@@ -129,7 +130,7 @@ fn line_asymptotes_agree_with_the_limit_solves() {
     // The summary counts the checks within 1 %.
     assert!(
         md.contains(
-            "- H_pm: max error 0.50 % (target 2 %: met); held-out max 1.01 %, RMS 0.39 % (15 \
+            "- H_pm: max error 0.45 % (target 2 %: met); held-out max 2.94 %, RMS 0.71 % (9 \
              correction terms); Moes 1992 5.86 % (fit better); asymptotes within 1 % of the \
              limit solves: 3 of 4 (rigid-isoviscous, elastic-isoviscous, rigid-piezoviscous)."
         ),
@@ -213,12 +214,13 @@ fn fit_command_writes_report_json_and_charts() {
         );
     }
     // The summary states each film's target and held-out errors: with the interior correction
-    // H_c and H_pm meet 2 % on this dataset (the blend alone: 2.37 % and 1.60 %), held out 2.26 %
-    // and 1.01 %.
+    // H_c and H_pm meet 2 % on this dataset (the blend alone: 2.37 % and 1.60 %). H_pm is fitted
+    // on 27 of the 32 rows (not where the pressure maximum is the outlet spike): held out 2.94 %
+    // (1.01 % with those 5 rows, whose H_pm is not grid-converged).
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(
         md.contains(
-            "- H_pm: max error 0.50 % (target 2 %: met); held-out max 1.01 %, RMS 0.39 % (15 \
+            "- H_pm: max error 0.45 % (target 2 %: met); held-out max 2.94 %, RMS 0.71 % (9 \
              correction terms); Moes 1992 5.86 % (fit better)."
         ),
         "{md}"
@@ -227,8 +229,8 @@ fn fit_command_writes_report_json_and_charts() {
     // Every formula on the same cases in one table: the fit in sample and held out, the published.
     assert!(
         md.contains(
-            "| ehlmap fit, held out | 2.26 % / 0.66 % | 1.01 % / 0.39 % | 1.14 % / 0.31 % |\n\
-             | Moes 1992 | 5.86 % / 2.75 % | 5.86 % / 2.54 % | - |\n\
+            "| ehlmap fit, held out | 2.26 % / 0.66 % | 2.94 % / 0.71 % | 1.14 % / 0.31 % |\n\
+             | Moes 1992 | 5.86 % / 2.75 % | 5.86 % / 2.53 % | - |\n\
              | Dowson-Toyoda 1979 (skipped: dataset has no G) | - | - | - |"
         ),
         "{md}"
@@ -291,7 +293,13 @@ fn the_report_gives_the_m_range_where_each_fit_meets_its_target() {
         let range = q.within_target.as_ref().unwrap();
         assert_eq!(
             (range.m_lo, range.m_hi, range.n, range.of),
-            (2.0, 500.0, 32, 32),
+            // H_pm is not fitted at the 5 rows whose pressure maximum is the outlet spike.
+            (
+                2.0,
+                500.0,
+                if q.quantity == "H_pm" { 27 } else { 32 },
+                if q.quantity == "H_pm" { 27 } else { 32 }
+            ),
             "{}",
             q.quantity
         );

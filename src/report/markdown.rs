@@ -49,8 +49,11 @@ with the same form and its own exact H_RI = 3/M (the flux thickness); H_min with
 H_RI = 2.4475/M. C = sum c_k phi_k is the interior correction: each phi_k is a transition bump \
 times a monomial and vanishes wherever one asymptote dominates (coordinates a = ln(H_EI/H_RI), \
 b = ln(H_EP/H_RP), c = ln(H_piezo/H_iso), w = 1/(1 + e^-c); bumps g(t) = 2/(1 + cosh t): \
-isoviscous g(a)(1 - w), piezoviscous g(b) w, outer g(c)); the number of terms is chosen by \
-5-fold held-out error, the coefficients fitted on all cases. formula.py evaluates H.";
+isoviscous g(a)(1 - w), piezoviscous g(b) w, outer g(c)), or a lattice of bumps \
+g(a/W - i)(1 - w) and g(a/W - i) g(c/W - j) (W = 0.75) over the data, fitted with a ridge weight; \
+the candidate (number of terms, or lattice and ridge) is chosen by 5-fold held-out error, the \
+coefficients fitted on all cases. H_pm is not fitted where the pressure maximum is the outlet \
+spike (not grid-converged). formula.py evaluates H.";
 
 const POINT_FORM: &str = "Formula (Moes point units, NVM 1994 form): H = H_blend exp(C). \
 H_blend = { [H_RI^r + (H_EI^-4 + H_00^-4)^(-r/4)]^(s/r) + (H_RP^-8 + H_EP^-8)^(-s/8) }^(1/s), \
