@@ -1,5 +1,6 @@
 //! The line film-thickness model fitted to the sweeps: Moes' (1992) blend of four power-law
-//! asymptotes, with every exponent, the blending powers and the blending-exponent laws free.
+//! asymptotes, every exponent, the blending powers and the blending-exponent laws a parameter
+//! (which of them the fit frees is the report's choice: `crate::report`).
 //!
 //! H_RI = c_RI / M (fixed: the exact rigid-isoviscous constant of the film, 2.4475 for H_c and
 //! H_min, 3 for H_pm), H_EI = a M^alpha, H_RP = b L^beta, H_EP = d M^gamma L^delta,
