@@ -11,6 +11,12 @@
 //!   M 0.3 ... 10 at L >= 2, and its RMS is below 1 %.
 //! * For every film the lattice is chosen and beats the blend alone by more than a factor of 2 in
 //!   held-out RMS.
+//!
+//! And the point fit on `tests/data/fit-point` (the nightly point sweep and its midpoints in M,
+//! `sweeps/nightly-point.toml` and `nightly-point-mid.toml` on 513^2, 420 cases, committed), whose
+//! lattice terms also come times ln D: H_c and H_pm choose the lattice, held out within 6 % max
+//! and 1.5 % RMS (the nested terms: 18.7 % and 7.8 % max), which is not issue 24's 1 %; H_min
+//! keeps the nested terms.
 
 use ehlmap::fit::dataset::load_fit_input;
 use ehlmap::report::{fit_report, QuantityFit};
@@ -76,6 +82,31 @@ fn the_lattice_correction_meets_the_held_out_targets_where_the_films_are_smooth(
         assert!(
             (0.3..10.0).contains(&c.m) && c.l >= 2.0,
             "H_c above 1 % outside the jump region: {c:?}"
+        );
+    }
+}
+
+#[test]
+fn the_point_lattice_cuts_the_held_out_errors_of_h_c_and_h_pm() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/fit-point");
+    let input = load_fit_input(&[dir]).unwrap();
+    assert_eq!(input.point.len() + input.excluded.len(), 420);
+    let r = fit_report(&input, false).unwrap().point;
+    for q in [r.h_c.as_ref().unwrap(), r.h_pm.as_ref().unwrap()] {
+        let (max, rms, blend_rms, ridge) = held_out(q);
+        eprintln!(
+            "{}: held-out max {:.2} %, RMS {:.3} % (blend alone RMS {:.2} %), ridge {ridge:e}",
+            q.quantity,
+            100.0 * max,
+            100.0 * rms,
+            100.0 * blend_rms
+        );
+        assert!(ridge > 0.0, "{}: the lattice is chosen", q.quantity);
+        assert!(max < 0.06 && rms < 0.015, "{}: {max} {rms}", q.quantity);
+        assert!(
+            rms < 0.5 * blend_rms,
+            "{}: {rms} vs {blend_rms}",
+            q.quantity
         );
     }
 }
