@@ -14,11 +14,12 @@
 //! Tail: t(a) (1 - w), t(a) = e^(-a/TAIL) / (1 + e^-a) (0 in the rigid limit, decaying like
 //! e^(-a/TAIL) into the elastic-isoviscous one, which the data approach slowly).
 //!
-//! Lattice bumps (line contacts, where the data are dense enough to place them): Shifted
-//! g(a/W - i) (1 - w) and Cell g(a/W - i) g(c/W - j) (0 at L = 0), centred on the lattice
-//! (a, c) = (i W, j W), W = [`LATTICE`]; [`lattice_terms`] keeps those some data case sees. Each
-//! tends to 0 at every corner, since a or c goes to infinity there, and they are fitted with a
-//! ridge penalty (lambda |c|^2, chosen by held-out error) instead of being tried in order.
+//! Lattice bumps (where the data are dense enough to place them; point fits also take each one
+//! times ln D): Shifted g(a/W - i) (1 - w) and Cell g(a/W - i) g(c/W - j) (0 at L = 0), centred
+//! on the lattice (a, c) = (i W, j W), W = [`LATTICE`]; [`lattice_terms`] keeps those some data
+//! case sees. Each tends to 0 at every corner, since a or c goes to infinity there, and they are
+//! fitted with a ridge penalty (lambda |c|^2, chosen by held-out error) instead of being tried in
+//! order.
 //!
 //! A basis function is a bump times a monomial in (a, b, c, ln D, w) ([`Term`]); a polynomial
 //! grows slower than the bump decays, so every phi_k tends to 0 at each of the four corners
