@@ -40,6 +40,26 @@ fn held_out(q: &QuantityFit) -> (f64, f64, f64, f64) {
     (h.chosen.max.abs(), h.chosen.rms, blend.rms, h.chosen.ridge)
 }
 
+/// Prints the film's held-out errors, asserts that the lattice is chosen at less than half the
+/// blend alone's held-out RMS, and returns the held-out max and RMS.
+fn lattice_beats_the_blend(q: &QuantityFit) -> (f64, f64) {
+    let (max, rms, blend_rms, ridge) = held_out(q);
+    eprintln!(
+        "{}: held-out max {:.2} %, RMS {:.3} % (blend alone RMS {:.2} %), ridge {ridge:e}",
+        q.quantity,
+        100.0 * max,
+        100.0 * rms,
+        100.0 * blend_rms
+    );
+    assert!(ridge > 0.0, "{}: the lattice is chosen", q.quantity);
+    assert!(
+        rms < 0.5 * blend_rms,
+        "{}: {rms} vs {blend_rms}",
+        q.quantity
+    );
+    (max, rms)
+}
+
 #[test]
 fn the_lattice_correction_meets_the_held_out_targets_where_the_films_are_smooth() {
     let r = fitted();
@@ -49,20 +69,7 @@ fn the_lattice_correction_meets_the_held_out_targets_where_the_films_are_smooth(
         r.h_min.as_ref().unwrap(),
     );
     for q in [h_c, h_pm, h_min] {
-        let (max, rms, blend_rms, ridge) = held_out(q);
-        eprintln!(
-            "{}: held-out max {:.2} %, RMS {:.3} % (blend alone RMS {:.2} %), ridge {ridge:e}",
-            q.quantity,
-            100.0 * max,
-            100.0 * rms,
-            100.0 * blend_rms
-        );
-        assert!(ridge > 0.0, "{}: the lattice is chosen", q.quantity);
-        assert!(
-            rms < 0.5 * blend_rms,
-            "{}: {rms} vs {blend_rms}",
-            q.quantity
-        );
+        lattice_beats_the_blend(q);
     }
     let (max, rms, ..) = held_out(h_min);
     assert!(max < 0.01 && rms < 0.003, "H_min: {max} {rms}");
@@ -93,20 +100,7 @@ fn the_point_lattice_cuts_the_held_out_errors_of_h_c_and_h_pm() {
     assert_eq!(input.point.len() + input.excluded.len(), 420);
     let r = fit_report(&input, false).unwrap().point;
     for q in [r.h_c.as_ref().unwrap(), r.h_pm.as_ref().unwrap()] {
-        let (max, rms, blend_rms, ridge) = held_out(q);
-        eprintln!(
-            "{}: held-out max {:.2} %, RMS {:.3} % (blend alone RMS {:.2} %), ridge {ridge:e}",
-            q.quantity,
-            100.0 * max,
-            100.0 * rms,
-            100.0 * blend_rms
-        );
-        assert!(ridge > 0.0, "{}: the lattice is chosen", q.quantity);
+        let (max, rms) = lattice_beats_the_blend(q);
         assert!(max < 0.06 && rms < 0.015, "{}: {max} {rms}", q.quantity);
-        assert!(
-            rms < 0.5 * blend_rms,
-            "{}: {rms} vs {blend_rms}",
-            q.quantity
-        );
     }
 }

@@ -13,7 +13,7 @@
 //! candidates and how the blend is refitted ([`Refit`]); output: [`HeldOut`] (per candidate: RMS,
 //! max; the one kept; each case's held-out error with it).
 
-use crate::fit::correction::{fit_correction, Coordinates, Correction, Term};
+use crate::fit::correction::{fit_correction, lattice_terms, Coordinates, Correction, Term};
 use crate::fit::lsq::{fit, Sample};
 use crate::fit::model::FilmModel;
 use serde::{Deserialize, Serialize};
@@ -47,6 +47,36 @@ pub fn nested(terms: &[Term]) -> Vec<Basis> {
         .map(|n| Basis {
             terms: terms[..n].to_vec(),
             ridge: 0.0,
+        })
+        .collect()
+}
+
+/// Fewest cases for which [`lattice`] offers candidates: with fewer, some hundred lattice terms
+/// against a few dozen cases are chosen by folds of a handful of cases each.
+pub const LATTICE_MIN_CASES: usize = 100;
+
+/// The lattice candidates over data at coordinates `z` ([`lattice_terms`]; with `times_ln_d`
+/// each term also times ln D), one per ridge weight; none below [`LATTICE_MIN_CASES`] cases.
+pub fn lattice(z: &[Coordinates], ridges: &[f64], times_ln_d: bool) -> Vec<Basis> {
+    if z.len() < LATTICE_MIN_CASES {
+        return vec![];
+    }
+    let mut terms = lattice_terms(z);
+    if times_ln_d {
+        let with_d: Vec<Term> = terms
+            .iter()
+            .map(|t| Term {
+                powers: [0, 0, 0, 1, 0],
+                ..*t
+            })
+            .collect();
+        terms.extend(with_d);
+    }
+    ridges
+        .iter()
+        .map(|&ridge| Basis {
+            terms: terms.clone(),
+            ridge,
         })
         .collect()
 }

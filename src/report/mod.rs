@@ -23,11 +23,11 @@ pub mod markdown;
 pub mod mixed;
 pub mod surrogate;
 
-use crate::fit::correction::{lattice_terms, line_terms, point_terms, Coordinates, Correction};
+use crate::fit::correction::{line_terms, point_terms, Coordinates, Correction};
 pub use crate::fit::dataset::{FitInput, FitPoint};
 use crate::fit::error::FitError;
 pub use crate::fit::fitted::{Blend, FittedModel, Param, QuantityFit};
-use crate::fit::heldout::{joint, nested, select, Basis, HeldOut, Refit};
+use crate::fit::heldout::{joint, lattice, nested, select, Basis, HeldOut, Refit};
 use crate::fit::lsq::{fit, LsqFit, Sample};
 use crate::fit::model::{FilmModel, LineModel, PARAM_NAMES};
 use crate::fit::point_model::{PointModel, POINT_PARAM_NAMES};
@@ -367,49 +367,25 @@ struct Recipe<Mo> {
     bases: fn(&[Coordinates]) -> Vec<Basis>,
 }
 
-/// Fewest cases for which the lattice corrections are candidates: with fewer, some hundred
-/// lattice terms against a few dozen cases are chosen by folds of a handful of cases each.
-pub const LATTICE_MIN_CASES: usize = 100;
-
 /// Ridge weights of the line lattice candidates ([`line_bases`]).
 pub const LINE_RIDGES: [f64; 3] = [1e-5, 1e-4, 1e-3];
 
-/// The line candidates: the nested terms, then (from [`LATTICE_MIN_CASES`] cases) the lattice
-/// over the data with each of [`LINE_RIDGES`].
+/// The line candidates: the nested terms, then the lattice ([`lattice`]) with each of
+/// [`LINE_RIDGES`].
 fn line_bases(z: &[Coordinates]) -> Vec<Basis> {
     let mut out = nested(&line_terms());
-    if z.len() < LATTICE_MIN_CASES {
-        return out;
-    }
-    let lattice = lattice_terms(z);
-    out.extend(LINE_RIDGES.iter().map(|&ridge| Basis {
-        terms: lattice.clone(),
-        ridge,
-    }));
+    out.extend(lattice(z, &LINE_RIDGES, false));
     out
 }
 
 /// Ridge weights of the point lattice candidates ([`point_bases`]).
 pub const POINT_RIDGES: [f64; 2] = [1e-3, 1e-2];
 
-/// The point candidates: the nested terms, then (from [`LATTICE_MIN_CASES`] cases) the lattice
-/// over the data with each lattice term also times ln D, with each of [`POINT_RIDGES`].
+/// The point candidates: the nested terms, then the lattice with each term also times ln D
+/// ([`lattice`]) with each of [`POINT_RIDGES`].
 fn point_bases(z: &[Coordinates]) -> Vec<Basis> {
     let mut out = nested(&point_terms());
-    if z.len() < LATTICE_MIN_CASES {
-        return out;
-    }
-    let lattice = lattice_terms(z);
-    let with_d = lattice.iter().map(|t| {
-        let mut t = *t;
-        t.powers[3] = 1;
-        t
-    });
-    let terms: Vec<_> = lattice.iter().copied().chain(with_d).collect();
-    out.extend(POINT_RIDGES.iter().map(|&ridge| Basis {
-        terms: terms.clone(),
-        ridge,
-    }));
+    out.extend(lattice(z, &POINT_RIDGES, true));
     out
 }
 
