@@ -303,3 +303,50 @@ fn issue_22_half_percent_targets_are_met_with_an_estimate() {
         check_against_limit(name, &o, refs, 0.005);
     }
 }
+
+/// The film at the pressure maximum and the maximum itself carry Richardson estimates too
+/// (`H_c_pmax_err`, `P_max_err`; reported, not targeted). Where the maximum is a smooth peak
+/// H_c_pmax_err bounds H_c_pmax's true error (against Richardson over tight solves on 4097 and
+/// 8193 points). Where it is a Barus spike whose height the grid sets (line M = 3.1, L = 20:
+/// P_max 2.56, 3.00, 4.14, 5.97, 9.23 on 513 ... 8193 points, the spike on the main maximum so
+/// that no second maximum is found), P_max_err flags it above 2 %, the limit beyond which the
+/// fit leaves H_pm out (`ehlmap::fit::dataset::peak_is_unresolved`), while H_c and H_min meet
+/// the target.
+#[test]
+fn pressure_maximum_estimates_bound_the_smooth_peak_and_flag_the_spike() {
+    for (m, l) in [(5.0, 2.0), (100.0, 0.0), (30.0, 5.0)] {
+        let case = LineCase::new(m, l).unwrap();
+        let run = |g: usize| {
+            let mut p = LineSolveParams::default();
+            p.mg.grid = g;
+            solve_line(&case, &p).outputs
+        };
+        let (a, b) = (run(4097), run(8193));
+        let limit = richardson2(a.h_c_pmax, b.h_c_pmax).extrapolated;
+        let o = solve_line_to_accuracy(&case, &LineSolveParams::default(), 0.005, 4097).outputs;
+        assert_eq!(o.accuracy_met, Some(true), "M={m} L={l}: {}", o.reason);
+        let truth = (o.h_c_pmax / limit - 1.0).abs();
+        let (e_pm, e_p) = (o.h_c_pmax_err.unwrap(), o.p_max_err.unwrap());
+        println!(
+            "M={m} L={l} on {}: H_c_pmax {:.6} limit {limit:.6}: true {truth:.2e}, estimate \
+             {e_pm:.2e}; P_max {:.4} (P_max_err {e_p:.2e})",
+            o.grid, o.h_c_pmax, o.p_max
+        );
+        assert!(truth <= e_pm, "M={m} L={l}: {truth} above {e_pm}");
+        assert!(e_p < 0.02, "M={m} L={l}: a smooth peak: {e_p}");
+        // error_estimate is H_c's and H_min's alone.
+        assert_eq!(
+            o.error_estimate,
+            Some(o.h_c_err.unwrap().max(o.h_min_err.unwrap()))
+        );
+    }
+    let spike = LineCase::new(3.107233, 20.0).unwrap();
+    let o = solve_line_to_accuracy(&spike, &LineSolveParams::default(), 0.005, 4097).outputs;
+    println!(
+        "spike M=3.107 L=20 on {}: P_max {:.4} (P_max_err {:?}), H_c_err {:?}",
+        o.grid, o.p_max, o.p_max_err, o.h_c_err
+    );
+    assert_eq!(o.accuracy_met, Some(true), "{}", o.reason);
+    assert!(o.spike.is_none(), "no second maximum is found");
+    assert!(o.p_max_err.unwrap() > 0.02, "{:?}", o.p_max_err);
+}

@@ -52,6 +52,8 @@ fn json_has_exactly_the_documented_fields() {
         "wall_s",
         "algebraic_error",
         "H_c_err",
+        "H_c_pmax_err",
+        "P_max_err",
         "H_min_err",
         "error_estimate",
         "accuracy_met",

@@ -263,11 +263,21 @@ fn a_film_with_a_large_error_estimate_is_left_out_of_its_fit_only() {
         grid: Some(513),
         h_c_err: Some(0.012),
         h_min_err: Some(0.035),
+        h_pm_err: None,
     };
     assert_eq!(p.film(Film::Centre), Some(0.98));
     assert_eq!(p.film(Film::Minimum), None);
-    // H_pm has no estimate of its own: it needs both.
+    // H_pm without an estimate of its own (files before schema 6): it needs both.
     assert_eq!(p.film(Film::PressureMax), None);
+    assert_eq!(p.estimate(Film::PressureMax), Some(0.035));
+    // With its own estimate, that one decides, whatever H_c's and H_min's.
+    let own = |e: f64| FitPoint {
+        h_pm_err: Some(e),
+        ..p
+    };
+    assert_eq!(own(0.01).film(Film::PressureMax), Some(0.97));
+    assert_eq!(own(0.01).estimate(Film::PressureMax), Some(0.01));
+    assert_eq!(own(0.03).film(Film::PressureMax), None);
     let q = FitPoint {
         h_min_err: Some(0.02),
         ..p

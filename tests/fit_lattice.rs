@@ -1,11 +1,13 @@
-//! The line fit on `tests/data/fit-line` (the output of `sweeps/fit-line.toml`, committed: 506
-//! line cases, M 0.1 ... 3000 (46, log) x 11 L in 0 ... 20, each refined to a 0.5 % error
+//! The line fit on `tests/data/fit-line` (the output of `sweeps/fit-line.toml`, committed: 598
+//! line cases, M 0.1 ... 3000 (46, log) x 13 L in 0 ... 20, each refined to a 0.25 % error
 //! estimate): the lattice correction against issue 24's held-out targets (1 % for every line film),
 //! with the 5-fold held-out procedure of `ehlmap::fit::heldout`.
 //!
 //! * H_min meets the target: held-out max below 1 %, RMS below 0.3 %, with the lattice chosen.
-//! * H_pm: held-out RMS below 0.5 %, max below 1.5 % (the target is missed at a few low-M,
-//!   high-L cases; rows whose pressure maximum is the outlet spike are not fitted).
+//! * H_pm meets it too, on the rows whose pressure maximum is grid-converged: held-out max below
+//!   1 %, RMS below 0.3 %. Rows whose maximum is the outlet spike or whose P_max estimate
+//!   (`P_max_err`) exceeds 2 % are not fitted (Barus spikes at L >= 4 that grow with the grid;
+//!   the film under them is where the grid puts them).
 //! * H_c: the film at X = 0 jumps where the pressure peak crosses X = 0 (M about 1.8 at L = 20:
 //!   9.27 to 9.90 between M = 1.7 and 1.8, both converged to 3e-4): the cases above 1 % lie in
 //!   M 0.3 ... 10 at L >= 2, and its RMS is below 1 %.
@@ -18,14 +20,14 @@
 //! and 1.5 % RMS (the nested terms: 18.7 % and 7.8 % max), which is not issue 24's 1 %; H_min
 //! keeps the nested terms.
 
-use ehlmap::fit::dataset::load_fit_input;
+use ehlmap::fit::dataset::{load_fit_input, peak_is_unresolved, spike_is_the_maximum};
 use ehlmap::report::{fit_report, QuantityFit};
 use std::path::PathBuf;
 
 fn fitted() -> ehlmap::report::ContactReport {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/fit-line");
     let input = load_fit_input(&[dir]).unwrap();
-    assert_eq!(input.line.len(), 506, "{:?}", input.excluded);
+    assert_eq!(input.line.len(), 598, "{:?}", input.excluded);
     fit_report(&input, false).unwrap().line
 }
 
@@ -74,7 +76,30 @@ fn the_lattice_correction_meets_the_held_out_targets_where_the_films_are_smooth(
     let (max, rms, ..) = held_out(h_min);
     assert!(max < 0.01 && rms < 0.003, "H_min: {max} {rms}");
     let (max, rms, ..) = held_out(h_pm);
-    assert!(max < 0.015 && rms < 0.005, "H_pm: {max} {rms}");
+    assert!(max < 0.01 && rms < 0.003, "H_pm: {max} {rms}");
+    // H_pm is fitted exactly where the pressure maximum is a converged quantity (and its own
+    // estimate is within 2 %); the unresolved peaks are more than the detected spikes.
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/fit-line");
+    let rows = ehlmap::store::results::read_dataset(&dir).unwrap();
+    let resolved = |r: &&ehlmap::store::results::CaseRow| {
+        !spike_is_the_maximum(r)
+            && !peak_is_unresolved(r)
+            && r.h_c_pmax_err.is_some_and(|e| e <= 0.02)
+    };
+    let unresolved_only = rows
+        .iter()
+        .filter(|r| peak_is_unresolved(r) && !spike_is_the_maximum(r))
+        .count();
+    eprintln!(
+        "H_pm fitted on {} of {} rows ({unresolved_only} left out for P_max_err alone)",
+        h_pm.heldout.as_ref().unwrap().cases.len(),
+        rows.len()
+    );
+    assert_eq!(
+        h_pm.heldout.as_ref().unwrap().cases.len(),
+        rows.iter().filter(resolved).count()
+    );
+    assert!(unresolved_only >= 20, "{unresolved_only}");
     let (_, rms, ..) = held_out(h_c);
     assert!(rms < 0.01, "H_c: {rms}");
     let above: Vec<_> = h_c

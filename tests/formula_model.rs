@@ -65,6 +65,7 @@ fn check_set() -> FitInput {
                 grid: Some(o.grid),
                 h_c_err: o.h_c_err,
                 h_min_err: o.h_min_err,
+                h_pm_err: o.h_c_pmax_err,
             });
         }
     }

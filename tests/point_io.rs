@@ -225,6 +225,8 @@ fn point_json_has_the_line_fields_plus_d_k_y_min() {
         "wall_s",
         "algebraic_error",
         "H_c_err",
+        "H_c_pmax_err",
+        "P_max_err",
         "H_min_err",
         "error_estimate",
         "accuracy_met",

@@ -56,13 +56,16 @@ pub fn summary(case: &Case, o: &Outputs, skipped_estimate: bool) -> String {
         ),
         (
             "H_c_pmax",
-            format!("{:.6}   (film at the pressure maximum)", o.h_c_pmax),
+            format!(
+                "{}   (film at the pressure maximum)",
+                estimated(o.h_c_pmax, o.h_c_pmax_err)
+            ),
         ),
         (
             "H_min",
             format!("{}   at {h_min_at}", with_error(o.h_min, o.h_min_err)),
         ),
-        ("P_max", format!("{:.6}", o.p_max)),
+        ("P_max", estimated(o.p_max, o.p_max_err)),
         ("spike", spike),
         ("H0", format!("{:.6}", o.h0)),
         (f_name, format!("{:.6e}", o.f)),
@@ -146,4 +149,9 @@ fn model_line(o: &Outputs, skipped_estimate: bool) -> String {
         (None, None) => "no error estimate (see the status line for why)".into(),
     };
     model + &format!("accuracy       {accuracy}\n")
+}
+
+/// `v +- e` where a film or P_max has an estimate `rel` (reported, not targeted), else `v`.
+fn estimated(v: f64, rel: Option<f64>) -> String {
+    rel.map_or(format!("{v:.6}"), |_| with_error(v, rel))
 }

@@ -16,11 +16,15 @@
 //! doubling change alone, `PointDomain::bias`, kept rows that are some 4 % low: on the nightly
 //! point sweep at 257^2 the fit's max error was then 3.8 %, at M = 7.2, L = 5, D = 1, with the
 //! fit above the data; with this filter 1.8 %.) The film at the pressure maximum (`H_c_pmax`,
-//! fitted as H_pm) has no error estimate of its own: it needs both H_c's and H_min's, and it is
-//! left out where the pressure maximum is the outlet spike ([`spike_is_the_maximum`]): the
-//! spike's height grows with every refinement under Barus viscosity, and the film under it moves
-//! by about 1 % between grids (line M = 7.8, L = 20: 8.98, 9.02 on 2049 and 8193 points) while
-//! the estimates of H_c and H_min are 0.02 %.
+//! fitted as H_pm) is left out where its own estimate (`H_c_pmax_err`, schema 6) exceeds the
+//! limit (in older files without it, where H_c's or H_min's does), and where the pressure
+//! maximum is not a converged quantity: where it is the outlet spike ([`spike_is_the_maximum`])
+//! or where its own estimate (`P_max_err`) exceeds the limit ([`peak_is_unresolved`]). Under
+//! Barus viscosity at high L the spike grows with every refinement (line M = 3.1, L = 20: P_max
+//! 2.56, 3.00, 4.14, 5.97, 9.23, 10.8 on 513 ... 16385 points, the spike on the main maximum
+//! near X = 0, so no second maximum is found), and the film under it is taken where the grid
+//! puts the spike (there 9.6285 on 1025 points and 9.6167 on 16385, against H_c's 9.6433),
+//! while the Richardson estimate of that film is 0.5 %.
 //! Rows answered by a fitted formula (`model_used = "formula"`) are left out (listed). The model
 //! families of the rows used are recorded per contact (a formula answers only its own family).
 //! The datasets carry no G column, so `FitPoint::g` is None (formulas that need G are skipped by
@@ -73,6 +77,10 @@ pub struct FitPoint {
     /// Richardson error estimate of H_min, relative (None: not estimated); see `h_c_err`.
     #[serde(default)]
     pub h_min_err: Option<f64>,
+    /// Richardson error estimate of H_pm, relative (None: not estimated, as in files before
+    /// schema 6; H_pm then needs H_c's and H_min's estimates within the limit).
+    #[serde(default)]
+    pub h_pm_err: Option<f64>,
 }
 
 impl FitPoint {
@@ -83,17 +91,22 @@ impl FitPoint {
         let ok = |e: Option<f64>| e.is_none_or(|e| e <= MAX_ERROR_ESTIMATE);
         match film {
             Film::Centre => ok(p.h_c_err).then_some(p.h_c),
-            Film::PressureMax => p.h_pm.filter(|_| ok(p.h_c_err) && ok(p.h_min_err)),
+            Film::PressureMax => p.h_pm.filter(|_| match p.h_pm_err {
+                Some(e) => ok(Some(e)),
+                None => ok(p.h_c_err) && ok(p.h_min_err),
+            }),
             Film::Minimum => ok(p.h_min_err).then_some(p.h_min),
         }
     }
 
-    /// The relative error estimate of `film` at this case: H_c's, H_min's, and for H_pm the
-    /// larger of the two (None where a film has none).
+    /// The relative error estimate of `film` at this case: H_c's, H_min's, H_pm's, and for
+    /// H_pm without its own the larger of H_c's and H_min's (None where a film has none).
     pub fn estimate(&self, film: Film) -> Option<f64> {
         match film {
             Film::Centre => self.h_c_err,
-            Film::PressureMax => self.h_c_err.zip(self.h_min_err).map(|(a, b)| a.max(b)),
+            Film::PressureMax => self
+                .h_pm_err
+                .or_else(|| self.h_c_err.zip(self.h_min_err).map(|(a, b)| a.max(b))),
             Film::Minimum => self.h_min_err,
         }
     }
@@ -252,10 +265,12 @@ pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, FitError> {
                 g: None,
                 h_pm: row
                     .h_c_pmax
-                    .filter(|v| v.is_finite() && *v > 0.0 && !spike_is_the_maximum(row)),
+                    .filter(|v| v.is_finite() && *v > 0.0)
+                    .filter(|_| !spike_is_the_maximum(row) && !peak_is_unresolved(row)),
                 grid: row.grid.and_then(|g| usize::try_from(g).ok()),
                 h_c_err: row.h_c_err,
                 h_min_err: row.h_min_err,
+                h_pm_err: row.h_c_pmax_err,
             }),
             _ => None,
         };
@@ -316,13 +331,21 @@ pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, FitError> {
     Ok(input)
 }
 
-/// "line M = .., L = .." or "point M = .., L = .., D = ..": a row in the report's lists.
 /// Whether the row's pressure maximum is its outlet spike (a second pressure maximum was found
 /// and it is the largest).
 pub fn spike_is_the_maximum(row: &CaseRow) -> bool {
     matches!((row.spike_p, row.p_max), (Some(s), Some(p)) if s >= p)
 }
 
+/// Whether the row's pressure maximum is not grid-converged: its Richardson estimate
+/// (`P_max_err`, schema 6) exceeds [`MAX_ERROR_ESTIMATE`]. The maximum is then a spike whose
+/// height the grid sets (Barus viscosity at high L, also where no second maximum is found, the
+/// spike sitting on the main one), and where the film is taken under it is the grid's choice.
+pub fn peak_is_unresolved(row: &CaseRow) -> bool {
+    row.p_max_err.is_some_and(|e| e > MAX_ERROR_ESTIMATE)
+}
+
+/// "line M = .., L = .." or "point M = .., L = .., D = ..": a row in the report's lists.
 fn label(row: &CaseRow) -> String {
     format!(
         "{} M = {:.4}, L = {}{}",
@@ -366,6 +389,7 @@ mod tests {
             grid: None,
             h_c_err: Some(1e-3),
             h_min_err: Some(1e-3),
+            h_pm_err: None,
         }
     }
 

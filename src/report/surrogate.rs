@@ -347,6 +347,7 @@ impl FilmFormula for FittedFormula {
         let [map_c, map_pm, map_min] = &c.films;
         let (err_c, est_c, n_c) = map_c.at([m, l, d], &cell, point)?;
         let (err_min, est_min, n_min) = map_min.at([m, l, d], &cell, point)?;
+        let pm = map_pm.at([m, l, d], &cell, point).ok();
         let support = format!(
             "{} and {} check case(s) there",
             cell.describe(point),
@@ -359,6 +360,7 @@ impl FilmFormula for FittedFormula {
             map: err_c.max(err_min),
             h_c_err: MAP_SAFETY * err_c + est_c,
             h_min_err: MAP_SAFETY * err_min + est_min,
+            h_pm_err: pm.map(|(err, est, _)| MAP_SAFETY * err + est),
             support,
         })
     }

@@ -166,6 +166,18 @@ pub struct Outputs {
     /// there is no estimate (`--no-estimate`, or a coarser solve did not converge).
     #[serde(rename = "H_c_err", default)]
     pub h_c_err: Option<f64>,
+    /// The same for H_c_pmax, the film at the pressure maximum. Reported, not targeted: the
+    /// accuracy ladder refines until H_c and H_min meet the target, and `error_estimate` leaves
+    /// this one out; where the pressure maximum is the outlet spike (high L) the maximum and
+    /// its film move with the grid and the estimate can be far above the others.
+    #[serde(rename = "H_c_pmax_err", default)]
+    pub h_c_pmax_err: Option<f64>,
+    /// The same Richardson estimate for P_max (discretisation and algebraic parts only).
+    /// Reported, not targeted. Large where the pressure maximum is a spike whose height is set
+    /// by the grid (Barus viscosity at high L): the position of the maximum, and so H_c_pmax,
+    /// is then the grid's, not the physics'.
+    #[serde(rename = "P_max_err", default)]
+    pub p_max_err: Option<f64>,
     /// The same for H_min.
     #[serde(rename = "H_min_err", default)]
     pub h_min_err: Option<f64>,
@@ -178,6 +190,20 @@ pub struct Outputs {
     /// Rough surfaces: the mixed-lubrication outputs (absent for smooth ones).
     #[serde(flatten, default)]
     pub mixed: Option<MixedOutputs>,
+}
+
+/// Relative error estimates of the three films and of P_max of a solve (see
+/// [`Outputs::h_c_err`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ErrorEstimates {
+    /// Of H_c.
+    pub h_c: f64,
+    /// Of H_c_pmax (may be NaN where the film at the pressure maximum has no estimate).
+    pub h_c_pmax: f64,
+    /// Of H_min.
+    pub h_min: f64,
+    /// Of P_max (may be NaN).
+    pub p_max: f64,
 }
 
 impl Outputs {
@@ -210,6 +236,8 @@ impl Outputs {
             wall_s: 0.0,
             algebraic_error: Some(0.0),
             h_c_err: Some(0.0),
+            h_c_pmax_err: Some(0.0),
+            p_max_err: None,
             h_min_err: Some(0.0),
             error_estimate: Some(0.0),
             accuracy_met: Some(true),
@@ -217,17 +245,21 @@ impl Outputs {
         }
     }
 
-    /// Set the relative error estimates of H_c and H_min; `error_estimate` is the larger.
-    pub fn set_errors(&mut self, h_c_err: f64, h_min_err: f64) {
-        self.h_c_err = Some(h_c_err);
-        self.h_min_err = Some(h_min_err);
-        self.error_estimate = Some(h_c_err.max(h_min_err));
+    /// Set the relative error estimates of the films and P_max; `error_estimate` is the larger
+    /// of H_c's and H_min's. A non-finite H_c_pmax or P_max estimate is stored as none.
+    pub fn set_errors(&mut self, e: ErrorEstimates) {
+        self.h_c_err = Some(e.h_c);
+        self.h_c_pmax_err = Some(e.h_c_pmax).filter(|v| v.is_finite());
+        self.p_max_err = Some(e.p_max).filter(|v| v.is_finite());
+        self.h_min_err = Some(e.h_min);
+        self.error_estimate = Some(e.h_c.max(e.h_min));
     }
 
     /// Add `e` to every error estimate there is (a neglected effect, a truncation estimate).
     pub fn widen_errors(&mut self, e: f64) {
         for x in [
             &mut self.h_c_err,
+            &mut self.h_c_pmax_err,
             &mut self.h_min_err,
             &mut self.error_estimate,
         ] {
@@ -394,6 +426,8 @@ pub fn line_outputs(
         wall_s: info.wall_s,
         algebraic_error: info.algebraic_error,
         h_c_err: None,
+        h_c_pmax_err: None,
+        p_max_err: None,
         h_min_err: None,
         error_estimate: None,
         accuracy_met: None,

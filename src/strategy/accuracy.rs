@@ -14,7 +14,7 @@ use crate::solve::line::{solve_line_seeded, LineSolveParams};
 use crate::solve::multilevel::Seed;
 use crate::solve::params::ContactParams;
 use crate::solve::point::{solve_point_seeded, PointSolveParams};
-use crate::solve::solution::{Outputs, Solution};
+use crate::solve::solution::{ErrorEstimates, Outputs, Solution};
 use crate::solve::Status;
 use serde::{Deserialize, Serialize};
 
@@ -122,10 +122,10 @@ pub fn refine_to_accuracy<S: Attempt>(
             .as_ref()
             .filter(|_| converged)
             .and_then(|c| half_grid_errors(c, so, order));
-        if let Some((c, m)) = est {
-            so.set_errors(c, m);
+        if let Some(e) = est {
+            so.set_errors(e);
         }
-        let est = est.map(|(c, m)| c.max(m));
+        let est = est.map(|e| e.h_c.max(e.h_min));
         if last && !converged {
             if let Some(mut b) = best.take() {
                 // The finest grid failed even with its fallback ladder: the finest converged
@@ -212,18 +212,23 @@ pub fn coarser_grid(grid: usize) -> usize {
     (grid - 1) / 2 + 1
 }
 
-/// The relative error estimates of H_c and H_min of `fine` from `coarse`, the solve on its
-/// half grid: Richardson at `order` ([`relative_error`]) plus the algebraic errors both solves
-/// left (they contaminate the difference as well as the fine answer). None unless both
-/// converged and the estimates are finite.
-pub fn half_grid_errors(coarse: &Outputs, fine: &Outputs, order: f64) -> Option<(f64, f64)> {
+/// The relative error estimates of H_c, H_c_pmax, H_min and P_max of `fine` from `coarse`, the
+/// solve on its half grid: Richardson at `order` ([`relative_error`]) plus the algebraic errors
+/// both solves left (they contaminate the difference as well as the fine answer). None unless
+/// both converged and the estimates of H_c and H_min are finite (the others may be NaN).
+pub fn half_grid_errors(coarse: &Outputs, fine: &Outputs, order: f64) -> Option<ErrorEstimates> {
     if coarse.status != Status::Converged || fine.status != Status::Converged {
         return None;
     }
     let algebraic = fine.algebraic_error.unwrap_or(0.0) + coarse.algebraic_error.unwrap_or(0.0);
-    let c = relative_error(coarse.h_c, fine.h_c, order) + algebraic;
-    let m = relative_error(coarse.h_min, fine.h_min, order) + algebraic;
-    (c.is_finite() && m.is_finite()).then_some((c, m))
+    let e = |q: fn(&Outputs) -> f64| relative_error(q(coarse), q(fine), order) + algebraic;
+    let e = ErrorEstimates {
+        h_c: e(|o| o.h_c),
+        h_c_pmax: e(|o| o.h_c_pmax),
+        h_min: e(|o| o.h_min),
+        p_max: e(|o| o.p_max),
+    };
+    (e.h_c.is_finite() && e.h_min.is_finite()).then_some(e)
 }
 
 /// Add the half-grid error estimate to a solve on a fixed grid: solve again on the grid with
@@ -252,8 +257,8 @@ pub fn add_half_grid_estimate(
             *t += half.outputs.wall_s;
         }
         match half_grid_errors(&half.outputs, &s.outputs, order) {
-            Some((c, m)) => {
-                s.outputs.set_errors(c, m);
+            Some(e) => {
+                s.outputs.set_errors(e);
                 return;
             }
             None => format!(
@@ -426,6 +431,8 @@ mod tests {
             wall_s: 0.0,
             algebraic_error: None,
             h_c_err: None,
+            h_c_pmax_err: None,
+            p_max_err: None,
             h_min_err: None,
             error_estimate: None,
             accuracy_met: None,
@@ -437,15 +444,36 @@ mod tests {
     fn half_grid_errors_need_two_converged_solves() {
         let mut fine = outputs(Status::Converged, 5.0, 4.0);
         let mut coarse = outputs(Status::Converged, 5.1, 3.9);
+        (fine.h_c_pmax, coarse.h_c_pmax) = (4.5, 4.2);
+        (fine.p_max, coarse.p_max) = (2.0, 1.5);
         let factor = 1.0 / (2f64.powf(ESTIMATE_ORDER) - 1.0);
-        let (c, m) = half_grid_errors(&coarse, &fine, ESTIMATE_ORDER).unwrap();
-        assert!((c - factor * 0.1 / 5.0).abs() < 1e-14);
-        assert!((m - factor * 0.1 / 4.0).abs() < 1e-14);
-        // Both solves' algebraic errors add to both estimates.
+        let e = half_grid_errors(&coarse, &fine, ESTIMATE_ORDER).unwrap();
+        assert!((e.h_c - factor * 0.1 / 5.0).abs() < 1e-14);
+        assert!((e.h_c_pmax - factor * 0.3 / 4.5).abs() < 1e-14);
+        assert!((e.h_min - factor * 0.1 / 4.0).abs() < 1e-14);
+        assert!((e.p_max - factor * 0.5 / 2.0).abs() < 1e-14);
+        // Both solves' algebraic errors add to every estimate.
         fine.algebraic_error = Some(1e-4);
         coarse.algebraic_error = Some(2e-4);
-        let (c2, m2) = half_grid_errors(&coarse, &fine, ESTIMATE_ORDER).unwrap();
-        assert!((c2 - c - 3e-4).abs() < 1e-14 && (m2 - m - 3e-4).abs() < 1e-14);
+        let e2 = half_grid_errors(&coarse, &fine, ESTIMATE_ORDER).unwrap();
+        for (a, b) in [
+            (e2.h_c, e.h_c),
+            (e2.h_c_pmax, e.h_c_pmax),
+            (e2.h_min, e.h_min),
+        ] {
+            assert!((a - b - 3e-4).abs() < 1e-14);
+        }
+        // The estimate goes to the outputs; error_estimate leaves H_c_pmax's out.
+        fine.set_errors(e2);
+        assert_eq!(fine.h_c_pmax_err, Some(e2.h_c_pmax));
+        assert_eq!(fine.p_max_err, Some(e2.p_max));
+        assert_eq!(fine.error_estimate, Some(e2.h_c.max(e2.h_min)));
+        // A film at the pressure maximum without a value has no estimate; the others stand.
+        coarse.h_c_pmax = f64::NAN;
+        let e3 = half_grid_errors(&coarse, &fine, ESTIMATE_ORDER).unwrap();
+        assert!(e3.h_c_pmax.is_nan() && e3.h_c == e2.h_c);
+        fine.set_errors(e3);
+        assert_eq!(fine.h_c_pmax_err, None);
         let failed = outputs(Status::Diverged, 5.1, 3.9);
         assert_eq!(half_grid_errors(&failed, &fine, ESTIMATE_ORDER), None);
         let nan = outputs(Status::Converged, f64::NAN, 3.9);

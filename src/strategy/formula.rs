@@ -41,6 +41,8 @@ pub struct FormulaFilms {
     pub h_c_err: f64,
     /// Relative error bound of H_min, the same way.
     pub h_min_err: f64,
+    /// Relative error bound of H_pm, the same way (none where its map has no cases there).
+    pub h_pm_err: Option<f64>,
     /// Which data cases the map rests on, in words (for the reason).
     pub support: String,
 }
@@ -120,6 +122,7 @@ pub fn formula_answer(
         d,
         k,
         h_c_err: Some(f.h_c_err),
+        h_c_pmax_err: f.h_pm_err,
         h_min_err: Some(f.h_min_err),
         error_estimate: Some(bound),
         wall_s: t0.elapsed().as_secs_f64(),
@@ -146,6 +149,7 @@ mod tests {
                 map: self.0,
                 h_c_err: self.0 + self.1,
                 h_min_err: self.0 + self.1,
+                h_pm_err: None,
                 support: "4 cases".into(),
             })
         }

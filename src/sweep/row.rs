@@ -230,6 +230,8 @@ fn build_row(case: &Case, sweep: &str, o: &Outputs, attempt: usize) -> CaseRow {
     valid &= o.status != Status::UnderResolved;
     row.h_c_err = o.h_c_err.and_then(|e| finite(e, &mut valid));
     row.h_min_err = o.h_min_err.and_then(|e| finite(e, &mut valid));
+    row.h_c_pmax_err = o.h_c_pmax_err.and_then(|e| finite(e, &mut valid));
+    row.p_max_err = o.p_max_err.and_then(|e| finite(e, &mut valid));
     row.work_units = finite(o.work_units, &mut valid);
     row.wall_s = finite(o.wall_s, &mut valid);
     row.algebraic_error = o.algebraic_error.and_then(|a| finite(a, &mut valid));

@@ -21,8 +21,9 @@ use std::sync::Arc;
 /// rough-surface inputs (`sigma`, `gamma`, `slide_roll`) and outputs (`Lambda`, `Lambda_c`,
 /// `asperity_load_fraction`, `P_asperity_max`, `H_c_smooth`, `H_min_smooth`,
 /// `mixed_iterations`), all null for smooth surfaces. Schema 5 added `far_field` (false in the
-/// rows of older files, whose point domains had P = 0 on the boundary).
-pub const SCHEMA_VERSION: u32 = 5;
+/// rows of older files, whose point domains had P = 0 on the boundary). Schema 6 added
+/// `H_c_pmax_err` and `P_max_err` (null in the rows of older files).
+pub const SCHEMA_VERSION: u32 = 6;
 
 /// How one column's values are taken from a row (`get`) and put into one (`set`). The variant
 /// fixes the Arrow type (Utf8, Float64, Int64, Boolean) and the nullability (`Opt*` columns are
@@ -245,6 +246,8 @@ pub static COLUMNS: &[Column] = &[
     col!("load_error", opt_f64, load_error),
     col!("H_c_err", opt_f64, h_c_err),
     col!("H_min_err", opt_f64, h_min_err),
+    col!("H_c_pmax_err", opt_f64, h_c_pmax_err, 6),
+    col!("P_max_err", opt_f64, p_max_err, 6),
     col!("Lambda", opt_f64, lambda_min, 4),
     col!("Lambda_c", opt_f64, lambda_c, 4),
     col!("asperity_load_fraction", opt_f64, asperity_load_fraction, 4),
@@ -323,6 +326,8 @@ mod tests {
             ("load_error", F, true),
             ("H_c_err", F, true),
             ("H_min_err", F, true),
+            ("H_c_pmax_err", F, true),
+            ("P_max_err", F, true),
             ("Lambda", F, true),
             ("Lambda_c", F, true),
             ("asperity_load_fraction", F, true),

@@ -213,6 +213,11 @@ pub struct CaseRow {
     pub h_c_err: Option<f64>,
     /// Relative error estimate of H_min, column `H_min_err`.
     pub h_min_err: Option<f64>,
+    /// Relative error estimate of H_c_pmax, column `H_c_pmax_err` (schema 6; not part of
+    /// `error_estimate`).
+    pub h_c_pmax_err: Option<f64>,
+    /// Relative error estimate of P_max, column `P_max_err` (schema 6).
+    pub p_max_err: Option<f64>,
     /// The film parameter H_min/sigma, column `Lambda`.
     pub lambda_min: Option<f64>,
     /// H_c/sigma, column `Lambda_c`.
@@ -290,6 +295,8 @@ impl Default for CaseRow {
             load_error: None,
             h_c_err: None,
             h_min_err: None,
+            h_c_pmax_err: None,
+            p_max_err: None,
             sigma: None,
             gamma: None,
             slide_roll: None,
@@ -375,6 +382,8 @@ pub(crate) fn sample(id: &str) -> CaseRow {
         load_error: Some(1e-8),
         h_c_err: None,
         h_min_err: None,
+        h_c_pmax_err: Some(2e-3),
+        p_max_err: Some(4e-2),
         sigma: Some(0.5),
         gamma: Some(1.0),
         slide_roll: Some(0.2),
