@@ -52,8 +52,8 @@ b = ln(H_EP/H_RP), c = ln(H_piezo/H_iso), w = 1/(1 + e^-c); bumps g(t) = 2/(1 + 
 isoviscous g(a)(1 - w), piezoviscous g(b) w, outer g(c)), or a lattice of bumps \
 g(a/W - i)(1 - w) and g(a/W - i) g(c/W - j) (W = 0.75) over the data, fitted with a ridge weight; \
 the candidate (number of terms, or lattice and ridge) is chosen by 5-fold held-out error, the \
-coefficients fitted on all cases. H_pm is not fitted where the pressure maximum is the outlet \
-spike (not grid-converged). formula.py evaluates H.";
+coefficients fitted on all cases. H_pm is not fitted where the pressure maximum is not \
+grid-converged (the outlet spike, or P_max_err above 2 %). formula.py evaluates H.";
 
 const POINT_FORM: &str = "Formula (Moes point units, NVM 1994 form): H = H_blend exp(C). \
 H_blend = { [H_RI^r + (H_EI^-4 + H_00^-4)^(-r/4)]^(s/r) + (H_RP^-8 + H_EP^-8)^(-s/8) }^(1/s), \
