@@ -6,7 +6,7 @@
 //! * H_min meets the target: held-out max below 1 %, RMS below 0.3 %, with the lattice chosen.
 //! * H_pm meets it too, on the rows whose pressure maximum is grid-converged: held-out max below
 //!   1 %, RMS below 0.3 %. Rows whose maximum is the outlet spike or whose P_max estimate
-//!   (`P_max_err`) exceeds 2 % are not fitted (Barus spikes at L >= 4 that grow with the grid;
+//!   (`P_max_err`) exceeds 2 % are not fitted (Barus spikes at L >= 8 that grow with the grid;
 //!   the film under them is where the grid puts them).
 //! * H_c: the film at X = 0 jumps where the pressure peak crosses X = 0 (M about 1.8 at L = 20:
 //!   9.27 to 9.90 between M = 1.7 and 1.8, both converged to 3e-4): the cases above 1 % lie in

@@ -163,12 +163,20 @@ fn heldout(md: &mut String, q: &QuantityFit) {
     if !q.check.is_empty() {
         let errors: Vec<f64> = q.check.iter().map(|c| c.error).collect();
         let (worst, rms) = worst_and_rms(&errors);
+        let w = &q.check[worst];
+        let estimate = w.estimate.map_or(String::new(), |e| {
+            format!(", its own error estimate {:.2} %", 100.0 * e)
+        });
         let _ = writeln!(
             md,
-            "Check set ({} cases of separate datasets, never fitted): max {}, RMS {:.2} %.\n",
+            "Check set ({} cases of separate datasets, never fitted): max {}, RMS {:.2} % (worst at \
+             M = {:.4}, L = {:.3}, D = {}{estimate}).\n",
             errors.len(),
             pct(errors[worst]),
-            100.0 * rms
+            100.0 * rms,
+            w.m,
+            w.l,
+            w.d
         );
     }
     if !c.terms.is_empty() {
