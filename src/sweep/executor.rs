@@ -449,6 +449,9 @@ struct Sink<'s, 'w> {
     lock: &'s mut DatasetLock,
 }
 
+/// The longest [`collect`] waits for a row before it looks at its flush, lock and progress.
+const IDLE_TICK: Duration = Duration::from_secs(5);
+
 /// Receive the rows until the workers are done, flushing after `batch` rows or `flush_seconds`
 /// (of `spec.output`) and refreshing the lock every [`HEARTBEAT`]; on a write error, set `stop`
 /// and return the error.
@@ -473,9 +476,14 @@ fn collect(
         if let Some(w) = lock.heartbeat() {
             note(&format!("ehlmap: warning: {w}"));
         }
-        let wait = flush_every
-            .saturating_sub(last_flush.elapsed())
-            .min(HEARTBEAT);
+        // Wake for the next flush (only when rows are pending), the lock's heartbeat, and the
+        // progress's idle line.
+        let until_flush = if pending > 0 {
+            flush_every.saturating_sub(last_flush.elapsed())
+        } else {
+            HEARTBEAT
+        };
+        let wait = until_flush.min(HEARTBEAT).min(IDLE_TICK);
         match rx.recv_timeout(wait.max(Duration::from_millis(1))) {
             Ok(row) => {
                 tally(report, &row);
@@ -483,7 +491,7 @@ fn collect(
                 pending += 1;
                 reporter.update(report.solved, report.failed);
             }
-            Err(mpsc::RecvTimeoutError::Timeout) => {}
+            Err(mpsc::RecvTimeoutError::Timeout) => reporter.idle(),
             Err(mpsc::RecvTimeoutError::Disconnected) => break,
         }
         if pending > 0 && (pending >= batch || last_flush.elapsed() >= flush_every) {

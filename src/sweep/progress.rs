@@ -18,11 +18,15 @@ pub enum Progress {
     /// A progress bar with the failure count and ETA.
     Bar,
     /// Log lines: when another tenth of the cases is done, when a case finishes 30 s or more
-    /// after the previous line, and at the end.
+    /// after the previous line, at the end, and after [`IDLE_LINE`] without a case finishing
+    /// (long cases in progress).
     Log,
     /// Nothing.
     None,
 }
+
+/// In log mode, the silence after which a line says that no case has finished.
+pub const IDLE_LINE: Duration = Duration::from_secs(60);
 
 /// The progress of one run on stderr: a bar, log lines or nothing ([`Progress`]).
 pub(crate) struct Reporter {
@@ -33,6 +37,11 @@ pub(crate) struct Reporter {
     start: Instant,
     last_log: Instant,
     last_logged_decile: usize,
+    /// Cases done and failed at the last update.
+    done: usize,
+    failed: usize,
+    /// The silence after which [`Reporter::idle`] writes a line.
+    idle_after: Duration,
 }
 
 impl Reporter {
@@ -66,11 +75,15 @@ impl Reporter {
             start: Instant::now(),
             last_log: Instant::now(),
             last_logged_decile: 0,
+            done: 0,
+            failed: 0,
+            idle_after: IDLE_LINE,
         }
     }
 
     /// `done` cases finished, `failed` of them failures.
     pub(crate) fn update(&mut self, done: usize, failed: usize) {
+        (self.done, self.failed) = (done, failed);
         if let Some(pb) = &self.bar {
             pb.set_position(done as u64);
             pb.set_message(format!("failures {failed}"));
@@ -95,10 +108,62 @@ impl Reporter {
         }
     }
 
+    /// No case finished lately: in log mode, a line once [`IDLE_LINE`] has passed since the
+    /// last one, so that a log shows a run working through long cases.
+    pub(crate) fn idle(&mut self) {
+        if let Some(line) = self.idle_line() {
+            self.last_log = Instant::now();
+            note(&line);
+        }
+    }
+
+    /// The line [`Reporter::idle`] writes now, if one is due.
+    fn idle_line(&self) -> Option<String> {
+        let quiet = self.last_log.elapsed();
+        (self.log && quiet >= self.idle_after && self.done < self.total).then(|| {
+            format!(
+                "{}: {}/{} done, {} failures, {:.1} s elapsed; no case finished in the last {:.0} \
+                 s (long cases in progress)",
+                self.prefix,
+                self.done,
+                self.total,
+                self.failed,
+                self.start.elapsed().as_secs_f64(),
+                quiet.as_secs_f64()
+            )
+        })
+    }
+
     /// The run is over.
     pub(crate) fn finish(&self) {
         if let Some(pb) = &self.bar {
             pb.finish();
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_idle_line_is_due_after_the_silence_in_log_mode_only() {
+        let mut r = Reporter::new(Progress::Log, "sweep s".into(), 4);
+        // Just started: nothing is due.
+        assert_eq!(r.idle_line(), None);
+        r.idle_after = Duration::ZERO;
+        r.update(1, 0);
+        let line = r.idle_line().expect("due");
+        assert!(
+            line.starts_with("sweep s: 1/4 done, 0 failures")
+                && line.contains("no case finished in the last"),
+            "{line}"
+        );
+        // Not in the other modes, and not once every case is done.
+        let mut quiet = Reporter::new(Progress::None, "s".into(), 4);
+        quiet.idle_after = Duration::ZERO;
+        assert_eq!(quiet.idle_line(), None);
+        r.update(4, 1);
+        assert_eq!(r.idle_line(), None);
     }
 }
