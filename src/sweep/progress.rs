@@ -37,9 +37,10 @@ pub(crate) struct Reporter {
     start: Instant,
     last_log: Instant,
     last_logged_decile: usize,
-    /// Cases done and failed at the last update.
+    /// Cases done and failed at the last update, and when a case last finished.
     done: usize,
     failed: usize,
+    last_case: Instant,
     /// The silence after which [`Reporter::idle`] writes a line.
     idle_after: Duration,
 }
@@ -77,12 +78,16 @@ impl Reporter {
             last_logged_decile: 0,
             done: 0,
             failed: 0,
+            last_case: Instant::now(),
             idle_after: IDLE_LINE,
         }
     }
 
     /// `done` cases finished, `failed` of them failures.
     pub(crate) fn update(&mut self, done: usize, failed: usize) {
+        if done != self.done {
+            self.last_case = Instant::now();
+        }
         (self.done, self.failed) = (done, failed);
         if let Some(pb) = &self.bar {
             pb.set_position(done as u64);
@@ -108,8 +113,9 @@ impl Reporter {
         }
     }
 
-    /// No case finished lately: in log mode, a line once [`IDLE_LINE`] has passed since the
-    /// last one, so that a log shows a run working through long cases.
+    /// No row arrived lately: in log mode, a line once [`IDLE_LINE`] has passed since the last
+    /// case finished and since the last line, so that a log shows a run working through long
+    /// cases.
     pub(crate) fn idle(&mut self) {
         if let Some(line) = self.idle_line() {
             self.last_log = Instant::now();
@@ -119,8 +125,9 @@ impl Reporter {
 
     /// The line [`Reporter::idle`] writes now, if one is due.
     fn idle_line(&self) -> Option<String> {
-        let quiet = self.last_log.elapsed();
-        (self.log && quiet >= self.idle_after && self.done < self.total).then(|| {
+        let quiet = self.last_case.elapsed();
+        let due = quiet >= self.idle_after && self.last_log.elapsed() >= self.idle_after;
+        (self.log && due && self.done < self.total).then(|| {
             format!(
                 "{}: {}/{} done, {} failures, {:.1} s elapsed; no case finished in the last {:.0} \
                  s (long cases in progress)",
