@@ -221,12 +221,12 @@ pub fn half_grid_errors(coarse: &Outputs, fine: &Outputs, order: f64) -> Option<
         return None;
     }
     let algebraic = fine.algebraic_error.unwrap_or(0.0) + coarse.algebraic_error.unwrap_or(0.0);
-    let e = |q: fn(&Outputs) -> f64| relative_error(q(coarse), q(fine), order) + algebraic;
+    let of = |q: fn(&Outputs) -> f64| relative_error(q(coarse), q(fine), order) + algebraic;
     let e = ErrorEstimates {
-        h_c: e(|o| o.h_c),
-        h_c_pmax: e(|o| o.h_c_pmax),
-        h_min: e(|o| o.h_min),
-        p_max: e(|o| o.p_max),
+        h_c: of(|o| o.h_c),
+        h_c_pmax: of(|o| o.h_c_pmax),
+        h_min: of(|o| o.h_min),
+        p_max: of(|o| o.p_max),
     };
     (e.h_c.is_finite() && e.h_min.is_finite()).then_some(e)
 }
