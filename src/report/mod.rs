@@ -11,7 +11,8 @@
 //!
 //! Fitting (`staged`): stage 1 frees the asymptote laws from the published start; with
 //! [`FULL_FIT_MIN_POINTS`] cases or more, stage 2 also frees the blend and is kept only when it is
-//! physical, identified (every sigma finite) and fits better.
+//! physical, identified (every sigma finite) and fits better. Each contact's start models, free
+//! sets, physical test and candidate corrections are its recipe (the private `recipe` module).
 //!
 //! Outputs: a [`FitReport`] (serialised as `fit.json`). A contact with fewer converged cases
 //! than its model needs (free parameters + [`SPARE_CASES`]) is reported as "skipped: N cases,
@@ -21,45 +22,27 @@ pub mod checks;
 pub mod formula_py;
 pub mod markdown;
 pub mod mixed;
+mod recipe;
 pub mod surrogate;
 
-use crate::fit::correction::{line_terms, point_terms, Coordinates, Correction};
+use crate::fit::correction::{Coordinates, Correction};
 pub use crate::fit::dataset::{FitInput, FitPoint};
 use crate::fit::error::FitError;
 pub use crate::fit::fitted::{Blend, FittedModel, Param, QuantityFit};
-use crate::fit::heldout::{joint, lattice, nested, select, Basis, HeldOut, Refit};
+use crate::fit::heldout::{joint, select, HeldOut, Refit};
 use crate::fit::lsq::{fit, LsqFit, Sample};
-use crate::fit::model::{FilmModel, LineModel, PARAM_NAMES};
-use crate::fit::point_model::{PointModel, POINT_PARAM_NAMES};
+use crate::fit::model::FilmModel;
 use crate::fit::stats::{d_table, err_stats, region_table, target_range, ErrStats, RegionStats};
-use crate::limits::rigid_point;
 use crate::model::formulas::{
     dowson_toyoda_line_hc_moes, hamrock_dowson_hc_moes, moes_line_hc, nvm_point_hc,
 };
 use crate::report::checks::{line_checks, point_checks, AsymptoteCheck};
+use crate::report::recipe::{line_recipe, point_recipe, Recipe};
+pub use crate::report::recipe::{
+    A_EI_CENTRAL, A_EI_MIN, B_RP_CENTRAL, C_RI_CENTRAL, LINE_RIDGES, MIN_CASES, POINT_RIDGES,
+};
 pub use crate::solve::film::Film;
-use crate::strategy::closed_form::MARTIN_FLUX;
 use serde::{Deserialize, Serialize};
-
-/// The exact rigid-isoviscous constant of the line film at X = 0 (Martin, Reynolds exit condition).
-pub const C_RI_CENTRAL: f64 = 2.4475;
-
-/// The rigid-piezoviscous constant of the line film at X = 0: H_RP = (c L)^(2/3), c = alpha p_max
-/// H^(3/2)/L of the rigid isoviscous solution (the Barus reduced pressure reaches 1/alpha;
-/// docs/physics.md section 5), with c from the solver's rigid L = 0 solve at 4097 points
-/// (docs/validation.md). The start of the line RP law; the report re-derives the limit from a
-/// fresh solve ([`crate::report::checks`]).
-pub const B_RP_CENTRAL: f64 = 1.0496;
-
-/// The elastic-isoviscous constant of the line films at X = 0 and at the pressure maximum:
-/// H_EI = a M^(-1/5) with a from the solver's L = 0 solves beyond the nightly data (H M^(1/5) =
-/// 2.4855 at M = 3000, 2.4878 at M = 1e4 on 65537 points; docs/validation.md). Held, with the
-/// exponent of asymptotic theory.
-pub const A_EI_CENTRAL: f64 = 2.488;
-
-/// The elastic-isoviscous constant of the line minimum film (1.9842 at M = 3000, 1.9837 at
-/// M = 1e4), held like [`A_EI_CENTRAL`].
-pub const A_EI_MIN: f64 = 1.984;
 
 /// Datasets with at least this many converged cases of a contact also fit the blending law (and,
 /// for point contacts, the elastic M exponents and the H_EP law): low enough for the nightly
@@ -302,93 +285,6 @@ fn skipped(contact: &str, n: usize, failed: usize, need: usize) -> ContactReport
     }
 }
 
-/// The line free sets: stage 1 the constant d of the elastic-piezoviscous law (RI is fixed by
-/// theory, [`C_RI_CENTRAL`]; EI is held at the solver's limit, [`A_EI_CENTRAL`] M^(-1/5); RP at
-/// its rigid limit [`B_RP_CENTRAL`] L^(2/3); EP's exponents at theory, M^(-1/8) L^(3/4), the
-/// solver's EP limit solves failing on the fine grids they need); stage 2 also the blending powers
-/// and the s-law. With the lattice correction the held-out errors are those of free exponents
-/// (docs/validation.md, "The line lattice correction on 0.5 % data").
-const LINE_STAGE1: [usize; 1] = [4];
-const LINE_STAGE2: [usize; 7] = [4, 7, 8, 9, 10, 11, 12];
-
-/// Fewest cases a contact's fit needs, whatever its free parameters (two per held-out fold).
-pub const MIN_CASES: usize = 10;
-
-/// The start of a line fit of `film`: Moes' laws, with H_RI at its exact constant (2.4475 at
-/// X = 0 and for H_min, 3 at the pressure maximum) and H_RP at its rigid limit scaled the same
-/// way (the rigid-piezoviscous film has the rigid-isoviscous shape).
-fn line_start(film: Film) -> LineModel {
-    let (c_ri, scale) = match film {
-        Film::Centre => (C_RI_CENTRAL, 1.0),
-        Film::PressureMax => (MARTIN_FLUX, 1.0),
-        Film::Minimum => (C_RI_CENTRAL, 0.75),
-    };
-    let mut m = LineModel::moes();
-    m.c_ri = c_ri;
-    m.x[2] = (B_RP_CENTRAL * c_ri / C_RI_CENTRAL).ln();
-    m.x[3] = 2.0 / 3.0;
-    for k in [0, 4] {
-        m.x[k] += f64::ln(scale);
-    }
-    m.x[0] = match film {
-        Film::Minimum => A_EI_MIN,
-        _ => A_EI_CENTRAL,
-    }
-    .ln();
-    m.x[1] = -0.2;
-    m
-}
-
-fn line_physical(m: &LineModel) -> bool {
-    let x = &m.x;
-    x[7] > 0.5
-        && x[7] + x[12] > 0.5
-        && x[8] > 0.5
-        && x[9] > 0.5
-        && x[11] > 0.0
-        && x.iter().all(|v| v.abs() < 50.0)
-}
-
-/// How one contact is fitted: the start model of each film, the two free sets, the physical
-/// test, and the wrapping into [`FittedModel`].
-struct Recipe<Mo> {
-    contact: &'static str,
-    start: fn(Film) -> Mo,
-    stage1: Vec<usize>,
-    stage2: Vec<usize>,
-    /// The rigid-piezoviscous law's parameters (held in the fallback of [`staged`]).
-    rp: &'static [usize],
-    /// Blend parameters held at their start in the later fallbacks of [`staged`].
-    late: &'static [usize],
-    physical: fn(&Mo) -> bool,
-    names: &'static [&'static str],
-    wrap: fn(Mo) -> Blend,
-    /// The candidate corrections for data at these coordinates ([`crate::fit::heldout`]).
-    bases: fn(&[Coordinates]) -> Vec<Basis>,
-}
-
-/// Ridge weights of the line lattice candidates ([`line_bases`]).
-pub const LINE_RIDGES: [f64; 3] = [1e-5, 1e-4, 1e-3];
-
-/// The line candidates: the nested terms, then the lattice ([`lattice`]) with each of
-/// [`LINE_RIDGES`].
-fn line_bases(z: &[Coordinates]) -> Vec<Basis> {
-    let mut out = nested(&line_terms());
-    out.extend(lattice(z, &LINE_RIDGES, false));
-    out
-}
-
-/// Ridge weights of the point lattice candidates ([`point_bases`]).
-pub const POINT_RIDGES: [f64; 2] = [1e-3, 1e-2];
-
-/// The point candidates: the nested terms, then the lattice with each term also times ln D
-/// ([`lattice`]) with each of [`POINT_RIDGES`].
-fn point_bases(z: &[Coordinates]) -> Vec<Basis> {
-    let mut out = nested(&point_terms());
-    out.extend(lattice(z, &POINT_RIDGES, true));
-    out
-}
-
 /// The interior correction of the blend fitted in `f`: its size chosen by held-out error
 /// ([`crate::fit::heldout`], the blend refitted per fold by [`staged`]), then blend and
 /// correction fitted together on all of `data` ([`joint`], the parameters of the last stage
@@ -486,22 +382,11 @@ fn line_report(
     failed: usize,
     limit_solves: bool,
 ) -> Result<ContactReport, FitError> {
-    let need = (LINE_STAGE1.len() + SPARE_CASES).max(MIN_CASES);
+    let recipe = line_recipe();
+    let need = (recipe.stage1.len() + SPARE_CASES).max(MIN_CASES);
     if pts.len() < need {
         return Ok(skipped("line", pts.len(), failed, need));
     }
-    let recipe = Recipe {
-        contact: "line",
-        start: line_start,
-        stage1: LINE_STAGE1.to_vec(),
-        stage2: LINE_STAGE2.to_vec(),
-        rp: &[],
-        late: &[],
-        physical: line_physical,
-        names: &PARAM_NAMES,
-        wrap: Blend::Line,
-        bases: line_bases,
-    };
     let (mut report, models) = fit_films(&recipe, pts, failed)?;
     if limit_solves {
         report.asymptotes = line_checks(&models, pts);
@@ -515,67 +400,16 @@ fn line_report(
     Ok(report)
 }
 
-/// Free point parameters for the data: the D corrections only with two or more D values, the
-/// piezoviscous laws only with L > 0 cases.
-fn point_free(pts: &[FitPoint]) -> Vec<usize> {
-    let mut ds: Vec<f64> = pts.iter().map(|p| p.dd()).collect();
-    ds.sort_by(f64::total_cmp);
-    ds.dedup();
-    let any_piezo = pts.iter().any(|p| p.l > 0.0);
-    PointModel::ASYMPTOTES
-        .iter()
-        .copied()
-        .filter(|k| ds.len() >= 2 || !PointModel::D_EXPONENTS.contains(k))
-        .filter(|k| any_piezo || !PointModel::PIEZO.contains(k))
-        .collect()
-}
-
-/// The start of a point fit of `film`: NVM 1994 with the solver's rigid constant c_RI (held),
-/// its elastic laws scaled by 0.6 for H_min.
-fn point_start(film: Film) -> PointModel {
-    let scale: f64 = if film == Film::Minimum { 0.6 } else { 1.0 };
-    let mut start = PointModel::nvm();
-    start.x[0] = rigid_point::c_ri(film).ln();
-    for k in [2, 8] {
-        start.x[k] += scale.ln();
-    }
-    start
-}
-
 fn point_report(
     pts: &[FitPoint],
     failed: usize,
     limit_solves: bool,
 ) -> Result<ContactReport, FitError> {
-    // Stage 1 holds the M exponent of H_EI (-2/15) and the whole H_EP law at NVM's: with few
-    // elastic cases they are not identifiable and run off when freed (docs/validation.md,
-    // "Earlier fit changes"). Stage 2 (from FULL_FIT_MIN_POINTS cases) frees everything and is
-    // kept only when physical, identified and better.
-    let all_free = point_free(pts);
-    let free: Vec<usize> = all_free
-        .iter()
-        .copied()
-        .filter(|k| ![3, 8, 9, 10, 11].contains(k))
-        .collect();
-    let need = (free.len() + SPARE_CASES).max(MIN_CASES);
+    let recipe = point_recipe(pts);
+    let need = (recipe.stage1.len() + SPARE_CASES).max(MIN_CASES);
     if pts.len() < need {
         return Ok(skipped("point", pts.len(), failed, need));
     }
-    let mut all = all_free.clone();
-    // The blend: s0, s1, c_00 and the rigid/elastic isoviscous power r.
-    all.extend([12, 13, 14, 15]);
-    let recipe = Recipe {
-        contact: "point",
-        start: point_start,
-        stage1: free,
-        stage2: all,
-        rp: &[5, 6, 7],
-        late: &[14, 15],
-        physical: PointModel::physical,
-        names: &POINT_PARAM_NAMES,
-        wrap: Blend::Point,
-        bases: point_bases,
-    };
     let (mut report, models) = fit_films(&recipe, pts, failed)?;
     if limit_solves {
         report.asymptotes = point_checks(&models, pts);

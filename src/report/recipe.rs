@@ -1,0 +1,196 @@
+//! How each contact is fitted: a [`Recipe`] names a contact's start model per film (the published
+//! laws with the solver's own limit constants held), the parameters freed in stage 1 and stage 2
+//! of [`super::staged`], the physical test of a fitted blend and the candidate interior
+//! corrections that the held-out selection chooses from ([`crate::fit::heldout`]).
+//!
+//! Line: [`line_recipe`] (Moes 1992 form). Point: [`point_recipe`] (NVM 1994 form, the free set
+//! depending on the D values and the L > 0 cases in the data).
+
+use crate::fit::correction::{line_terms, point_terms, Coordinates};
+use crate::fit::dataset::FitPoint;
+use crate::fit::fitted::Blend;
+use crate::fit::heldout::{lattice, nested, Basis};
+use crate::fit::model::{LineModel, PARAM_NAMES};
+use crate::fit::point_model::{PointModel, POINT_PARAM_NAMES};
+use crate::limits::rigid_point;
+use crate::solve::film::Film;
+use crate::strategy::closed_form::MARTIN_FLUX;
+
+/// The exact rigid-isoviscous constant of the line film at X = 0 (Martin, Reynolds exit condition).
+pub const C_RI_CENTRAL: f64 = 2.4475;
+
+/// The rigid-piezoviscous constant of the line film at X = 0: H_RP = (c L)^(2/3), c = alpha p_max
+/// H^(3/2)/L of the rigid isoviscous solution (the Barus reduced pressure reaches 1/alpha;
+/// docs/physics.md section 5), with c from the solver's rigid L = 0 solve at 4097 points
+/// (docs/validation.md). The start of the line RP law; the report re-derives the limit from a
+/// fresh solve (`crate::report::checks`).
+pub const B_RP_CENTRAL: f64 = 1.0496;
+
+/// The elastic-isoviscous constant of the line films at X = 0 and at the pressure maximum:
+/// H_EI = a M^(-1/5) with a from the solver's L = 0 solves beyond the nightly data (H M^(1/5) =
+/// 2.4855 at M = 3000, 2.4878 at M = 1e4 on 65537 points; docs/validation.md). Held, with the
+/// exponent of asymptotic theory.
+pub const A_EI_CENTRAL: f64 = 2.488;
+
+/// The elastic-isoviscous constant of the line minimum film (1.9842 at M = 3000, 1.9837 at
+/// M = 1e4), held like [`A_EI_CENTRAL`].
+pub const A_EI_MIN: f64 = 1.984;
+
+/// The line free sets: stage 1 the constant d of the elastic-piezoviscous law (RI is fixed by
+/// theory, [`C_RI_CENTRAL`]; EI is held at the solver's limit, [`A_EI_CENTRAL`] M^(-1/5); RP at
+/// its rigid limit [`B_RP_CENTRAL`] L^(2/3); EP's exponents at theory, M^(-1/8) L^(3/4), the
+/// solver's EP limit solves failing on the fine grids they need); stage 2 also the blending powers
+/// and the s-law. With the lattice correction the held-out errors are those of free exponents
+/// (docs/validation.md, "The line lattice correction on 0.5 % data").
+pub(super) const LINE_STAGE1: [usize; 1] = [4];
+pub(super) const LINE_STAGE2: [usize; 7] = [4, 7, 8, 9, 10, 11, 12];
+
+/// Fewest cases a contact's fit needs, whatever its free parameters (two per held-out fold).
+pub const MIN_CASES: usize = 10;
+
+/// The start of a line fit of `film`: Moes' laws, with H_RI at its exact constant (2.4475 at
+/// X = 0 and for H_min, 3 at the pressure maximum) and H_RP at its rigid limit scaled the same
+/// way (the rigid-piezoviscous film has the rigid-isoviscous shape).
+fn line_start(film: Film) -> LineModel {
+    let (c_ri, scale) = match film {
+        Film::Centre => (C_RI_CENTRAL, 1.0),
+        Film::PressureMax => (MARTIN_FLUX, 1.0),
+        Film::Minimum => (C_RI_CENTRAL, 0.75),
+    };
+    let mut m = LineModel::moes();
+    m.c_ri = c_ri;
+    m.x[2] = (B_RP_CENTRAL * c_ri / C_RI_CENTRAL).ln();
+    m.x[3] = 2.0 / 3.0;
+    for k in [0, 4] {
+        m.x[k] += f64::ln(scale);
+    }
+    m.x[0] = match film {
+        Film::Minimum => A_EI_MIN,
+        _ => A_EI_CENTRAL,
+    }
+    .ln();
+    m.x[1] = -0.2;
+    m
+}
+
+fn line_physical(m: &LineModel) -> bool {
+    let x = &m.x;
+    x[7] > 0.5
+        && x[7] + x[12] > 0.5
+        && x[8] > 0.5
+        && x[9] > 0.5
+        && x[11] > 0.0
+        && x.iter().all(|v| v.abs() < 50.0)
+}
+
+/// How one contact is fitted: the start model of each film, the two free sets, the physical
+/// test, and the wrapping into [`crate::fit::fitted::FittedModel`].
+pub(super) struct Recipe<Mo> {
+    pub(super) contact: &'static str,
+    pub(super) start: fn(Film) -> Mo,
+    pub(super) stage1: Vec<usize>,
+    pub(super) stage2: Vec<usize>,
+    /// The rigid-piezoviscous law's parameters (held in the fallback of [`super::staged`]).
+    pub(super) rp: &'static [usize],
+    /// Blend parameters held at their start in the later fallbacks of [`super::staged`].
+    pub(super) late: &'static [usize],
+    pub(super) physical: fn(&Mo) -> bool,
+    pub(super) names: &'static [&'static str],
+    pub(super) wrap: fn(Mo) -> Blend,
+    /// The candidate corrections for data at these coordinates ([`crate::fit::heldout`]).
+    pub(super) bases: fn(&[Coordinates]) -> Vec<Basis>,
+}
+
+/// Ridge weights of the line lattice candidates ([`line_bases`]).
+pub const LINE_RIDGES: [f64; 3] = [1e-5, 1e-4, 1e-3];
+
+/// The line candidates: the nested terms, then the lattice ([`crate::fit::heldout::lattice`]) with each of
+/// [`LINE_RIDGES`].
+fn line_bases(z: &[Coordinates]) -> Vec<Basis> {
+    let mut out = nested(&line_terms());
+    out.extend(lattice(z, &LINE_RIDGES, false));
+    out
+}
+
+/// Ridge weights of the point lattice candidates ([`point_bases`]).
+pub const POINT_RIDGES: [f64; 2] = [1e-3, 1e-2];
+
+/// The point candidates: the nested terms, then the lattice with each term also times ln D
+/// ([`crate::fit::heldout::lattice`]) with each of [`POINT_RIDGES`].
+fn point_bases(z: &[Coordinates]) -> Vec<Basis> {
+    let mut out = nested(&point_terms());
+    out.extend(lattice(z, &POINT_RIDGES, true));
+    out
+}
+
+/// Free point parameters for the data: the D corrections only with two or more D values, the
+/// piezoviscous laws only with L > 0 cases.
+fn point_free(pts: &[FitPoint]) -> Vec<usize> {
+    let mut ds: Vec<f64> = pts.iter().map(|p| p.dd()).collect();
+    ds.sort_by(f64::total_cmp);
+    ds.dedup();
+    let any_piezo = pts.iter().any(|p| p.l > 0.0);
+    PointModel::ASYMPTOTES
+        .iter()
+        .copied()
+        .filter(|k| ds.len() >= 2 || !PointModel::D_EXPONENTS.contains(k))
+        .filter(|k| any_piezo || !PointModel::PIEZO.contains(k))
+        .collect()
+}
+
+/// The start of a point fit of `film`: NVM 1994 with the solver's rigid constant c_RI (held),
+/// its elastic laws scaled by 0.6 for H_min.
+fn point_start(film: Film) -> PointModel {
+    let scale: f64 = if film == Film::Minimum { 0.6 } else { 1.0 };
+    let mut start = PointModel::nvm();
+    start.x[0] = rigid_point::c_ri(film).ln();
+    for k in [2, 8] {
+        start.x[k] += scale.ln();
+    }
+    start
+}
+
+/// The line recipe: Moes' form, stage 1 [`LINE_STAGE1`], stage 2 [`LINE_STAGE2`].
+pub(super) fn line_recipe() -> Recipe<LineModel> {
+    Recipe {
+        contact: "line",
+        start: line_start,
+        stage1: LINE_STAGE1.to_vec(),
+        stage2: LINE_STAGE2.to_vec(),
+        rp: &[],
+        late: &[],
+        physical: line_physical,
+        names: &PARAM_NAMES,
+        wrap: Blend::Line,
+        bases: line_bases,
+    }
+}
+
+/// The point recipe for the data `pts`. Stage 1 holds the M exponent of H_EI (-2/15) and the
+/// whole H_EP law at NVM's: with few elastic cases they are not identifiable and run off when
+/// freed (docs/validation.md, "Earlier fit changes"). Stage 2 (from
+/// `FULL_FIT_MIN_POINTS` cases) frees everything and is kept only when
+/// physical, identified and better.
+pub(super) fn point_recipe(pts: &[FitPoint]) -> Recipe<PointModel> {
+    let all_free = point_free(pts);
+    let free: Vec<usize> = all_free
+        .iter()
+        .copied()
+        .filter(|k| ![3, 8, 9, 10, 11].contains(k))
+        .collect();
+    let mut all = all_free;
+    // The blend: s0, s1, c_00 and the rigid/elastic isoviscous power r.
+    all.extend([12, 13, 14, 15]);
+    Recipe {
+        contact: "point",
+        start: point_start,
+        stage1: free,
+        stage2: all,
+        rp: &[5, 6, 7],
+        late: &[14, 15],
+        physical: PointModel::physical,
+        names: &POINT_PARAM_NAMES,
+        wrap: Blend::Point,
+        bases: point_bases,
+    }
+}
