@@ -282,6 +282,9 @@ pub enum Rung {
     /// The settings as given, converged tightly (the secant load balance between settled
     /// states instead of H0 solved inside the cycle).
     Tight,
+    /// The default smoother with the kernel kept exactly over a band twice as wide (at least 8
+    /// cells each side), keeping the stopping rule as given.
+    WideBand,
 }
 
 impl Rung {
@@ -296,20 +299,22 @@ impl Rung {
             Rung::DistributiveW => "distributive relaxation, W cycles",
             Rung::DistributiveWFiner => "distributive relaxation, W cycles, finer coarsest grid",
             Rung::Tight => "default smoother, tight convergence",
+            Rung::WideBand => "default smoother, kernel band 8",
         }
     }
 
-    /// `p` changed as this rung says; every rung but the first and [`Rung::WCycles`] converges
-    /// tightly (the conservative load balance).
+    /// `p` changed as this rung says; every rung but the first, [`Rung::WCycles`] and
+    /// [`Rung::WideBand`] converges tightly (the conservative load balance).
     pub fn apply<D: Copy + FinerCoarsest>(self, p: &MgParams<D>) -> MgParams<D> {
         let mut q = *p;
-        if !matches!(self, Rung::Default | Rung::WCycles) {
+        if !matches!(self, Rung::Default | Rung::WCycles | Rung::WideBand) {
             q.converge = Converge::Tight;
         }
         match self {
             Rung::Default => {}
             Rung::WCycles => q.cycle = CycleType::W,
             Rung::Tight => {}
+            Rung::WideBand => q.relax.band = (2 * p.relax.band).max(8),
             Rung::Smooth44 => {
                 q.pre = p.pre.max(4);
                 q.post = p.post.max(4);
