@@ -32,8 +32,11 @@
 //! for rigid surfaces h0 <= 0.4 l_h: coarse grids that cannot see the film (h0 much larger than
 //! l_h at high M) make corrections of the wrong kind, and rigid-like films (w -> 1) have no
 //! feature finer than l_h (at M = 0.01 the elastic term alone asks for n0 = 1024, whose dense
-//! coarsest solve took 2-3 s of a 0.04 s solve on 4097 points). Invariant: X_in is shifted so that X = 0 is a node of every
-//! level.
+//! coarsest solve took 2-3 s of a 0.04 s solve on 4097 points), and n0 is at most
+//! [`MAX_COARSEST_INTERVALS`]: the coarsest solve is dense, and above M of about 2e4 (L = 0) the
+//! spacing rule would give it thousands of unknowns (hours per solve); there the coarse grids
+//! cannot see the film and the solve fails in minutes instead (docs/known-limits.md).
+//! Invariant: X_in is shifted so that X = 0 is a node of every level.
 
 use crate::discrete::grid::align_origin;
 use crate::model::formulas::{moes_line_asymptotes, moes_line_hc};
@@ -41,6 +44,10 @@ use std::f64::consts::PI;
 
 /// The coarsest spacing of rigid surfaces, in hydrodynamic lengths l_h (module doc).
 const RIGID_COARSE_LH: f64 = 0.4;
+
+/// The most intervals the rule gives the coarsest grid, whose solve is a dense Newton method
+/// (O(n0^3) per iteration; module doc).
+pub const MAX_COARSEST_INTERVALS: usize = 1024;
 
 /// Tunable constants of the domain rule (module doc).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -129,6 +136,7 @@ impl LineDomain {
                 .max(w * RIGID_COARSE_LH * lh)
         };
         let mut n0 = 16usize;
+        let max_intervals = max_intervals.min(MAX_COARSEST_INTERVALS);
         while width / n0 as f64 > h_target && n0 < max_intervals {
             n0 *= 2;
         }
@@ -175,5 +183,20 @@ mod tests {
             let x0 = d.x_in + d.centre_index(n) as f64 * h;
             assert!(x0.abs() < 1e-9 * h.max(1.0));
         }
+    }
+
+    #[test]
+    fn the_coarsest_grid_stays_within_a_dense_solve_s_reach() {
+        // M = 1e5, L = 0: l_h is about 1.4e-3, so the spacing rule alone asks for n0 = 4096 on
+        // 4097 points and more (a one-level dense Newton solve of 4096 unknowns, which ran for
+        // more than 25 min); capped at MAX_COARSEST_INTERVALS whatever the finest grid.
+        let p = DomainParams::default();
+        for fine in [4096, 16384, 65536] {
+            let d = LineDomain::for_case(1e5, 0.0, false, &p, fine);
+            assert_eq!(d.n0, MAX_COARSEST_INTERVALS, "{d:?}");
+        }
+        // Below the cap the rule is unchanged: M = 1000 asks for fewer intervals.
+        let d = LineDomain::for_case(1000.0, 0.0, false, &p, 16384);
+        assert!(d.n0 < MAX_COARSEST_INTERVALS && d.n0 >= 16, "{d:?}");
     }
 }
