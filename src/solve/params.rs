@@ -299,7 +299,7 @@ impl Rung {
             Rung::DistributiveW => "distributive relaxation, W cycles",
             Rung::DistributiveWFiner => "distributive relaxation, W cycles, finer coarsest grid",
             Rung::Tight => "default smoother, tight convergence",
-            Rung::WideBand => "default smoother, kernel band 8",
+            Rung::WideBand => "default smoother, twice the kernel band",
         }
     }
 

@@ -4,18 +4,21 @@
 //! conservative smoother settings, in this order, and the reason names the attempt that was kept:
 //!
 //! 1. the given parameters (line relaxation, distribution where xi < 100);
-//! 2. the same with more smoothing, V(4, 4) cycles (at L = 20 on 4097 points the V(2, 1) cycles
-//!    of M = 103 and 326 wandered for 60 cycles with residuals of order 1 while V(4, 4) converged
-//!    in 570 and 220 work units, to 0.1 % of the 2049-point film);
-//! 3. the given cycles with the line under-relaxation lowered to 0.3 (steep piezoviscous spikes
+//! 2. the same with the tight stopping rule (when the given one is fast);
+//! 3. more smoothing, V(4, 4) cycles (at L = 20 on 4097 points the V(2, 1) cycles of M = 103
+//!    and 326 wandered for 60 cycles with residuals of order 1 while V(4, 4) converged in 570
+//!    and 220 work units, to 0.1 % of the 2049-point film);
+//! 4. the given cycles with the line under-relaxation lowered to 0.3 (steep piezoviscous spikes
 //!    at L = 20 on fine grids);
-//! 4. distributive line relaxation everywhere (xi threshold infinite): damps the smooth modes
+//! 5. distributive line relaxation everywhere (xi threshold infinite): damps the smooth modes
 //!    that the truncated kernel tail of the non-distributed rows amplifies at moderate xi;
-//! 5. as 4, with W cycles and a coarsest grid twice as fine;
-//! 6. the default smoother with the kernel kept exactly over twice the band (8 cells each side),
-//!    the stopping rule as given: at L >= 12 on 16385 points the spike's fine-grid divergence
-//!    depends on the band width in no regular way, and this rung rescues some cases that every
-//!    rung above fails (M = 100, L = 12; M = 200, L = 16; M = 2000, L = 25; docs/known-limits.md).
+//! 6. as 5, with W cycles and a coarsest grid twice as fine;
+//! 7. the default smoother with twice the kernel band (at least 8 cells each side), the stopping
+//!    rule as given: at L >= 12 on 16385 points the spike's fine-grid divergence depends on the
+//!    band width in no regular way, and this rung rescues some cases that every rung above fails
+//!    (M = 100, L = 12; M = 200, L = 16; M = 2000, L = 25; docs/known-limits.md).
+//!
+//! Rungs 2 to 6 use the tight stopping rule.
 //!
 //! The best failed attempt (lowest final residual) is returned with its status if none converges.
 
