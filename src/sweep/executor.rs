@@ -449,8 +449,10 @@ struct Sink<'s, 'w> {
     lock: &'s mut DatasetLock,
 }
 
-/// The longest [`collect`] waits for a row before it looks at its flush, lock and progress.
+/// The longest [`collect`] waits for a row before it looks at its flush, lock and progress
+/// (shorter than the lock's [`HEARTBEAT`], so no refresh is late by more than a tick).
 const IDLE_TICK: Duration = Duration::from_secs(5);
+const _: () = assert!(IDLE_TICK.as_secs() <= HEARTBEAT.as_secs());
 
 /// Receive the rows until the workers are done, flushing after `batch` rows or `flush_seconds`
 /// (of `spec.output`) and refreshing the lock every [`HEARTBEAT`]; on a write error, set `stop`
@@ -476,14 +478,15 @@ fn collect(
         if let Some(w) = lock.heartbeat() {
             note(&format!("ehlmap: warning: {w}"));
         }
-        // Wake for the next flush (only when rows are pending), the lock's heartbeat, and the
-        // progress's idle line.
-        let until_flush = if pending > 0 {
-            flush_every.saturating_sub(last_flush.elapsed())
+        // Wake for the next flush (only when rows are pending) and at least every IDLE_TICK, for
+        // the lock's heartbeat and the progress's idle line.
+        let wait = if pending > 0 {
+            flush_every
+                .saturating_sub(last_flush.elapsed())
+                .min(IDLE_TICK)
         } else {
-            HEARTBEAT
+            IDLE_TICK
         };
-        let wait = until_flush.min(HEARTBEAT).min(IDLE_TICK);
         match rx.recv_timeout(wait.max(Duration::from_millis(1))) {
             Ok(row) => {
                 tally(report, &row);
