@@ -413,3 +413,44 @@ fn the_wide_band_rung_rescues_fine_grid_spikes_that_every_other_rung_fails() {
         }
     }
 }
+
+/// Issue 22's line failures M = 1, L = 36 and 40 (Barus): 513 points converge at the first
+/// attempt, 1025 only with the fallback ladder, and every finer grid fails (the outlet spike).
+/// The default solve (1 % target) used to end with a diverged 16385-point answer; the accuracy
+/// ladder now gives a cheap attempt that fails just above a converged grid the full effort, and
+/// the pair 513 / 1025 meets the target. The answer is the fixed-grid 1025-point solve, its
+/// error bar Richardson's from the 513-point one (order 1.5), and the film grows with L.
+#[test]
+fn high_l_line_cases_meet_the_default_target_from_the_grids_that_converge() {
+    use ehlmap::model::case::Case;
+    use ehlmap::strategy::solve_case::{solve as solve_case, SolveParams};
+    let mut films = vec![];
+    for l in [36.0, 40.0] {
+        let case = LineCase::new(1.0, l).unwrap();
+        let o = solve_case(&Case::Line(case), &SolveParams::default()).outputs;
+        assert_eq!(o.status, Status::Converged, "L = {l}: {}", o.reason);
+        assert_eq!(o.accuracy_met, Some(true), "L = {l}: {}", o.reason);
+        assert_eq!(o.grid, 1025, "L = {l}: {}", o.reason);
+        let e = o.error_estimate.expect("an error estimate");
+        // The cheap attempt on 1025 fails: the answer is the fallback ladder's.
+        let mut cheap = LineSolveParams::default();
+        cheap.mg.grid = 1025;
+        cheap.fallback = false;
+        assert_ne!(solve_line(&case, &cheap).info.status, Status::Converged);
+        let [c, f] = [513, 1025].map(|g| solve(1.0, l, Models::default(), g).outputs);
+        assert_eq!(c.status, Status::Converged, "513: {}", c.reason);
+        assert_eq!(f.status, Status::Converged, "1025: {}", f.reason);
+        println!(
+            "L = {l}: H_c {} H_min {} (513: {} {}), estimate {e:.2e}, {:.1} WU",
+            o.h_c, o.h_min, c.h_c, c.h_min, o.work_units
+        );
+        assert!((o.h_c / f.h_c - 1.0).abs() < 1e-3 && (o.h_min / f.h_min - 1.0).abs() < 1e-3);
+        let richardson = |q: fn(&ehlmap::solve::solution::Outputs) -> f64| {
+            (q(&f) - q(&c)).abs() / (q(&f) * (2f64.powf(1.5) - 1.0))
+        };
+        let r = richardson(|o| o.h_c).max(richardson(|o| o.h_min));
+        assert!(r <= e && e < 0.01, "L = {l}: Richardson {r}, estimate {e}");
+        films.push(o.h_c);
+    }
+    assert!(films[1] > films[0], "{films:?}");
+}

@@ -193,11 +193,11 @@ pub fn run_sweep(args: &SweepArgs) -> Result<(), CliError> {
         return Err(unusable(&"it is read-only"));
     }
     let stderr_open = write_stderr(format_args!(
-        "sweep {}: {} cases, shard {shard} holds {}; {} threads -> {}\n",
+        "sweep {}: {} cases, shard {shard} holds {}; {threads} thread{} -> {}\n",
         spec.name,
         cases.len(),
         in_shard,
-        threads,
+        if threads == 1 { "" } else { "s" },
         dataset.display()
     ));
     let opts = RunOptions {

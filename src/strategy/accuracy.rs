@@ -9,7 +9,6 @@
 
 use crate::discrete::point::domain::PointDomain;
 use crate::model::case::{LineCase, PointCase};
-use crate::solve::ladder::Attempt;
 use crate::solve::line::{solve_line_seeded, LineSolveParams};
 use crate::solve::multilevel::Seed;
 use crate::solve::params::ContactParams;
@@ -17,6 +16,8 @@ use crate::solve::point::{solve_point_seeded, PointSolveParams};
 use crate::solve::solution::{ErrorEstimates, Outputs, Solution};
 use crate::solve::Status;
 use serde::{Deserialize, Serialize};
+
+pub use crate::strategy::grid_ladder::{coarser_grid, refine_to_accuracy, COARSE_LADDER_CYCLES};
 
 /// Result of a Richardson extrapolation.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -61,155 +62,6 @@ pub fn richardson2(coarse: f64, fine: f64) -> Richardson {
         extrapolated,
         error_estimate: ((fine - extrapolated) / extrapolated).abs(),
     }
-}
-
-/// Cycles a grid of the accuracy ladder below the finest allowed one may take: a grid that has
-/// not converged by then does not resolve the case (full multigrid converges in about 5-15), and
-/// the ladder moves on instead of spending the full cycle budget on it.
-pub const COARSE_LADDER_CYCLES: usize = 20;
-
-/// Solve on `start`, 2 start - 1, ... points (up to `max_grid`) until the error estimate between
-/// the last two grids is below `target`. The estimate is Richardson's with order p,
-/// |Q_h - Q_2h| / ((2^p - 1) |Q_h|), max over H_c and H_min, from two consecutive converged
-/// grids, plus the algebraic error estimates of both solves. `solve(grid, full)` is told whether
-/// to spend the full effort on `grid` (the fallback ladder and the whole cycle budget): the
-/// finest allowed grid gets it, a coarser one does not, so a coarse grid that does not resolve
-/// the case costs one attempt and the ladder moves on. Where a grid converges after the grid
-/// below it failed, that grid is solved again with the full effort, so that an estimate is not
-/// lost to a coarse grid's cheap attempt. Returns the finest solution with `error_estimate` and
-/// `accuracy_met` set, or, when the finest allowed grid does not converge even with its
-/// fallback ladder, the finest converged solution that has an estimate (target not met, the
-/// reason naming the grids that failed); the cost of all grids is counted. Once `deadline` has
-/// passed, the grid just solved is the last (the reason says so).
-pub fn refine_to_accuracy<S: Attempt>(
-    start: usize,
-    max_grid: usize,
-    target: f64,
-    order: f64,
-    deadline: Option<std::time::Instant>,
-    mut solve: impl FnMut(usize, bool) -> S,
-) -> S {
-    let mut grid = start;
-    // The outputs of the grid below, when it converged.
-    let mut prev: Option<Outputs> = None;
-    // The finest converged solve with an error estimate so far.
-    let mut best: Option<S> = None;
-    let (mut wu, mut wall) = (0.0, 0.0);
-    let mut failed_grids = vec![];
-    let mut count = |s: &mut S| {
-        let (si, _) = s.parts();
-        wu += si.work_units;
-        wall += si.wall_s;
-    };
-    loop {
-        let finest = 2 * (grid - 1) + 1 > max_grid;
-        let mut s = solve(grid, finest);
-        count(&mut s);
-        // The time limit makes this grid the last one.
-        let timed_out = !finest && crate::solve::deadline::past(deadline);
-        let last = finest || timed_out;
-        let converged = s.info().status == Status::Converged;
-        if converged && prev.is_none() && failed_grids.last() == Some(&coarser_grid(grid)) {
-            let mut again = solve(coarser_grid(grid), true);
-            count(&mut again);
-            if again.info().status == Status::Converged {
-                failed_grids.pop();
-                prev = Some(again.parts().1.clone());
-            }
-        }
-        let (si, so) = s.parts();
-        let est = prev
-            .as_ref()
-            .filter(|_| converged)
-            .and_then(|c| half_grid_errors(c, so, order));
-        if let Some(e) = est {
-            so.set_errors(e);
-        }
-        let est = est.map(|e| e.h_c.max(e.h_min));
-        if last && !converged {
-            if let Some(mut b) = best.take() {
-                // The finest grid failed even with its fallback ladder: the finest converged
-                // grid's answer, with its error bar, is the better result.
-                let (bi, bo) = b.parts();
-                bo.accuracy_met = Some(false);
-                let note = format!(
-                    "; accuracy target {target:.1e} NOT met: estimate {:.1e} on {} points, the \
-                     finest grid that converged (not converged on the finer grids {:?}, the \
-                     last {}: {})",
-                    bo.error_estimate.unwrap_or(f64::NAN),
-                    bo.grid,
-                    failed_grids.iter().chain([&so.grid]).collect::<Vec<_>>(),
-                    if timed_out {
-                        "stopped by the time limit"
-                    } else {
-                        "with its fallback ladder"
-                    },
-                    so.status
-                );
-                for (r, w, t) in [
-                    (&mut bo.reason, &mut bo.work_units, &mut bo.wall_s),
-                    (&mut bi.reason, &mut bi.work_units, &mut bi.wall_s),
-                ] {
-                    r.push_str(&note);
-                    (*w, *t) = (wu, wall);
-                }
-                return b;
-            }
-        }
-        if est.is_some_and(|e| e <= target) || last {
-            so.accuracy_met = Some(est.is_some_and(|e| e <= target));
-            let mut note = match est {
-                Some(e) if e <= target => {
-                    format!("; accuracy {e:.1e} <= target {target:.1e} on {} points", so.grid)
-                }
-                Some(e) if timed_out => format!(
-                    "; accuracy target {target:.1e} NOT met: estimate {e:.1e} on {} points when \
-                     the time limit was reached",
-                    so.grid
-                ),
-                Some(e) => format!(
-                    "; accuracy target {target:.1e} NOT met: estimate {e:.1e} at the finest allowed grid ({} points)",
-                    so.grid
-                ),
-                None if timed_out => format!(
-                    "; accuracy target {target:.1e} NOT met: no error estimate when the time \
-                     limit was reached on {} points",
-                    so.grid
-                ),
-                None => format!(
-                    "; accuracy target {target:.1e} NOT met: no error estimate (no two consecutive grids converged)"
-                ),
-            };
-            if !failed_grids.is_empty() {
-                note.push_str(&format!(
-                    " (not converged on the coarser grids {failed_grids:?} at the first attempt)"
-                ));
-            }
-            so.reason.push_str(&note);
-            si.reason.push_str(&note);
-            so.work_units = wu;
-            so.wall_s = wall;
-            si.work_units = wu;
-            si.wall_s = wall;
-            return s;
-        }
-        let g = so.grid;
-        if converged {
-            prev = Some(so.clone());
-            if est.is_some() {
-                best = Some(s);
-            }
-        } else {
-            failed_grids.push(g);
-            prev = None;
-        }
-        grid = 2 * (g - 1) + 1;
-    }
-}
-
-/// The grid below `grid` in the ladder (half the intervals).
-pub fn coarser_grid(grid: usize) -> usize {
-    (grid - 1) / 2 + 1
 }
 
 /// The relative error estimates of H_c, H_c_pmax, H_min and P_max of `fine` from `coarse`, the
@@ -374,7 +226,7 @@ fn refine<D: Copy>(
         start,
         max_grid,
         target,
-        order,
+        |c, f| half_grid_errors(c, f, order),
         params.mg.deadline,
         |grid, last| {
             let mut p = *params;
@@ -406,39 +258,7 @@ fn refine<D: Copy>(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn outputs(status: Status, h_c: f64, h_min: f64) -> Outputs {
-        Outputs {
-            h_c,
-            h_c_pmax: h_c,
-            h_min,
-            x_min: 0.9,
-            y_min: None,
-            d: None,
-            k: None,
-            p_max: 1.0,
-            spike: None,
-            h0: 0.0,
-            f: 0.0,
-            load_error: 0.0,
-            status,
-            reason: String::new(),
-            grid: 129,
-            levels: 4,
-            level: Some(3),
-            model_used: crate::solve::solution::ModelUsed::Full,
-            work_units: 1.0,
-            wall_s: 0.0,
-            algebraic_error: None,
-            h_c_err: None,
-            h_c_pmax_err: None,
-            p_max_err: None,
-            h_min_err: None,
-            error_estimate: None,
-            accuracy_met: None,
-            mixed: None,
-        }
-    }
+    use crate::strategy::grid_ladder::tests::outputs;
 
     #[test]
     fn half_grid_errors_need_two_converged_solves() {
@@ -479,113 +299,6 @@ mod tests {
         let nan = outputs(Status::Converged, f64::NAN, 3.9);
         assert_eq!(half_grid_errors(&nan, &fine, ESTIMATE_ORDER), None);
         assert_eq!(coarser_grid(129), 65);
-    }
-
-    /// A converged solve on `grid` with films `h` (or a failed one), 1 work unit.
-    fn fake(grid: usize, h: f64, status: Status) -> Solution {
-        let mut o = outputs(status, h, h);
-        o.grid = grid;
-        Solution {
-            info: crate::solve::SolveInfo {
-                status,
-                reason: String::new(),
-                history: vec![],
-                work_units: 1.0,
-                wall_s: 0.0,
-                grid,
-                levels: 4,
-                algebraic_error: None,
-                discretisation_error: None,
-            },
-            outputs: o,
-            attempt: 1,
-            profile: None,
-            fields: None,
-        }
-    }
-
-    #[test]
-    fn the_ladder_stops_at_the_target_and_falls_back_to_the_finest_converged_grid() {
-        // H converges like 1 - 1/grid: 257 -> 513 changes H by about 1.9e-3.
-        let h = |g: usize| 1.0 - 1.0 / g as f64;
-        let ladder = |target: f64, fail_from: usize| {
-            let mut asked = vec![];
-            let s = refine_to_accuracy(257, 1025, target, 2.0, None, |g, full| {
-                asked.push((g, full));
-                let status = if g >= fail_from {
-                    Status::Diverged
-                } else {
-                    Status::Converged
-                };
-                fake(g, h(g), status)
-            });
-            (s, asked)
-        };
-        // Met on 513: (h(513) - h(257)) / (3 h(513)) = 6.5e-4.
-        let (s, asked) = ladder(1e-3, usize::MAX);
-        assert_eq!(asked, vec![(257, false), (513, false)]);
-        assert_eq!((s.outputs.grid, s.outputs.accuracy_met), (513, Some(true)));
-        let e = (h(513) - h(257)) / (3.0 * h(513));
-        assert!((s.outputs.error_estimate.unwrap() - e).abs() < 1e-15);
-        // Not met on 513, and 1025 (the finest allowed, with its fallback) fails: the 513
-        // answer with its estimate, the cost of all three solves, the failure named.
-        let (s, asked) = ladder(1e-4, 1025);
-        assert_eq!(asked, vec![(257, false), (513, false), (1025, true)]);
-        assert_eq!((s.outputs.grid, s.outputs.accuracy_met), (513, Some(false)));
-        assert_eq!(s.outputs.status, Status::Converged);
-        assert!((s.outputs.error_estimate.unwrap() - e).abs() < 1e-15);
-        assert_eq!(s.outputs.work_units, 3.0);
-        assert!(
-            s.outputs.reason.contains("finer grids [1025]"),
-            "{}",
-            s.outputs.reason
-        );
-        // 513 fails its cheap attempt and 1025 converges: 513 is solved again with its
-        // fallback ladder, and the estimate comes from the pair.
-        let mut asked = vec![];
-        let s = refine_to_accuracy(257, 1025, 1e-4, 2.0, None, |g, full| {
-            asked.push((g, full));
-            let status = if g == 513 && !full {
-                Status::Diverged
-            } else {
-                Status::Converged
-            };
-            fake(g, h(g), status)
-        });
-        assert_eq!(
-            asked,
-            vec![(257, false), (513, false), (1025, true), (513, true)]
-        );
-        let e = (h(1025) - h(513)) / (3.0 * h(1025));
-        assert!((s.outputs.error_estimate.unwrap() - e).abs() < 1e-15);
-        assert_eq!(s.outputs.accuracy_met, Some(false));
-    }
-
-    #[test]
-    fn a_passed_deadline_makes_the_grid_just_solved_the_last() {
-        let h = |g: usize| 1.0 - 1.0 / g as f64;
-        let past = Some(std::time::Instant::now());
-        // The target needs 1025; the deadline stops the ladder after 257, which has no estimate.
-        let mut asked = vec![];
-        let s = refine_to_accuracy(257, 1025, 1e-5, 2.0, past, |g, full| {
-            asked.push((g, full));
-            fake(g, h(g), Status::Converged)
-        });
-        assert_eq!(asked, vec![(257, false)]);
-        assert_eq!((s.outputs.grid, s.outputs.accuracy_met), (257, Some(false)));
-        assert!(
-            s.outputs.reason.contains("time limit"),
-            "{}",
-            s.outputs.reason
-        );
-        // A deadline far away changes nothing.
-        let later = Some(std::time::Instant::now() + std::time::Duration::from_secs(3600));
-        let mut asked = vec![];
-        refine_to_accuracy(257, 1025, 1e-5, 2.0, later, |g, full| {
-            asked.push((g, full));
-            fake(g, h(g), Status::Converged)
-        });
-        assert_eq!(asked, vec![(257, false), (513, false), (1025, true)]);
     }
 
     #[test]

@@ -1,4 +1,5 @@
-//! How a case is solved: Richardson accuracy estimates ([`accuracy`]), the cheapest adequate
+//! How a case is solved: Richardson accuracy estimates ([`accuracy`]) on the grids of an
+//! accuracy target's ladder ([`grid_ladder`]), the cheapest adequate
 //! model for a target ([`select`], with the slender-ellipse line model of [`slender`], and a
 //! fitted film formula where its held-out errors allow, [`formula`]) and warm starts from a
 //! neighbouring case ([`warm`]).
@@ -6,6 +7,7 @@
 pub mod accuracy;
 pub mod closed_form;
 pub mod formula;
+pub mod grid_ladder;
 pub mod select;
 pub mod slender;
 pub mod solve_case;
