@@ -22,20 +22,20 @@ pub const COARSE_LADDER_CYCLES: usize = 20;
 
 /// Solve on `start`, 2 start - 1, ... points (up to `max_grid`) until the error estimate between
 /// the last two grids is below `target`. `estimate(coarse, fine)` gives the estimates of the
-/// finer of two consecutive converged grids (Richardson's with order p, |Q_h - Q_2h| / ((2^p -
-/// 1) |Q_h|), plus the algebraic error estimates of both solves); the target applies to the
-/// larger of H_c's and H_min's. `solve(grid, full)` is told whether
-/// to spend the full effort on `grid` (the fallback ladder and the whole cycle budget): the
-/// finest allowed grid gets it, a coarser one does not, so a coarse grid that does not resolve
-/// the case costs one attempt and the ladder moves on. Where a grid converges after the grid
-/// below it failed, that grid is solved again with the full effort, and where a grid fails its
-/// cheap attempt just above a converged grid, it is solved again with the full effort, so that
-/// an estimate is not lost to a cheap attempt (line M = 1, L = 40: 513 points converge, 1025
-/// converge only with the fallback ladder, and every finer grid fails). Returns the finest solution with `error_estimate` and
-/// `accuracy_met` set, or, when the finest allowed grid does not converge even with its
-/// fallback ladder, the finest converged solution that has an estimate (target not met, the
-/// reason naming the grids that failed); the cost of all grids is counted. Once `deadline` has
-/// passed, the grid just solved is the last (the reason says so).
+/// finer of two consecutive converged grids (Richardson's with order p, that is
+/// |Q_h - Q_2h| / ((2^p - 1) |Q_h|), plus the algebraic error estimates of both solves); the
+/// target applies to the larger of H_c's and H_min's. `solve(grid, full)` is told whether to
+/// spend the full effort on `grid` (the fallback ladder and the whole cycle budget): the finest
+/// allowed grid gets it, a coarser one does not, so a coarse grid that does not resolve the case
+/// costs one attempt and the ladder moves on. Where a grid converges after the grid below it
+/// failed, that grid is solved again with the full effort, and where a grid fails its cheap
+/// attempt just above a converged grid, it is solved again with the full effort, so that an
+/// estimate is not lost to a cheap attempt (line M = 1, L = 40: 513 points converge, 1025
+/// converge only with the fallback ladder, and every finer grid fails). Returns the finest
+/// solution with `error_estimate` and `accuracy_met` set, or, when the finest allowed grid does
+/// not converge even with its fallback ladder, the finest converged solution that has an
+/// estimate (target not met, the reason naming the grids that failed); the cost of all grids is
+/// counted. Once `deadline` has passed, the grid just solved is the last (the reason says so).
 pub fn refine_to_accuracy<S: Attempt>(
     start: usize,
     max_grid: usize,
