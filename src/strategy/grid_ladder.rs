@@ -195,39 +195,25 @@ pub fn coarser_grid(grid: usize) -> usize {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-    use crate::solve::solution::Solution;
+    use crate::solve::solution::{ModelUsed, Solution};
 
-    /// Outputs with the given status and films, every estimate empty.
+    /// Outputs of a solve on 129 points with the given status and films (H_c_pmax = H_c,
+    /// P_max 1), 1 work unit, every estimate empty.
     pub(crate) fn outputs(status: Status, h_c: f64, h_min: f64) -> Outputs {
         Outputs {
-            h_c,
-            h_c_pmax: h_c,
-            h_min,
-            x_min: 0.9,
-            y_min: None,
-            d: None,
-            k: None,
             p_max: 1.0,
-            spike: None,
-            h0: 0.0,
-            f: 0.0,
-            load_error: 0.0,
             status,
-            reason: String::new(),
             grid: 129,
             levels: 4,
             level: Some(3),
-            model_used: crate::solve::solution::ModelUsed::Full,
             work_units: 1.0,
-            wall_s: 0.0,
             algebraic_error: None,
             h_c_err: None,
             h_c_pmax_err: None,
-            p_max_err: None,
             h_min_err: None,
             error_estimate: None,
             accuracy_met: None,
-            mixed: None,
+            ..Outputs::without_solve(ModelUsed::Full, [h_c, h_c, h_min], String::new())
         }
     }
 
@@ -242,55 +228,59 @@ pub(crate) mod tests {
         })
     }
 
-    /// A converged solve on `grid` with films `h` (or a failed one), 1 work unit.
+    /// A solve on `grid` with films `h` and `status`, 1 work unit.
     fn fake(grid: usize, h: f64, status: Status) -> Solution {
-        let mut o = outputs(status, h, h);
-        o.grid = grid;
-        Solution {
-            info: crate::solve::SolveInfo {
-                status,
-                reason: String::new(),
-                history: vec![],
-                work_units: 1.0,
-                wall_s: 0.0,
-                grid,
-                levels: 4,
-                algebraic_error: None,
-                discretisation_error: None,
-            },
-            outputs: o,
-            attempt: 1,
-            profile: None,
-            fields: None,
+        let o = Outputs {
+            grid,
+            ..outputs(status, h, h)
+        };
+        Solution::without_solve(o, None)
+    }
+
+    /// Films converging like 1 - 1/grid: 257 -> 513 changes them by about 1.9e-3.
+    fn h(grid: usize) -> f64 {
+        1.0 - 1.0 / grid as f64
+    }
+
+    /// The ladder from 257 points up to `max_grid` on fake solves of films [`h`] whose status is
+    /// `status(grid, full)`, and the solves it asked for, in order.
+    fn ladder(
+        max_grid: usize,
+        target: f64,
+        deadline: Option<std::time::Instant>,
+        status: impl Fn(usize, bool) -> Status,
+    ) -> (Solution, Vec<(usize, bool)>) {
+        let mut asked = vec![];
+        let s = refine_to_accuracy(257, max_grid, target, order2, deadline, |g, full| {
+            asked.push((g, full));
+            fake(g, h(g), status(g, full))
+        });
+        (s, asked)
+    }
+
+    /// Converged where `ok`, diverged elsewhere.
+    fn converged_if(ok: bool) -> Status {
+        if ok {
+            Status::Converged
+        } else {
+            Status::Diverged
         }
     }
 
     #[test]
     fn the_ladder_stops_at_the_target_and_falls_back_to_the_finest_converged_grid() {
-        // H converges like 1 - 1/grid: 257 -> 513 changes H by about 1.9e-3.
-        let h = |g: usize| 1.0 - 1.0 / g as f64;
-        let ladder = |target: f64, fail_from: usize| {
-            let mut asked = vec![];
-            let s = refine_to_accuracy(257, 1025, target, order2, None, |g, full| {
-                asked.push((g, full));
-                let status = if g >= fail_from {
-                    Status::Diverged
-                } else {
-                    Status::Converged
-                };
-                fake(g, h(g), status)
-            });
-            (s, asked)
+        let failing_from = |target: f64, fail_from: usize| {
+            ladder(1025, target, None, |g, _| converged_if(g < fail_from))
         };
         // Met on 513: (h(513) - h(257)) / (3 h(513)) = 6.5e-4.
-        let (s, asked) = ladder(1e-3, usize::MAX);
+        let (s, asked) = failing_from(1e-3, usize::MAX);
         assert_eq!(asked, vec![(257, false), (513, false)]);
         assert_eq!((s.outputs.grid, s.outputs.accuracy_met), (513, Some(true)));
         let e = (h(513) - h(257)) / (3.0 * h(513));
         assert!((s.outputs.error_estimate.unwrap() - e).abs() < 1e-15);
         // Not met on 513, and 1025 (the finest allowed, with its fallback) fails: the 513
         // answer with its estimate, the cost of all three solves, the failure named.
-        let (s, asked) = ladder(1e-4, 1025);
+        let (s, asked) = failing_from(1e-4, 1025);
         assert_eq!(asked, vec![(257, false), (513, false), (1025, true)]);
         assert_eq!((s.outputs.grid, s.outputs.accuracy_met), (513, Some(false)));
         assert_eq!(s.outputs.status, Status::Converged);
@@ -303,16 +293,7 @@ pub(crate) mod tests {
         );
         // 257 (the first grid) fails its cheap attempt and 513 converges: 257 is solved again
         // with its fallback ladder, and the estimate on 513 comes from the pair.
-        let mut asked = vec![];
-        let s = refine_to_accuracy(257, 1025, 1e-4, order2, None, |g, full| {
-            asked.push((g, full));
-            let status = if g == 257 && !full {
-                Status::Diverged
-            } else {
-                Status::Converged
-            };
-            fake(g, h(g), status)
-        });
+        let (s, asked) = ladder(1025, 1e-4, None, |g, full| converged_if(g != 257 || full));
         assert_eq!(
             asked,
             vec![(257, false), (513, false), (257, true), (1025, true)]
@@ -324,14 +305,9 @@ pub(crate) mod tests {
 
     #[test]
     fn a_passed_deadline_makes_the_grid_just_solved_the_last() {
-        let h = |g: usize| 1.0 - 1.0 / g as f64;
         let past = Some(std::time::Instant::now());
         // The target needs 1025; the deadline stops the ladder after 257, which has no estimate.
-        let mut asked = vec![];
-        let s = refine_to_accuracy(257, 1025, 1e-5, order2, past, |g, full| {
-            asked.push((g, full));
-            fake(g, h(g), Status::Converged)
-        });
+        let (s, asked) = ladder(1025, 1e-5, past, |_, _| Status::Converged);
         assert_eq!(asked, vec![(257, false)]);
         assert_eq!((s.outputs.grid, s.outputs.accuracy_met), (257, Some(false)));
         assert!(
@@ -341,35 +317,18 @@ pub(crate) mod tests {
         );
         // A deadline far away changes nothing.
         let later = Some(std::time::Instant::now() + std::time::Duration::from_secs(3600));
-        let mut asked = vec![];
-        refine_to_accuracy(257, 1025, 1e-5, order2, later, |g, full| {
-            asked.push((g, full));
-            fake(g, h(g), Status::Converged)
-        });
+        let (_, asked) = ladder(1025, 1e-5, later, |_, _| Status::Converged);
         assert_eq!(asked, vec![(257, false), (513, false), (1025, true)]);
     }
 
     #[test]
     fn a_cheap_failure_above_a_converged_grid_gets_the_full_effort() {
-        let h = |g: usize| 1.0 - 1.0 / g as f64;
         // 513 converges only with its fallback ladder, every finer grid fails: the estimate
         // comes from 257 and 513 (6.5e-4), which meets 1e-3 without a look at 1025.
         let run = |target: f64, rescued: bool| {
-            let mut asked = vec![];
-            let s = refine_to_accuracy(257, 2049, target, order2, None, |g, full| {
-                asked.push((g, full));
-                let ok = g == 257 || (g == 513 && full && rescued);
-                fake(
-                    g,
-                    h(g),
-                    if ok {
-                        Status::Converged
-                    } else {
-                        Status::Diverged
-                    },
-                )
-            });
-            (s, asked)
+            ladder(2049, target, None, |g, full| {
+                converged_if(g == 257 || (g == 513 && full && rescued))
+            })
         };
         let (s, asked) = run(1e-3, true);
         assert_eq!(asked, vec![(257, false), (513, false), (513, true)]);
