@@ -325,7 +325,8 @@ impl<C: Contact> Multigrid<C> {
     /// `coarse_sweeps` times. After a failed solve with the load equation each later one tries
     /// it again with at most [`RETRY_NEWTON_ITERATIONS`] iterations (Newton converges
     /// quadratically once the cycles have brought the level close); a success hands H0 back to
-    /// the cycle.
+    /// the cycle. Under fast convergence each solve may stop once its residual has fallen by
+    /// [`crate::solve::params::MgParams::coarse_rel_tol`].
     fn coarse_solve(&mut self) {
         self.coarse_backup.copy_from_slice(self.levels[0].p());
         let free = self.params.converge == Converge::Fast;
@@ -343,6 +344,11 @@ impl<C: Contact> Multigrid<C> {
                 },
                 stall_window: MULTIGRID_STALL_WINDOW,
                 deadline: self.params.deadline,
+                rel_tol: if free {
+                    self.params.coarse_rel_tol
+                } else {
+                    0.0
+                },
                 ..NewtonParams::default()
             };
             let mut h0 = self.h0;

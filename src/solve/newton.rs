@@ -25,6 +25,10 @@ pub struct NewtonParams {
     pub max_iter: usize,
     /// Converged when the scaled residual norm is below this.
     pub tol: f64,
+    /// Also converged when the scaled residual norm is below this fraction of its value at the
+    /// start (0: only `tol`). A multigrid's coarsest-level solves inside a cycle need not go
+    /// further than the cycle's own contraction.
+    pub rel_tol: f64,
     /// Hold H0 fixed and drop the load equation.
     pub fix_h0: bool,
     /// Give up when the residual norm has not halved over this many iterations (0: never). A
@@ -63,6 +67,7 @@ impl Default for NewtonParams {
         NewtonParams {
             max_iter: 40,
             tol: 1e-10,
+            rel_tol: 0.0,
             fix_h0: false,
             stall_window: 0,
             deadline: None,
@@ -263,10 +268,11 @@ pub fn newton_solve<T: NewtonLevel>(
         residual: lin.merit,
         singular: false,
     };
+    let goal = np.tol.max(np.rel_tol * lin.merit);
     let mut p_old = vec![0.0; m];
     let mut merits = Vec::with_capacity(np.max_iter);
     for it in 0..np.max_iter {
-        if lin.merit < np.tol {
+        if lin.merit < goal {
             out.converged = true;
             break;
         }
@@ -316,9 +322,56 @@ pub fn newton_solve<T: NewtonLevel>(
         }
         out.residual = lin.merit;
     }
-    if lin.merit < np.tol {
+    if lin.merit < goal {
         out.converged = true;
     }
     out.residual = lin.merit;
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::discrete::line::operator::{LineLevel, LinePhysics};
+    use crate::model::case::LineCase;
+
+    /// A 65-point line level of M = 20, L = 2 started from the Hertzian pressure.
+    fn level() -> (LineLevel, LinePhysics) {
+        let phys = LinePhysics::from_case(&LineCase::new(20.0, 2.0).unwrap());
+        let mut lv = LineLevel::new(-3.0, 1.5, 64);
+        for i in 1..lv.len() - 1 {
+            lv.p[i] = (1.0 - lv.x[i] * lv.x[i]).max(0.0).sqrt();
+        }
+        (lv, phys)
+    }
+
+    #[test]
+    fn a_relative_tolerance_stops_at_the_asked_reduction() {
+        let solve = |np: NewtonParams| {
+            let (mut lv, phys) = level();
+            let mut h0 = -0.3;
+            (newton_solve(&mut lv, &phys, &mut h0, &np), lv.load())
+        };
+        let start = solve(NewtonParams {
+            max_iter: 0,
+            ..NewtonParams::default()
+        })
+        .0
+        .residual;
+        let (full, w_full) = solve(NewtonParams::default());
+        let (rel, w_rel) = solve(NewtonParams {
+            rel_tol: 1e-2,
+            ..NewtonParams::default()
+        });
+        assert!(full.converged && full.residual < 1e-10, "{full:?}");
+        assert!(rel.converged, "{rel:?}");
+        // Stopped at the asked reduction, not at the absolute tolerance, and in fewer steps.
+        assert!(rel.residual < 1e-2 * start, "{rel:?} from {start}");
+        assert!(rel.residual > 1e-10, "{rel:?}");
+        assert!(rel.iterations < full.iterations, "{rel:?} vs {full:?}");
+        // The load balance (the last equation) holds to the reduced residual.
+        let g = std::f64::consts::FRAC_PI_2;
+        assert!((w_full / g - 1.0).abs() < 1e-10, "{w_full}");
+        assert!((w_rel / g - 1.0).abs() < 1e-2 * start, "{w_rel}");
+    }
 }

@@ -179,6 +179,12 @@ pub struct MgParams<D> {
     /// (alpha_bar < 5), off for line contacts (docs/performance.md, "Anderson acceleration of
     /// the finest cycles").
     pub anderson: bool,
+    /// Fast convergence: a cycle's coarsest-level Newton solve also stops once its scaled
+    /// residual has fallen by this factor ([`crate::solve::newton::NewtonParams::rel_tol`]; 0:
+    /// only at the absolute tolerance). Point contacts take
+    /// [`crate::solve::point::multigrid::POINT_COARSE_REL_TOL`], line contacts 0 (with a relative
+    /// stop, line M = 1e4, L = 40 no longer converged on 16385 points; docs/performance.md).
+    pub coarse_rel_tol: f64,
     /// The contact's domain rule.
     pub domain: D,
     /// Line contacts: override the coarsest grid's interval count (a power of two >= 8).
@@ -225,6 +231,7 @@ impl<D> MgParams<D> {
             max_algebraic: crate::solve::fmg_fast::MAX_ALGEBRAIC_ERROR,
             residual_bound: crate::solve::fmg_fast::RESIDUAL_BOUND,
             anderson: false,
+            coarse_rel_tol: 0.0,
             domain,
             coarse_intervals: None,
             second_order: true,

@@ -354,12 +354,8 @@ pub fn solve_point_selected(
             ..Default::default()
         };
         let lc = slender::equivalent_line(case);
-        let line = solve_line_to_accuracy(
-            &lc,
-            &lp,
-            model_target(target, &sel),
-            slender::LINE_MAX_GRID,
-        );
+        let line =
+            solve_line_to_accuracy(&lc, &lp, model_target(target, &sel), slender::LINE_MAX_GRID);
         let s = slender::point_solution(case, line);
         return finish(s, sel, || full(params), (0.0, 0.0));
     }

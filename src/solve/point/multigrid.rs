@@ -35,15 +35,26 @@ const FAR_FIELD_MAX_N0: usize = 16;
 /// zebra order and compute their films and residuals on the rayon pool.
 pub const PARALLEL_MIN_ROWS: usize = 65;
 
+/// The point contact's [`MgParams::coarse_rel_tol`]: a V cycle contracts the finer residual by
+/// 0.1-0.9, so solving the coarsest problem further than this only polishes a correction that
+/// the next cycle revises. Circular M = 20, L = 10 on 257^2: 3-5 Newton iterations per coarse
+/// solve became 2-4, 26.9 -> 25.5 work units and about -7 % time, H_c changed by 4e-8
+/// relative. 1e-2 saved more (25.0 work units) but left the model selection's 33^2
+/// rigid-isoviscous check of M = 0.01, L = 30, D = 0.01 (Roelands) unconverged
+/// (docs/performance.md).
+pub const POINT_COARSE_REL_TOL: f64 = 1e-3;
+
 /// Multigrid settings of a point solve.
 pub type PointMgParams = MgParams<PointDomainParams>;
 
 impl Default for MgParams<PointDomainParams> {
     /// The shared defaults with the finest cycles accelerated where alpha_bar < 5
-    /// ([`MgParams::anderson`]).
+    /// ([`MgParams::anderson`]) and the cycles' coarsest solves stopped at a reduction of
+    /// [`POINT_COARSE_REL_TOL`].
     fn default() -> Self {
         let mut p = MgParams::defaults(PointDomainParams::default(), 129, 40, 1e-6, 1e-5);
         p.anderson = true;
+        p.coarse_rel_tol = POINT_COARSE_REL_TOL;
         p
     }
 }
