@@ -120,10 +120,20 @@ fn a_simplified_answer_meets_the_target_with_its_neglected_effect() {
     assert_eq!(sel.model, ModelUsed::Rigid, "{}", o.reason);
     assert_eq!(o.status, Status::Converged, "{}", o.reason);
     let neglected = sel.measured.expect("measured on the check grid");
-    assert!(neglected > 0.2 * TARGET && neglected < 0.5 * TARGET, "{sel:?}");
+    assert!(
+        neglected > 0.2 * TARGET && neglected < 0.5 * TARGET,
+        "{sel:?}"
+    );
     let est = o.error_estimate.unwrap();
-    assert!(est <= TARGET, "estimate {est} above the target: {}", o.reason);
-    assert!(est >= neglected, "estimate {est} without the neglected effect");
+    assert!(
+        est <= TARGET,
+        "estimate {est} above the target: {}",
+        o.reason
+    );
+    assert!(
+        est >= neglected,
+        "estimate {est} without the neglected effect"
+    );
     check(
         "point M=7.56 L=30 D=0.046 rigid",
         (o.h_c, o.h_min),
