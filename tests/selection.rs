@@ -8,9 +8,9 @@ use common::point_reference;
 use ehlmap::model::case::{LineCase, PointCase};
 use ehlmap::solve::line::{solve_line, LineSolveParams};
 use ehlmap::solve::point::PointSolveParams;
-use ehlmap::solve::solution::ModelUsed;
+use ehlmap::solve::solution::{ModelUsed, Outputs};
 use ehlmap::solve::Status;
-use ehlmap::strategy::select::{solve_line_selected, solve_point_selected};
+use ehlmap::strategy::select::{solve_line_selected, solve_point_selected, Selection};
 
 const TARGET: f64 = 0.01;
 
@@ -90,14 +90,21 @@ fn the_check_grid_rejects_what_the_screen_gets_wrong() {
     assert!(s.outputs.level.is_none() && s.outputs.error_estimate.unwrap() < TARGET);
 }
 
+/// The selected answer of a point case at the 1 % target (grids up to `max_grid`), which must
+/// come from model `want` and have converged.
+fn selected_point(c: &PointCase, max_grid: usize, want: ModelUsed) -> (Outputs, Selection) {
+    let (s, sel) = solve_point_selected(c, &PointSolveParams::default(), TARGET, max_grid);
+    let o = s.outputs;
+    assert_eq!(sel.model, want, "{}", o.reason);
+    assert_eq!(o.status, Status::Converged, "{}", o.reason);
+    (o, sel)
+}
+
 #[test]
 fn point_isoviscous_selection_matches_the_full_model() {
     let c = PointCase::new(100.0, 0.001, 1.0).unwrap();
     // (1 % needs 513^2 here: 257^2 estimates 1.5 %, and 33^2 does not resolve the film.)
-    let (s, sel) = solve_point_selected(&c, &PointSolveParams::default(), TARGET, 513);
-    let o = &s.outputs;
-    assert_eq!(sel.model, ModelUsed::Isoviscous, "{}", o.reason);
-    assert_eq!(o.status, Status::Converged, "{}", o.reason);
+    let (o, _) = selected_point(&c, 513, ModelUsed::Isoviscous);
     assert!(o.level.is_some());
     check(
         "point M=100 L=0.001 D=1",
@@ -115,10 +122,7 @@ fn a_simplified_answer_meets_the_target_with_its_neglected_effect() {
     // 2.1e-3 of the 1 % target to the grid, so the rigid solve must refine past 257^2 (whose
     // 3.5e-3 would have reported 1.14 % against the 1 % target).
     let c = PointCase::new(7.56346075264, 30.0, 0.0464158883361).unwrap();
-    let (s, sel) = solve_point_selected(&c, &PointSolveParams::default(), TARGET, 1025);
-    let o = &s.outputs;
-    assert_eq!(sel.model, ModelUsed::Rigid, "{}", o.reason);
-    assert_eq!(o.status, Status::Converged, "{}", o.reason);
+    let (o, sel) = selected_point(&c, 1025, ModelUsed::Rigid);
     let neglected = sel.measured.expect("measured on the check grid");
     assert!(
         neglected > 0.2 * TARGET && neglected < 0.5 * TARGET,

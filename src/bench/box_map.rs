@@ -1,8 +1,9 @@
 //! Where the default solve works: the box of cases that real machine elements span, each solved
 //! as a user's default would be (the full model to the default 1 % accuracy target, the
 //! accuracy ladder up to the largest grid, with its fallback ladder where the accuracy ladder
-//! asks for the full effort), with a time limit per case. Each cell records the status, the attempt of the fallback ladder that answered, the
-//! grid, the work units, the wall time and whether the target was met.
+//! asks for the full effort), with a time limit per case. Each cell records the status, the
+//! attempt of the fallback ladder that answered, the grid, the work units, the wall time and
+//! whether the target was met.
 //!
 //! The box: line M in [0.01, 1e5] x L in [0, 40]; point M in [0.01, 3e4] x L in [0, 30] x
 //! D in {1, 0.1, 0.01}; each with Barus viscosity and an incompressible lubricant, and with

@@ -210,11 +210,10 @@ pub fn solve_point_to_accuracy(
 /// [`refine_to_accuracy`] of a contact's solve from `start` points: the fallback ladder and the
 /// whole cycle budget where it asks for the full effort (the finest allowed grid, and the retries
 /// next to a converged grid), one attempt of at most [`COARSE_LADDER_CYCLES`] cycles on the
-/// other grids. The finest grid
-/// converged so far seeds the FMG ascent of the next one ([`Seed`]: the ascent starts from that
-/// converged solution instead of from the coarsest level, and it is the first coarser level of
-/// the stopping rule's discretisation estimate). The fields or profile the ladder keeps for this
-/// are dropped from the answer unless `params.keep_fields`.
+/// other grids. The finest grid converged so far seeds the FMG ascent of the next one
+/// ([`Seed`]: the ascent starts from that converged solution instead of from the coarsest level,
+/// and it is the first coarser level of the stopping rule's discretisation estimate). The fields
+/// or profile the ladder keeps for this are dropped from the answer unless `params.keep_fields`.
 fn refine<D: Copy>(
     start: usize,
     order: f64,

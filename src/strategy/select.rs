@@ -178,9 +178,9 @@ fn annotate(o: &mut Outputs, info: &mut SolveInfo, sel: &Selection) {
         "screened x 10: the full check did not converge"
     };
     let solved_to = if sel.model == ModelUsed::ClosedForm {
-        String::new()
+        ""
     } else {
-        ", its solve's target the target less it".to_string()
+        ", its solve's target the target less it"
     };
     let note = format!(
         "; model {} (neglected effect {:.1e}, {how}{solved_to}; screened elastic {:.1e}, \

@@ -37,11 +37,9 @@ pub const PARALLEL_MIN_ROWS: usize = 65;
 
 /// The point contact's [`MgParams::coarse_rel_tol`]: a V cycle contracts the finer residual by
 /// 0.1-0.9, so solving the coarsest problem further than this only polishes a correction that
-/// the next cycle revises. Circular M = 20, L = 10 on 257^2: 3-5 Newton iterations per coarse
-/// solve became 2-4, 26.9 -> 25.5 work units and about -7 % time, H_c changed by 4e-8
-/// relative. 1e-2 saved more (25.0 work units) but left the model selection's 33^2
-/// rigid-isoviscous check of M = 0.01, L = 30, D = 0.01 (Roelands) unconverged
-/// (docs/performance.md).
+/// the next cycle revises. Chosen against 1e-4 and 1e-2 on the benchmark and box cases
+/// (docs/performance.md, "The point cycles' coarsest Newton solve stopped at a relative
+/// reduction").
 pub const POINT_COARSE_REL_TOL: f64 = 1e-3;
 
 /// Multigrid settings of a point solve.
