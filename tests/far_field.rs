@@ -172,7 +172,8 @@ fn the_fast_rule_stops_near_the_tight_solution_with_the_far_field() {
 fn a_spike_case_that_v_cycles_lose_converges_with_w_cycles() {
     // The nightly point sweep's M = 19.3, L = 20, D = 1 on 513^2: with the far field the
     // V cycles' residual grows from 2.4e-3 to 0.28 on the finest level (diverged), and every
-    // tight rung runs out of cycles; the ladder's W-cycle rung (the fast rule kept) converges.
+    // tight rung runs out of cycles; the ladder's W-cycle rung (the fast rule kept; its third,
+    // after the lightly damped rung, which does not converge here) converges.
     // Its H_c agrees with the truncated domain's (7.356) to within the far field's effect at
     // this M (about 1 %) and with the same case on a domain 1.25 times larger (7.437).
     let case = PointCase::new(19.306977288832496, 20.0, 1.0).unwrap();
@@ -180,7 +181,7 @@ fn a_spike_case_that_v_cycles_lose_converges_with_w_cycles() {
     p.mg.grid = 513;
     let o = solve_point(&case, &p);
     assert_eq!(o.outputs.status, Status::Converged, "{}", o.outputs.reason);
-    assert_eq!(o.attempt, 2, "{}", o.outputs.reason);
+    assert_eq!(o.attempt, 3, "{}", o.outputs.reason);
     assert!(
         o.outputs.reason.contains("W cycles"),
         "{}",

@@ -267,6 +267,9 @@ pub trait FinerCoarsest {
     fn finer_coarsest(&mut self);
 }
 
+/// The line smoother's under-relaxation on the [`Rung::LightDamping`] rung.
+pub const LIGHT_DAMPING: f64 = 0.8;
+
 /// A rung of the fallback ladder: how an attempt changes the first attempt's settings.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Rung {
@@ -280,6 +283,9 @@ pub enum Rung {
     WCycles,
     /// The line smoother under-relaxed to 0.3 at most.
     Damped,
+    /// The line smoother relaxed by [`LIGHT_DAMPING`] (less under-relaxed than the default),
+    /// keeping the stopping rule as given.
+    LightDamping,
     /// Distributive line relaxation at every node.
     Distributive,
     /// Distributive relaxation with W cycles.
@@ -302,6 +308,7 @@ impl Rung {
             Rung::Smooth44 => "default smoother, V(4, 4) cycles",
             Rung::WCycles => "default smoother, W cycles",
             Rung::Damped => "default smoother, under-relaxation 0.3",
+            Rung::LightDamping => "default smoother, under-relaxation 0.8",
             Rung::Distributive => "distributive line relaxation everywhere",
             Rung::DistributiveW => "distributive relaxation, W cycles",
             Rung::DistributiveWFiner => "distributive relaxation, W cycles, finer coarsest grid",
@@ -314,7 +321,10 @@ impl Rung {
     /// [`Rung::WideBand`] converges tightly (the conservative load balance).
     pub fn apply<D: Copy + FinerCoarsest>(self, p: &MgParams<D>) -> MgParams<D> {
         let mut q = *p;
-        if !matches!(self, Rung::Default | Rung::WCycles | Rung::WideBand) {
+        if !matches!(
+            self,
+            Rung::Default | Rung::WCycles | Rung::WideBand | Rung::LightDamping
+        ) {
             q.converge = Converge::Tight;
         }
         match self {
@@ -327,6 +337,7 @@ impl Rung {
                 q.post = p.post.max(4);
             }
             Rung::Damped => q.relax.omega_line = (0.6 * p.relax.omega_line).min(0.3),
+            Rung::LightDamping => q.relax.omega_line = LIGHT_DAMPING,
             Rung::Distributive => q.relax.xi_threshold = f64::INFINITY,
             Rung::DistributiveW | Rung::DistributiveWFiner => {
                 q.relax.xi_threshold = f64::INFINITY;

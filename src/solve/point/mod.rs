@@ -6,10 +6,12 @@
 //! line; `H0`; `f` the rolling traction integral (H/2) dP/dX dX dY over the load integral P dX dY
 //! (Hertzian units); `load_error` against 2 pi k/3; plus `D` and `k`.
 //!
-//! With `fallback` on (the default) a solve that does not converge is retried with W cycles
-//! (the stopping rule as given), then the line solver's ladder: tight convergence, line
-//! under-relaxation 0.3, then distributive relaxation everywhere, then that with W cycles. The reason names the attempt kept; the best failed attempt is returned with its
-//! status if none converges.
+//! With `fallback` on (the default) a solve that does not converge is retried with the line
+//! relaxation less damped ([`crate::solve::params::LIGHT_DAMPING`] instead of 0.5), then with W
+//! cycles (both with the stopping rule as given), then the line solver's ladder: tight
+//! convergence, line under-relaxation 0.3, then distributive relaxation everywhere, then that
+//! with W cycles. The reason names the attempt kept; the best failed attempt is returned with
+//! its status if none converges.
 
 pub mod jacobian;
 pub mod multigrid;
@@ -143,8 +145,9 @@ fn package(
 }
 
 /// The fallback ladder (module doc).
-const LADDER: [Rung; 6] = [
+const LADDER: [Rung; 7] = [
     Rung::Default,
+    Rung::LightDamping,
     Rung::WCycles,
     Rung::Tight,
     Rung::Damped,
