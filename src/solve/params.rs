@@ -267,7 +267,9 @@ pub trait FinerCoarsest {
     fn finer_coarsest(&mut self);
 }
 
-/// The line smoother's under-relaxation on the [`Rung::LightDamping`] rung.
+/// The line smoother's under-relaxation on the [`Rung::LightDamping`] rung (the point ladder's
+/// second; the default is [`crate::solve::relax::RelaxParams`]' 0.5). Its rung's name states
+/// this value.
 pub const LIGHT_DAMPING: f64 = 0.8;
 
 /// A rung of the fallback ladder: how an attempt changes the first attempt's settings.
@@ -317,8 +319,9 @@ impl Rung {
         }
     }
 
-    /// `p` changed as this rung says; every rung but the first, [`Rung::WCycles`] and
-    /// [`Rung::WideBand`] converges tightly (the conservative load balance).
+    /// `p` changed as this rung says; every rung but the first, [`Rung::WCycles`],
+    /// [`Rung::LightDamping`] and [`Rung::WideBand`] converges tightly (the conservative load
+    /// balance).
     pub fn apply<D: Copy + FinerCoarsest>(self, p: &MgParams<D>) -> MgParams<D> {
         let mut q = *p;
         if !matches!(
@@ -389,5 +392,29 @@ where
 {
     fn default() -> Self {
         ContactParams::with_mg(MgParams::default())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_lightly_damped_rung_sets_and_names_its_under_relaxation() {
+        let p = MgParams::<crate::discrete::point::domain::PointDomainParams>::default();
+        let q = Rung::LightDamping.apply(&p);
+        assert_eq!(q.relax.omega_line, LIGHT_DAMPING);
+        assert!(q.relax.omega_line > p.relax.omega_line);
+        // The stopping rule and everything else as given.
+        assert_eq!(q.converge, p.converge);
+        assert_eq!(
+            MgParams {
+                relax: p.relax,
+                ..q
+            },
+            p
+        );
+        let name = Rung::LightDamping.name();
+        assert!(name.contains(&format!("{LIGHT_DAMPING}")), "{name}");
     }
 }
