@@ -11,11 +11,13 @@
 //! cycles (both with the stopping rule as given), then the line solver's ladder: tight
 //! convergence, line under-relaxation 0.3, then distributive relaxation everywhere, then that
 //! with W cycles. The reason names the attempt kept; the best failed attempt is returned with
-//! its status if none converges.
+//! its status if none converges. A thin isoviscous film without a seed starts its FMG ascent
+//! from the Hertz pressure on the first level that resolves it ([`start`]).
 
 pub mod jacobian;
 pub mod multigrid;
 pub mod relax;
+pub mod start;
 
 use crate::discrete::point::domain::PointDomainParams;
 use crate::discrete::point::domain::BIAS_CAUTION;
@@ -110,7 +112,7 @@ pub fn point_outputs(mg: &PointMultigrid, info: &SolveInfo) -> Outputs {
 
 fn run(case: &PointCase, p: &PointMgParams, keep_fields: bool, seed: Option<&Seed>) -> Solution {
     let mut mg = PointMultigrid::new(case, p);
-    mg.seed = seed.cloned();
+    mg.seed = seed.cloned().or_else(|| start::hertz_start(&mut mg, case));
     let (info, mixed) = solve_mixed(&mut mg);
     package(case, &mg, info, keep_fields, mixed.as_ref())
 }
