@@ -245,4 +245,5 @@ fn stability_box_writes_its_table_chart_and_summary() {
         .unwrap();
     assert_eq!(bad.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&bad.stderr).contains("--grid 257"));
+    let _ = std::fs::remove_dir_all(&dir);
 }

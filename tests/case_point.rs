@@ -36,12 +36,30 @@ E = 208e9
 nu = 0.3
 "#;
 
-fn tmp(name: &str, text: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("ehlmap-case-point-{}", std::process::id()));
+/// A case file in its own scratch directory, removed when dropped unless the test is failing.
+struct TempFile(std::path::PathBuf);
+
+impl std::ops::Deref for TempFile {
+    type Target = std::path::Path;
+    fn deref(&self) -> &std::path::Path {
+        &self.0
+    }
+}
+
+impl Drop for TempFile {
+    fn drop(&mut self) {
+        if let (false, Some(dir)) = (std::thread::panicking(), self.0.parent()) {
+            let _ = std::fs::remove_dir_all(dir);
+        }
+    }
+}
+
+fn tmp(name: &str, text: &str) -> TempFile {
+    let dir = std::env::temp_dir().join(format!("ehlmap-case-point-{}-{name}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let p = dir.join(name);
     std::fs::write(&p, text).unwrap();
-    p
+    TempFile(p)
 }
 
 fn json(path: &std::path::Path, solve: bool) -> serde_json::Value {

@@ -11,7 +11,7 @@ use ehlmap::sweep::lock::{lock_path, Holder};
 use ehlmap::sweep::plan::Shard;
 use ehlmap::sweep::settings::Settings;
 use ehlmap::sweep::spec;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant, SystemTime};
 
@@ -40,11 +40,9 @@ fn sweep(spec: &Path, out: &Path, extra: &[&str]) -> (Option<i32>, String) {
     )
 }
 
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("ehlmap-lock-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+/// A fresh scratch directory for one test, removed when the test passes.
+fn scratch(name: &str) -> common::Scratch {
+    common::Scratch::new(&format!("lock-{name}"))
 }
 
 fn spec_text(name: &str, m: &str, grid: usize) -> String {

@@ -5,6 +5,8 @@
 //! column ("not an ehlmap dataset: missing column X"), in the reader, `ehlmap fit` and
 //! `ehlmap sweep`. (CI re-saves a part with pyarrow itself: .ci/foreign_parquet.py.)
 
+mod common;
+
 use arrow_array::{Array, ArrayRef, Float64Array, Int64Array, LargeStringArray, RecordBatch};
 use arrow_array::{StringArray, UInt32Array};
 use arrow_schema::{DataType, Field, Schema};
@@ -25,11 +27,9 @@ fn committed(name: &str) -> PathBuf {
         .join(name)
 }
 
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("ehlmap-foreign-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+/// A fresh scratch directory for one test, removed when the test passes.
+fn scratch(name: &str) -> common::Scratch {
+    common::Scratch::new(&format!("foreign-{name}"))
 }
 
 /// The record batches of a Parquet file.

@@ -24,12 +24,9 @@ fn ehlmap(args: &[&str]) -> Output {
     ehlmap_cmd(args).output().expect("run ehlmap")
 }
 
-/// A fresh scratch directory for one test.
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("ehlmap-sweep-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+/// A fresh scratch directory for one test, removed when the test passes.
+fn scratch(name: &str) -> common::Scratch {
+    common::Scratch::new(&format!("sweep-{name}"))
 }
 
 fn write(dir: &Path, file: &str, text: &str) -> PathBuf {

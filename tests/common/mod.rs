@@ -3,7 +3,7 @@
 use ehlmap::model::case::PointCase;
 use ehlmap::solve::point::{solve_point, PointSolveParams};
 use ehlmap::solve::Status;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 /// The Slurm variables a sweep reads (cleared by tests that run sweeps, so a test run inside a
@@ -16,6 +16,43 @@ pub const SLURM_VARS: [&str; 5] = [
     "SLURM_ARRAY_TASK_STEP",
     "SLURM_CPUS_PER_TASK",
 ];
+
+/// A fresh scratch directory `ehlmap-<tag>-<pid>` under the system's temporary directory,
+/// removed when dropped unless the test is failing (then it is kept to look at).
+#[allow(dead_code)]
+pub struct Scratch(PathBuf);
+
+#[allow(dead_code)]
+impl Scratch {
+    /// Create the directory (emptied first if a former run left it).
+    pub fn new(tag: &str) -> Self {
+        let d = std::env::temp_dir().join(format!("ehlmap-{tag}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        std::fs::create_dir_all(&d).unwrap();
+        Scratch(d)
+    }
+}
+
+impl std::ops::Deref for Scratch {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl AsRef<Path> for Scratch {
+    fn as_ref(&self) -> &Path {
+        &self.0
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        if !std::thread::panicking() {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
+}
 
 /// Write `spec` (TOML) to `<name>.toml` in a fresh temporary directory tagged `tag` and run
 /// `ehlmap sweep` on it into that directory without progress output: (directory, spec file,
