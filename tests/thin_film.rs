@@ -5,9 +5,10 @@
 use ehlmap::model::case::PointCase;
 use ehlmap::model::formulas::nvm_point_hc;
 use ehlmap::solve::point::multigrid::PointMultigrid;
-use ehlmap::solve::point::start::hertz_start;
+use ehlmap::solve::point::start::{first_start_grid, hertz_start};
 use ehlmap::solve::point::{solve_point, PointSolveParams};
 use ehlmap::solve::Status;
+use ehlmap::strategy::accuracy::solve_point_to_accuracy;
 use std::f64::consts::PI;
 
 fn params(grid: usize) -> PointSolveParams {
@@ -28,6 +29,9 @@ fn the_start_is_the_hertz_pressure_on_the_first_level_that_resolves_the_film() {
     let (hx, hy) = (seed.x[1] - seed.x[0], seed.y[1] - seed.y[0]);
     let load: f64 = seed.p.iter().sum::<f64>() * hx * hy;
     assert!((load / (2.0 * PI / 3.0) - 1.0).abs() < 2e-3, "load {load}");
+    // The accuracy ladder starts on the grid one level above the seed's.
+    let domain = params(513).mg.domain;
+    assert_eq!(first_start_grid(&case, &domain), Some(513));
     // Thick films, piezoviscous films and grids that do not reach the start level keep the
     // usual ascent.
     for (m, l, grid) in [(20.0, 10.0, 513), (5720.0, 4.3, 513), (5720.0, 0.0, 257)] {
@@ -38,6 +42,33 @@ fn the_start_is_the_hertz_pressure_on_the_first_level_that_resolves_the_film() {
             "M = {m}, L = {l}, {grid}^2"
         );
     }
+    for (m, l) in [(20.0, 10.0), (1000.0, 0.0), (5720.0, 4.3)] {
+        let c = PointCase::new(m, l, 1.0).unwrap();
+        assert_eq!(first_start_grid(&c, &domain), None, "M = {m}, L = {l}");
+    }
+}
+
+/// The default 1 % solve of the same case: before the start the accuracy ladder's cold
+/// attempts on 33^2 to 257^2 failed and 1025^2 ran out of cycles (minutes, no answer). Now it
+/// solves 513^2 and 1025^2 only and answers with an honest error bar: H_min is not resolved on
+/// 1025^2 (0.24 against 0.27 on 2049^2), so the target is not met.
+#[test]
+fn the_accuracy_ladder_answers_a_thin_isoviscous_film_with_its_error_bar() {
+    let case = PointCase::new(5720.0, 0.0, 1.0).unwrap();
+    let s = solve_point_to_accuracy(&case, &PointSolveParams::default(), 0.01, 1025);
+    let o = &s.outputs;
+    assert_eq!(o.status, Status::Converged, "{}", o.reason);
+    assert_eq!(o.grid, 1025);
+    assert_eq!(o.accuracy_met, Some(false));
+    let (hc_err, hmin_err) = (o.h_c_err.unwrap(), o.h_min_err.unwrap());
+    // The 2049^2 solve (H_c 0.707, H_min 0.274; docs/robustness.md) lies within the bars.
+    assert!((o.h_c - 0.707).abs() < hc_err, "H_c {} +- {hc_err}", o.h_c);
+    assert!(
+        (o.h_min - 0.274).abs() < hmin_err,
+        "H_min {} +- {hmin_err}",
+        o.h_min
+    );
+    assert!(hc_err < 0.03 * o.h_c, "H_c error bar {hc_err}");
 }
 
 /// M = 5720, L = 0, D = 1 diverged on 513^2 from the usual ascent (91 WU) and ran out of

@@ -150,7 +150,8 @@ pub struct SolveArgs {
     pub converge: Option<ConvergeArg>,
     /// Target relative accuracy of H_c and H_min (default 0.01): pick the cheapest adequate
     /// model (rigid, isoviscous, closed form; see --full-model) and refine the grid from 257
-    /// line points (33 point nodes per direction) until the Richardson estimate meets it (up
+    /// line points (33 point nodes per direction; a thin isoviscous point film from the first
+    /// grid of its Hertzian start) until the Richardson estimate meets it (up
     /// to --max-grid); reports model_used, level, H_c_err, H_min_err, error_estimate and
     /// accuracy_met. --method multigrid only; not with --grid.
     #[arg(long, allow_hyphen_values = true)]

@@ -12,6 +12,7 @@ use crate::model::case::{LineCase, PointCase};
 use crate::solve::line::{solve_line_seeded, LineSolveParams};
 use crate::solve::multilevel::Seed;
 use crate::solve::params::ContactParams;
+use crate::solve::point::start::first_start_grid;
 use crate::solve::point::{solve_point_seeded, PointSolveParams};
 use crate::solve::solution::{ErrorEstimates, Outputs, Solution};
 use crate::solve::Status;
@@ -158,8 +159,12 @@ pub fn solve_line_to_accuracy(
 /// order 2 on the circular reference case; H_min more slowly, as for the line contact).
 pub const POINT_ESTIMATE_ORDER: f64 = 1.5;
 
+/// The point accuracy ladder's first grid (points per direction).
+pub const POINT_LADDER_START: usize = 33;
+
 /// Solve to a target relative accuracy of H_c and H_min on 33, 65, 129, ... points per direction
-/// (up to `max_grid`); see [`refine_to_accuracy`]. The domain-truncation estimate t
+/// (up to `max_grid`; a thin isoviscous film from the first grid of its Hertzian start,
+/// [`first_start_grid`]); see [`refine_to_accuracy`]. The domain-truncation estimate t
 /// (`PointDomain::truncation_error`, rigid-like cases) is added to `error_estimate`: the grid
 /// refinement stops when the discretisation estimate meets target - t (the target itself when
 /// t alone breaks it, which is then reported as not met).
@@ -175,8 +180,12 @@ pub fn solve_point_to_accuracy(
     } else {
         target
     };
+    // A thin isoviscous film is resolved only from the grid where its Hertzian start applies.
+    let start = first_start_grid(case, &params.mg.domain)
+        .unwrap_or(POINT_LADDER_START)
+        .min(max_grid);
     let mut s = refine(
-        33,
+        start,
         POINT_ESTIMATE_ORDER,
         params,
         grid_target,

@@ -25,6 +25,9 @@
 //! Lubrecht, Multilevel Methods in Lubrication (2000), ch. 7 (the Hertzian initial pressure of
 //! highly loaded contacts).
 
+use crate::discrete::physics::Physics;
+use crate::discrete::point::domain::{PointDomain, PointDomainParams};
+use crate::discrete::point::operator::PointPhysics;
 use crate::model::case::PointCase;
 use crate::solve::multilevel::Seed;
 use crate::solve::point::multigrid::PointMultigrid;
@@ -49,11 +52,37 @@ pub fn resolving_level(h_e: f64, hx: &[f64]) -> Option<usize> {
     hx.iter().position(|&h| lh >= RESOLVE_CELLS * h)
 }
 
+/// Whether the physics admit the start: elastic surfaces, a lubricated (not dry) contact and an
+/// isoviscous lubricant (alpha_bar = 0).
+fn admits(common: &Physics) -> bool {
+    common.elastic && !common.dry && common.fluid.alpha_bar == 0.0
+}
+
+/// The level l_s of the module doc for `case` on the domain of `p`, where the start applies on
+/// grids finer than it (at least [`MIN_START_LEVEL`]); None where it never applies.
+fn start_level(case: &PointCase, p: &PointDomainParams) -> Option<(usize, usize)> {
+    if !admits(&PointPhysics::from_case(case).common) {
+        return None;
+    }
+    let dom = PointDomain::of_case(case, p);
+    let width = dom.x_out - dom.x_in;
+    let hx: Vec<f64> = (0..16).map(|l| width / (dom.n0 << l) as f64).collect();
+    let l = resolving_level(dom.h_estimate, &hx).filter(|&l| l >= MIN_START_LEVEL)?;
+    Some((l, dom.n0))
+}
+
+/// The coarsest grid (points per direction) on which `case` takes the start: the grid one level
+/// above l_s. Coarser grids cannot resolve the film on a level below their finest, and their
+/// ascent from the coarsest level fails (the accuracy ladder starts here:
+/// [`crate::strategy::accuracy::solve_point_to_accuracy`]). None where the start never applies.
+pub fn first_start_grid(case: &PointCase, p: &PointDomainParams) -> Option<usize> {
+    start_level(case, p).map(|(l, n0)| (n0 << (l + 1)) + 1)
+}
+
 /// The seed of the module doc for `mg` (built for `case`), or None where the usual ascent is
 /// kept.
 pub fn hertz_start(mg: &mut PointMultigrid, case: &PointCase) -> Option<Seed> {
-    let phys = &mg.phys;
-    if !phys.common.elastic || phys.common.dry || phys.common.fluid.alpha_bar != 0.0 {
+    if !admits(&mg.phys.common) {
         return None;
     }
     let top = mg.levels.len() - 1;
