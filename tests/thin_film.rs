@@ -22,7 +22,7 @@ fn params(grid: usize) -> PointSolveParams {
 fn the_start_is_the_hertz_pressure_on_the_first_level_that_resolves_the_film() {
     let case = PointCase::new(5720.0, 0.0, 1.0).unwrap();
     let mut mg = PointMultigrid::new(&case, &params(513).mg);
-    let seed = hertz_start(&mut mg, &case).expect("a thin isoviscous film gets the start");
+    let seed = hertz_start(&mut mg).expect("a thin isoviscous film gets the start");
     // l_h = sqrt(2 H_e) = 0.06 spans 4 cells first on 257^2 (spacing 3/256).
     assert_eq!((seed.x.len(), seed.y.len()), (257, 257));
     // The dry load 2 pi k / 3 (k = 1), to the grid's quadrature error.
@@ -37,11 +37,24 @@ fn the_start_is_the_hertz_pressure_on_the_first_level_that_resolves_the_film() {
     for (m, l, grid) in [(20.0, 10.0, 513), (5720.0, 4.3, 513), (5720.0, 0.0, 257)] {
         let c = PointCase::new(m, l, 1.0).unwrap();
         let mut mg = PointMultigrid::new(&c, &params(grid).mg);
-        assert!(
-            hertz_start(&mut mg, &c).is_none(),
-            "M = {m}, L = {l}, {grid}^2"
-        );
+        assert!(hertz_start(&mut mg).is_none(), "M = {m}, L = {l}, {grid}^2");
     }
+    // The ladder's first grid is the first whose hierarchy takes the seed, at every D.
+    let mut checked = 0;
+    for (m, d) in [(5720.0, 0.215), (3e4, 0.215), (3e4, 0.0464), (3e4, 1.0)] {
+        let c = PointCase::new(m, 0.0, d).unwrap();
+        let Some(g) = first_start_grid(&c, &domain) else {
+            continue;
+        };
+        let half = (g - 1) / 2 + 1;
+        let mut mg = PointMultigrid::new(&c, &params(g).mg);
+        let seed = hertz_start(&mut mg).expect("the first grid takes the start");
+        assert_eq!(seed.x.len(), half, "M = {m}, D = {d}");
+        let mut coarser = PointMultigrid::new(&c, &params(half).mg);
+        assert!(hertz_start(&mut coarser).is_none(), "M = {m}, D = {d}");
+        checked += 1;
+    }
+    assert!(checked >= 2, "{checked} cases take the start");
     for (m, l) in [(20.0, 10.0), (1000.0, 0.0), (5720.0, 4.3)] {
         let c = PointCase::new(m, l, 1.0).unwrap();
         assert_eq!(first_start_grid(&c, &domain), None, "M = {m}, L = {l}");

@@ -112,7 +112,7 @@ pub fn point_outputs(mg: &PointMultigrid, info: &SolveInfo) -> Outputs {
 
 fn run(case: &PointCase, p: &PointMgParams, keep_fields: bool, seed: Option<&Seed>) -> Solution {
     let mut mg = PointMultigrid::new(case, p);
-    mg.seed = seed.cloned().or_else(|| start::hertz_start(&mut mg, case));
+    mg.seed = seed.cloned().or_else(|| start::hertz_start(&mut mg));
     let (info, mixed) = solve_mixed(&mut mg);
     package(case, &mg, info, keep_fields, mixed.as_ref())
 }

@@ -11,9 +11,9 @@
 //!
 //! * P = sqrt(1 - X^2 - (Y/k)^2) inside the Hertz ellipse, 0 outside (its load is the case's,
 //!   2 pi k / 3);
-//! * H0 such that the film at the centre is [`START_FILM_FACTOR`] H_e: H0 = 2 H_e -
-//!   c (K*P)(0, 0), the gap being 0 there (c (K*P)(0, 0) is the Hertzian approach: 1 for the
-//!   circle, 1.317 at D = 0.215).
+//! * H0 such that the film at the centre is f H_e, f = [`START_FILM_FACTOR`]:
+//!   H0 = f H_e - c (K*P)(0, 0), the gap being 0 there (c (K*P)(0, 0) is the Hertzian
+//!   approach: 1 for the circle, 1.317 at D = 0.215).
 //!
 //! Otherwise None, and the solve starts its ascent from the coarsest level as usual.
 //!
@@ -79,9 +79,8 @@ pub fn first_start_grid(case: &PointCase, p: &PointDomainParams) -> Option<usize
     start_level(case, p).map(|(l, n0)| (n0 << (l + 1)) + 1)
 }
 
-/// The seed of the module doc for `mg` (built for `case`), or None where the usual ascent is
-/// kept.
-pub fn hertz_start(mg: &mut PointMultigrid, case: &PointCase) -> Option<Seed> {
+/// The seed of the module doc for `mg`, or None where the usual ascent is kept.
+pub fn hertz_start(mg: &mut PointMultigrid) -> Option<Seed> {
     if !admits(&mg.phys.common) {
         return None;
     }
@@ -89,7 +88,7 @@ pub fn hertz_start(mg: &mut PointMultigrid, case: &PointCase) -> Option<Seed> {
     let hx: Vec<f64> = mg.levels.iter().map(|lv| lv.hx).collect();
     let h_e = mg.domain.h_estimate;
     let l = resolving_level(h_e, &hx).filter(|&l| l >= MIN_START_LEVEL && l < top)?;
-    let k = case.ellipse().k;
+    let k = mg.phys.k;
     let lv = &mut mg.levels[l];
     let (nx, ny) = (lv.nx, lv.ny);
     let mut p = vec![0.0; nx * ny];
