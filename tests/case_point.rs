@@ -7,6 +7,8 @@
 //! M = W U_s^-3/4 = 60.81, L = G U_s^1/4 = 11.12. The deep-groove ball bearing example: Rx and Ry
 //! from the radii by hand (1/Rx = 1/3.969 + 1/15.53 mm, 1/Ry = 1/3.969 - 1/4.128 mm).
 
+mod common;
+
 use std::process::Command;
 
 fn ehlmap(args: &[&str]) -> std::process::Output {
@@ -36,30 +38,24 @@ E = 208e9
 nu = 0.3
 "#;
 
-/// A case file in its own scratch directory, removed when dropped unless the test is failing.
-struct TempFile(std::path::PathBuf);
+/// A case file in its own scratch directory (removed with it unless the test is failing).
+struct TempFile {
+    _dir: common::Scratch,
+    path: std::path::PathBuf,
+}
 
 impl std::ops::Deref for TempFile {
     type Target = std::path::Path;
     fn deref(&self) -> &std::path::Path {
-        &self.0
-    }
-}
-
-impl Drop for TempFile {
-    fn drop(&mut self) {
-        if let (false, Some(dir)) = (std::thread::panicking(), self.0.parent()) {
-            let _ = std::fs::remove_dir_all(dir);
-        }
+        &self.path
     }
 }
 
 fn tmp(name: &str, text: &str) -> TempFile {
-    let dir = std::env::temp_dir().join(format!("ehlmap-case-point-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    TempFile(p)
+    let dir = common::Scratch::new(&format!("case-point-{name}"));
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    TempFile { _dir: dir, path }
 }
 
 fn json(path: &std::path::Path, solve: bool) -> serde_json::Value {

@@ -144,6 +144,13 @@ pub struct PointContact;
 /// The state of a point multigrid solve.
 pub type PointMultigrid = Multigrid<PointContact>;
 
+/// The dry (Hertzian) pressure sqrt(1 - X^2 - (Y/k)^2) at (X, Y), 0 outside the contact ellipse
+/// (Hertzian units, peak 1, load 2 pi k / 3): the start of the FMG ascent on the coarsest level
+/// and of [`crate::solve::point::start::hertz_start`].
+pub fn hertz_pressure(x: f64, y: f64, k: f64) -> f64 {
+    (1.0 - x.powi(2) - (y / k).powi(2)).max(0.0).sqrt()
+}
+
 /// What a point solve keeps besides the shared state.
 pub struct PointExtra {
     /// Cells of the finest level (work units are sweeps of it).
@@ -324,9 +331,7 @@ impl Contact for PointContact {
                     // integral of (1 - s^2) over the disc of radius r: pi r^2 / 2.
                     load * 2.0 / (std::f64::consts::PI * r * r) * (1.0 - s2).max(0.0)
                 } else {
-                    (1.0 - lv.x[i].powi(2) - (lv.y[j] / k).powi(2))
-                        .max(0.0)
-                        .sqrt()
+                    hertz_pressure(lv.x[i], lv.y[j], k)
                 };
             }
         }

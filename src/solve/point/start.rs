@@ -30,7 +30,7 @@ use crate::discrete::point::domain::{PointDomain, PointDomainParams};
 use crate::discrete::point::operator::PointPhysics;
 use crate::model::case::PointCase;
 use crate::solve::multilevel::Seed;
-use crate::solve::point::multigrid::PointMultigrid;
+use crate::solve::point::multigrid::{hertz_pressure, PointMultigrid};
 
 /// The hydrodynamic length l_h must span at least this many cells of a level for the film to
 /// be represented there.
@@ -92,10 +92,9 @@ pub fn hertz_start(mg: &mut PointMultigrid) -> Option<Seed> {
     let lv = &mut mg.levels[l];
     let (nx, ny) = (lv.nx, lv.ny);
     let mut p = vec![0.0; nx * ny];
-    for (j, y) in lv.y.iter().enumerate() {
-        for (i, x) in lv.x.iter().enumerate() {
-            let r2 = x * x + (y / k) * (y / k);
-            p[j * nx + i] = (1.0 - r2).max(0.0).sqrt();
+    for (j, &y) in lv.y.iter().enumerate() {
+        for (i, &x) in lv.x.iter().enumerate() {
+            p[j * nx + i] = hertz_pressure(x, y, k);
         }
     }
     let mut w = vec![0.0; nx * ny];
