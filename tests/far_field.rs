@@ -169,21 +169,25 @@ fn the_fast_rule_stops_near_the_tight_solution_with_the_far_field() {
 }
 
 #[test]
-fn a_spike_case_that_v_cycles_lose_converges_with_w_cycles() {
+fn a_spike_case_that_the_frozen_band_loses_converges_without_it() {
     // The nightly point sweep's M = 19.3, L = 20, D = 1 on 513^2: with the far field the
-    // V cycles' residual grows from 2.4e-3 to 0.28 on the finest level (diverged), and every
-    // tight rung runs out of cycles; the ladder's W-cycle rung (the fast rule kept; its third,
-    // after the lightly damped rung, which does not converge here) converges.
-    // Its H_c agrees with the truncated domain's (7.356) to within the far field's effect at
-    // this M (about 1 %) and with the same case on a domain 1.25 times larger (7.437).
+    // V cycles' residual grows from 2.4e-3 to 0.28 on the finest level (diverged) while the
+    // coarse grids freeze the band along the cavitation boundary; the ladder's second rung,
+    // the same cycles without the band (the fast rule kept), converges. Checks: the same
+    // iteration run on for its whole cycle budget (algebraic error cap 1e-5) stays within the
+    // answer's algebraic error estimate (measured: H_c 7.439478 against 7.439432, 6e-6,
+    // estimate 6.1e-5), and H_c agrees with the truncated domain's (7.356) to within the far
+    // field's effect at this M (about 1 %) and with the same case on a domain 1.25 times larger
+    // (7.437). (The W cycles with the band, the rung that answered before this one existed,
+    // give 7.438252: 1.6e-4 away, above their own estimate.)
     let case = PointCase::new(19.306977288832496, 20.0, 1.0).unwrap();
     let mut p = PointSolveParams::default();
     p.mg.grid = 513;
     let o = solve_point(&case, &p);
     assert_eq!(o.outputs.status, Status::Converged, "{}", o.outputs.reason);
-    assert_eq!(o.attempt, 3, "{}", o.outputs.reason);
+    assert_eq!(o.attempt, 2, "{}", o.outputs.reason);
     assert!(
-        o.outputs.reason.contains("W cycles"),
+        o.outputs.reason.contains("no frozen band"),
         "{}",
         o.outputs.reason
     );
@@ -192,6 +196,17 @@ fn a_spike_case_that_v_cycles_lose_converges_with_w_cycles() {
         "{}",
         o.outputs.h_c
     );
+    let mut on = p;
+    on.mg.max_algebraic = 1e-5;
+    on.mg.freeze_band = false;
+    on.fallback = false;
+    let r = solve_point(&case, &on).outputs;
+    let alg = o.outputs.algebraic_error.expect("an estimate");
+    for (a, b) in [(o.outputs.h_c, r.h_c), (o.outputs.h_min, r.h_min)] {
+        let d = (a / b - 1.0).abs();
+        eprintln!("unfrozen {a} run on {b}: {d:.1e}, estimate {alg:.1e}");
+        assert!(d <= alg, "{a} vs {b}: {d:.1e} (estimate {alg:.1e})");
+    }
 }
 
 /// Below alpha_bar = 5 the point coarse grids correct the outlet region up to the cavitation

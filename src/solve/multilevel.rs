@@ -109,13 +109,15 @@ pub trait Contact: Sized {
     /// The cost in work units of `iterations` Newton iterations on the coarsest level.
     fn newton_cost(mg: &Multigrid<Self>, iterations: usize) -> f64;
     /// Inject P from `fine` into `coarse`, refresh the coarse film at `h0`, and set the coarse
-    /// Reynolds right-hand side from the restricted residual `r` (frozen nodes marked).
+    /// Reynolds right-hand side from the restricted residual `r` (frozen nodes marked where
+    /// `freeze`, [`Contact::frozen_band`]).
     fn restrict(
         coarse: &mut Self::Level,
         fine: &Self::Level,
         r: &[f64],
         phys: &Phys<Self>,
         h0: f64,
+        freeze: bool,
     );
     /// Add the interpolated correction `coarse.p - p_hat` to `fine.p`, project on P >= 0 and
     /// refresh the fine film at `h0`.
@@ -373,6 +375,7 @@ impl<C: Contact> Multigrid<C> {
 
     /// The coarse problem of level `l`: residual, injection, right-hand sides.
     fn restrict(&mut self, l: usize) {
+        let freeze = C::frozen_band(self);
         let (lo, hi) = self.levels.split_at_mut(l);
         let (coarse, fine) = (&mut lo[l - 1], &mut hi[0]);
         let mut r = std::mem::take(fine.delta_mut());
@@ -380,7 +383,7 @@ impl<C: Contact> Multigrid<C> {
         // (L - f < 0), which keeps the coarse problem strictly cavitated where the fine one is;
         // zeroing it would make P = 0 a degenerate coarse solution.
         fine.residual_into(&self.phys, false, &mut r);
-        C::restrict(coarse, fine, &r, &self.phys, self.h0);
+        C::restrict(coarse, fine, &r, &self.phys, self.h0, freeze);
         coarse.set_load_rhs(coarse.load_sum() + (fine.load_rhs() - fine.load_sum()));
         self.p_hat[l - 1].copy_from_slice(coarse.p());
         *fine.delta_mut() = r;

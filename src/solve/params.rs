@@ -185,6 +185,10 @@ pub struct MgParams<D> {
     /// [`crate::solve::point::multigrid::POINT_COARSE_REL_TOL`], line contacts 0 (with a relative
     /// stop, line M = 1e4, L = 40 no longer converged on 16385 points; docs/performance.md).
     pub coarse_rel_tol: f64,
+    /// Point contacts: whether the coarse grids freeze the band along the cavitation boundary
+    /// from alpha_bar = [`crate::solve::point::multigrid::FREEZE_ALPHA_BAR`] on (default; off on
+    /// the [`Rung::Unfrozen`] rung). Line contacts always freeze it.
+    pub freeze_band: bool,
     /// The contact's domain rule.
     pub domain: D,
     /// Line contacts: override the coarsest grid's interval count (a power of two >= 8).
@@ -232,6 +236,7 @@ impl<D> MgParams<D> {
             residual_bound: crate::solve::fmg_fast::RESIDUAL_BOUND,
             anderson: false,
             coarse_rel_tol: 0.0,
+            freeze_band: true,
             domain,
             coarse_intervals: None,
             second_order: true,
@@ -300,6 +305,9 @@ pub enum Rung {
     /// The default smoother with the kernel kept exactly over a band twice as wide (at least 8
     /// cells each side), keeping the stopping rule as given.
     WideBand,
+    /// Point contacts: no band frozen along the cavitation boundary on the coarse grids
+    /// ([`MgParams::freeze_band`]), keeping the stopping rule as given.
+    Unfrozen,
 }
 
 impl Rung {
@@ -316,17 +324,18 @@ impl Rung {
             Rung::DistributiveWFiner => "distributive relaxation, W cycles, finer coarsest grid",
             Rung::Tight => "default smoother, tight convergence",
             Rung::WideBand => "default smoother, twice the kernel band",
+            Rung::Unfrozen => "default smoother, no frozen band",
         }
     }
 
     /// `p` changed as this rung says; every rung but the first, [`Rung::WCycles`],
-    /// [`Rung::LightDamping`] and [`Rung::WideBand`] converges tightly (the conservative load
-    /// balance).
+    /// [`Rung::LightDamping`], [`Rung::WideBand`] and [`Rung::Unfrozen`] converges tightly (the
+    /// conservative load balance).
     pub fn apply<D: Copy + FinerCoarsest>(self, p: &MgParams<D>) -> MgParams<D> {
         let mut q = *p;
         if !matches!(
             self,
-            Rung::Default | Rung::WCycles | Rung::WideBand | Rung::LightDamping
+            Rung::Default | Rung::WCycles | Rung::WideBand | Rung::LightDamping | Rung::Unfrozen
         ) {
             q.converge = Converge::Tight;
         }
@@ -341,6 +350,7 @@ impl Rung {
             }
             Rung::Damped => q.relax.omega_line = (0.6 * p.relax.omega_line).min(0.3),
             Rung::LightDamping => q.relax.omega_line = LIGHT_DAMPING,
+            Rung::Unfrozen => q.freeze_band = false,
             Rung::Distributive => q.relax.xi_threshold = f64::INFINITY,
             Rung::DistributiveW | Rung::DistributiveWFiner => {
                 q.relax.xi_threshold = f64::INFINITY;
@@ -416,5 +426,20 @@ mod tests {
         );
         let name = Rung::LightDamping.name();
         assert!(name.contains(&format!("{LIGHT_DAMPING}")), "{name}");
+    }
+
+    #[test]
+    fn the_unfrozen_rung_unfreezes_the_band_and_changes_nothing_else() {
+        let p = MgParams::<crate::discrete::point::domain::PointDomainParams>::default();
+        assert!(p.freeze_band);
+        let q = Rung::Unfrozen.apply(&p);
+        assert!(!q.freeze_band);
+        assert_eq!(
+            MgParams {
+                freeze_band: true,
+                ..q
+            },
+            p
+        );
     }
 }

@@ -183,7 +183,14 @@ impl Contact for LineContact {
     }
 
     /// Injection of P, full weighting of the residual.
-    fn restrict(coarse: &mut LineLevel, fine: &LineLevel, r: &[f64], phys: &LinePhysics, h0: f64) {
+    fn restrict(
+        coarse: &mut LineLevel,
+        fine: &LineLevel,
+        r: &[f64],
+        phys: &LinePhysics,
+        h0: f64,
+        freeze: bool,
+    ) {
         let nc = coarse.len();
         for i in 0..nc {
             coarse.p[i] = fine.p[2 * i];
@@ -192,7 +199,8 @@ impl Contact for LineContact {
         coarse.f[0] = 0.0;
         coarse.f[nc - 1] = 0.0;
         for i in 1..nc - 1 {
-            coarse.frozen[i] = (2 * i - 1..=2 * i + 1).any(|k| fine.p[k] <= 0.0 || fine.frozen[k]);
+            coarse.frozen[i] =
+                freeze && (2 * i - 1..=2 * i + 1).any(|k| fine.p[k] <= 0.0 || fine.frozen[k]);
             let rr = 0.25 * r[2 * i - 1] + 0.5 * r[2 * i] + 0.25 * r[2 * i + 1];
             coarse.f[i] = coarse.reynolds(phys, i) + rr;
         }

@@ -6,13 +6,15 @@
 //! line; `H0`; `f` the rolling traction integral (H/2) dP/dX dX dY over the load integral P dX dY
 //! (Hertzian units); `load_error` against 2 pi k/3; plus `D` and `k`.
 //!
-//! With `fallback` on (the default) a solve that does not converge is retried with the line
-//! relaxation less damped ([`crate::solve::params::LIGHT_DAMPING`] instead of 0.5), then with W
-//! cycles (both with the stopping rule as given), then the line solver's ladder: tight
-//! convergence, line under-relaxation 0.3, then distributive relaxation everywhere, then that
-//! with W cycles. The reason names the attempt kept; the best failed attempt is returned with
-//! its status if none converges. A thin isoviscous film without a seed starts its FMG ascent
-//! from the Hertz pressure on the first level that resolves it ([`start`]).
+//! With `fallback` on (the default) a solve that does not converge is retried, where the coarse
+//! grids freeze a band along the cavitation boundary ([`multigrid::freezes`]), without that band;
+//! then with the line relaxation less damped ([`crate::solve::params::LIGHT_DAMPING`] instead of
+//! 0.5), then with W cycles (the three with the stopping rule as given), then the line solver's
+//! ladder: tight convergence, line under-relaxation 0.3, then distributive relaxation
+//! everywhere, then that with W cycles. The reason names the attempt kept; the best failed
+//! attempt is returned with its status if none converges. A thin isoviscous film without a seed
+//! starts its FMG ascent from the Hertz pressure on the first level that resolves it
+//! ([`start`]).
 
 pub mod jacobian;
 pub mod multigrid;
@@ -21,6 +23,7 @@ pub mod start;
 
 use crate::discrete::point::domain::PointDomainParams;
 use crate::discrete::point::domain::BIAS_CAUTION;
+use crate::discrete::point::operator::PointPhysics;
 use crate::model::case::PointCase;
 use crate::solve::ladder::run_rungs;
 use crate::solve::mixed::{set_mixed_outputs, solve_mixed, MixedState};
@@ -147,8 +150,9 @@ fn package(
 }
 
 /// The fallback ladder (module doc).
-const LADDER: [Rung; 7] = [
+const LADDER: [Rung; 8] = [
     Rung::Default,
+    Rung::Unfrozen,
     Rung::LightDamping,
     Rung::WCycles,
     Rung::Tight,
@@ -191,7 +195,13 @@ pub fn solve_point_seeded(
         }
     }
     let mut seed = seed;
-    run_rungs(&LADDER, &params.mg, params.fallback, |p| {
+    // Without a band to unfreeze, the unfrozen rung would repeat the first attempt.
+    let band = multigrid::freezes(&PointPhysics::from_case(case));
+    let ladder: Vec<Rung> = LADDER
+        .into_iter()
+        .filter(|r| band || *r != Rung::Unfrozen)
+        .collect();
+    run_rungs(&ladder, &params.mg, params.fallback, |p| {
         run(case, p, params.keep_fields, seed.take())
     })
 }

@@ -13,7 +13,8 @@
 //! the outlet region up to the cavitation boundary; from it on (a pressure spike next to the
 //! cavitation boundary, under-resolved on the coarse grids) coarse nodes whose fine 3 x 3
 //! neighbourhood touches the cavitated set or a frozen node are frozen (docs/method.md, "The free
-//! boundary on the coarse grids").
+//! boundary on the coarse grids"), unless [`MgParams::freeze_band`] is off (the fallback
+//! ladder's unfrozen rung).
 //! The coarsest level is solved at fixed H0 by semi-smooth Newton on its ~(n0-1)^2 unknowns. FMG
 //! (the driver in [`crate::solve::fmg`]) starts from the Hertz pressure with a full Newton solve
 //! and interpolates each level's result to the next (cubic along each direction).
@@ -167,9 +168,10 @@ pub struct PointExtra {
 /// docs/performance.md, "The free boundary on the point coarse grids".
 pub const FREEZE_ALPHA_BAR: f64 = 5.0;
 
-/// Whether the coarse grids freeze the band along the cavitation boundary (alpha_bar from
-/// [`FREEZE_ALPHA_BAR`] on).
-fn freezes(phys: &PointPhysics) -> bool {
+/// Whether the coarse grids of a solve of these physics freeze the band along the cavitation
+/// boundary (alpha_bar from [`FREEZE_ALPHA_BAR`] on) unless its parameters say otherwise
+/// ([`crate::solve::params::MgParams::freeze_band`]).
+pub fn freezes(phys: &PointPhysics) -> bool {
     phys.fluid.alpha_bar >= FREEZE_ALPHA_BAR
 }
 
@@ -226,6 +228,7 @@ impl Contact for PointContact {
         r: &[f64],
         phys: &PointPhysics,
         h0: f64,
+        freeze: bool,
     ) {
         for j in 0..coarse.ny {
             for i in 0..coarse.nx {
@@ -242,7 +245,6 @@ impl Contact for PointContact {
         );
         let cl = &*coarse;
         let (nx, interior) = (fine.nx, |j: usize| j > 0 && j + 1 < cl.ny);
-        let freeze = freezes(phys);
         for_each_row(cl.parallel, &mut frozen, cl.nx, |j, frozen| {
             if interior(j) {
                 for (i, fr) in frozen.iter_mut().enumerate().take(cl.nx - 1).skip(1) {
@@ -378,7 +380,7 @@ impl Contact for PointContact {
         seed.matches(&mg.levels[l].x, &mg.levels[l].y)
     }
     fn frozen_band(mg: &PointMultigrid) -> bool {
-        freezes(&mg.phys)
+        mg.params.freeze_band && freezes(&mg.phys)
     }
     fn fmg_interpolate(mg: &mut PointMultigrid, l: usize) {
         let (lo, hi) = mg.levels.split_at_mut(l);
