@@ -195,13 +195,11 @@ pub fn solve_point_seeded(
         }
     }
     let mut seed = seed;
-    // Without a band to unfreeze, the unfrozen rung would repeat the first attempt.
-    let band = multigrid::freezes(&PointPhysics::from_case(case));
-    let ladder: Vec<Rung> = LADDER
-        .into_iter()
-        .filter(|r| band || *r != Rung::Unfrozen)
-        .collect();
-    run_rungs(&ladder, &params.mg, params.fallback, |p| {
+    // Where the physics freeze no band (alpha_bar < 5), the settings say so: the unfrozen rung
+    // then changes nothing, and `run_rungs` skips it as it skips any such rung.
+    let mut mg = params.mg;
+    mg.freeze_band &= multigrid::freezes(&PointPhysics::from_case(case));
+    run_rungs(&LADDER, &mg, params.fallback, |p| {
         run(case, p, params.keep_fields, seed.take())
     })
 }
