@@ -10,13 +10,16 @@
 //! - circular M = 200, L = 10 and M = 1000, L = 0 on 513^2: converged, each in at most 2 s;
 //! - one 513^2 (and 1025^2) solve on 2 threads (zebra rows) at least 1.7 times faster.
 //!
-//! Each line of the summary says `met` or `NOT met`.
+//! Each line of the summary says `met` or `NOT met`. The cost of one work unit is split into
+//! its phases (relaxation, deformation product, residual, transfers, coarsest Newton,
+//! [`ehlmap::solve::phases::PhaseTimes`]) from one more solve of each benchmark case.
 
 mod common;
 use common::{median, time, verdict};
 use ehlmap::model::case::{LineCase, PointCase};
 use ehlmap::solve::line::{solve_line, LineSolveParams};
 use ehlmap::solve::params::Converge;
+use ehlmap::solve::phases::PhaseTimes;
 use ehlmap::solve::point::{solve_point, PointSolveParams};
 use ehlmap::solve::solution::Outputs;
 use std::time::Instant;
@@ -34,6 +37,21 @@ fn point(case: &PointCase, grid: usize, converge: Converge, parallel: bool) -> O
     p.mg.converge = converge;
     p.mg.parallel = parallel;
     solve_point(case, &p).outputs
+}
+
+/// One line of the per-work-unit table: a case's time per WU split into its phases (ms).
+fn split_line(name: &str, t: &PhaseTimes) -> String {
+    let p = t.per_work_unit();
+    format!(
+        "{name:<16} {:>8.3} {:>8.3} {:>8.3} {:>8.3} {:>8.3} {:>8.3} {:>8.3}   {t}",
+        1e3 * p.total,
+        1e3 * p.relaxation,
+        1e3 * p.deformation,
+        1e3 * p.residual,
+        1e3 * p.transfers,
+        1e3 * p.coarsest,
+        1e3 * p.other(),
+    )
 }
 
 fn main() {
@@ -160,6 +178,24 @@ fn main() {
             t1 / t2,
             verdict(t1 / t2 >= 1.7)
         ));
+    }
+
+    println!("\none work unit split into phases (ms per WU; one more solve per case, one thread):");
+    println!(
+        "{:<16} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8}",
+        "case", "total", "relax", "deform", "residual", "transfer", "coarsest", "other"
+    );
+    let mut lp = LineSolveParams::default();
+    lp.mg.grid = 4097;
+    println!(
+        "{}",
+        split_line("line 4097", &solve_line(&lc, &lp).info.phases)
+    );
+    for grid in [129usize, 257, 513, 1025] {
+        let mut pp = PointSolveParams::default();
+        pp.mg.grid = grid;
+        let t = solve_point(&pc, &pp).info.phases;
+        println!("{}", split_line(&format!("point {grid}^2"), &t));
     }
 
     println!("\ntargets:");

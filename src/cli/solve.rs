@@ -130,6 +130,17 @@ fn plot_arg(dir: &std::path::Path, case: &Case, s: &Solution) -> Result<(), CliE
 }
 
 /// Run `ehlmap solve`.
+/// The time split of the answering solve and its cost per work unit (`--trace`, stderr).
+fn trace_phases(t: &ehlmap::solve::phases::PhaseTimes) {
+    let per = t.per_work_unit();
+    eprintln!(
+        "time split: {t}; {:.2} ms per work unit ({:.1} work units, {:.3} s)",
+        1e3 * per.total,
+        t.work_units,
+        t.total
+    );
+}
+
 pub fn run_solve(a: &SolveArgs) -> Result<(), CliError> {
     check_flags(a)?;
     let case = case_arg(a)?;
@@ -137,6 +148,9 @@ pub fn run_solve(a: &SolveArgs) -> Result<(), CliError> {
     check_solve_memory(a, &case, &params)?;
     check_outputs(a)?;
     let s = solve_arg(a, &case, &params)?;
+    if a.trace {
+        trace_phases(&s.info.phases);
+    }
     let written = write_fields_arg(a, &case, &s);
     let plotted = match &a.plot {
         Some(dir) => plot_arg(dir, &case, &s),

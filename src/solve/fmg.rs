@@ -130,6 +130,10 @@ pub trait Fas {
     fn restart_acceleration(&mut self) {}
     /// Work units spent so far (relaxation sweeps in finest-grid equivalents).
     fn work_units(&self) -> f64;
+    /// Where the time went so far ([`crate::solve::phases::PhaseTimes`], `total` not set).
+    fn phases(&self) -> crate::solve::phases::PhaseTimes {
+        Default::default()
+    }
     /// Points (per direction for point contacts) of level `l`.
     fn points(&self, l: usize) -> usize;
     /// The solve's info: its status and reason, the finest level's history, the cost since
@@ -141,16 +145,22 @@ pub trait Fas {
         reason: String,
         history: Vec<CycleRecord>,
     ) -> SolveInfo {
+        let wall_s = start.elapsed().as_secs_f64();
         SolveInfo {
             status,
             reason,
             history,
             work_units: self.work_units(),
-            wall_s: start.elapsed().as_secs_f64(),
+            wall_s,
             grid: self.points(self.top()),
             levels: self.top() + 1,
             algebraic_error: None,
             discretisation_error: None,
+            phases: crate::solve::phases::PhaseTimes {
+                total: wall_s,
+                work_units: self.work_units(),
+                ..self.phases()
+            },
         }
     }
 }

@@ -14,6 +14,7 @@ pub mod mixed;
 pub mod multilevel;
 pub mod newton;
 pub mod params;
+pub mod phases;
 pub mod point;
 pub mod relax;
 pub mod single_grid;
@@ -99,6 +100,10 @@ pub struct SolveInfo {
     /// Fast convergence: the relative discretisation error of H_c and H_min (the larger)
     /// estimated from the finest level and the next coarser one, |Q_h - Q_2h| / (3 |Q_h|).
     pub discretisation_error: Option<f64>,
+    /// Where the wall time of the multigrid solve that gave the answer went
+    /// ([`phases::PhaseTimes`]; zeros for an answer without a multigrid solve).
+    #[serde(default)]
+    pub phases: phases::PhaseTimes,
 }
 
 /// One multigrid cycle as an observer sees it: the FMG level (0 the coarsest), the cycle's index

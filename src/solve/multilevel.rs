@@ -21,6 +21,7 @@ use crate::solve::newton::{
     newton_solve, NewtonLevel, NewtonOutcome, NewtonParams, MULTIGRID_STALL_WINDOW,
 };
 use crate::solve::params::{Converge, FinerCoarsest, MgParams};
+use crate::solve::phases::{Phase, PhaseTimes};
 use crate::solve::{CycleRecord, Observer, SolveInfo};
 
 /// Newton iterations allowed to a coarsest-level solve with the load equation after one has
@@ -49,6 +50,9 @@ pub trait GridLevel: NewtonLevel {
     fn inject_field(&self, fine: &Self, fine_field: &[f64]) -> Vec<f64>;
     /// The area of one cell: the load is cell_area x sum P.
     fn cell_area(&self) -> f64;
+    /// Seconds this level has spent in deformation products so far
+    /// ([`crate::solve::phases::PhaseTimes`]).
+    fn deformation_seconds(&self) -> f64;
 }
 
 /// `impl GridLevel` for a level type with the fields `p`, `film`, `delta`, `g` and the methods
@@ -85,6 +89,9 @@ macro_rules! grid_level {
             }
             fn cell_area(&self) -> f64 {
                 self.cell_area()
+            }
+            fn deformation_seconds(&self) -> f64 {
+                self.deform_seconds
             }
         }
     };
@@ -183,6 +190,10 @@ pub struct Multigrid<C: Contact> {
     pub(crate) p_hat: Vec<Vec<f64>>,
     /// Relaxation sweeps in finest-grid equivalents.
     pub work_units: f64,
+    /// Where the time of the current solve went (`total` is set by the solve's info).
+    pub phases: PhaseTimes,
+    /// A timed step is running: the steps inside it are charged to its phase.
+    timing: bool,
     /// Estimate of d(load)/dH0 from the coarsest level.
     pub(crate) load_slope: f64,
     /// The last coarsest-level solve with the load equation failed: the coarsest level was
@@ -288,6 +299,8 @@ impl<C: Contact> Multigrid<C> {
             params: *params,
             p_hat,
             work_units: 0.0,
+            phases: PhaseTimes::default(),
+            timing: false,
             load_slope: -1.0,
             coarse_load_failed: false,
             coarse_backup,
@@ -315,8 +328,24 @@ impl<C: Contact> Multigrid<C> {
 
     /// One relaxation sweep on level `l`, counted in work units.
     pub fn relax_level(&mut self, l: usize) {
-        let cost = C::sweep(self, l);
+        let cost = self.timed(Phase::Relaxation, |mg| C::sweep(mg, l));
         self.work_units += cost;
+    }
+
+    /// Run the step `f`, its time charged to `phase` and its levels' deformation products to
+    /// the deformation ([`PhaseTimes::charge`]); inside another timed step, to that one's.
+    pub(crate) fn timed<R>(&mut self, phase: Phase, f: impl FnOnce(&mut Self) -> R) -> R {
+        if self.timing {
+            return f(self);
+        }
+        self.timing = true;
+        let deform = |mg: &Self| -> f64 { mg.levels.iter().map(|l| l.deformation_seconds()).sum() };
+        let (start, d0) = (std::time::Instant::now(), deform(self));
+        let r = f(self);
+        let d = deform(self) - d0;
+        self.phases.charge(phase, start, d);
+        self.timing = false;
+        r
     }
 
     /// Solve the coarsest level's FAS problem by Newton: for P and H0 with the load equation
@@ -330,6 +359,11 @@ impl<C: Contact> Multigrid<C> {
     /// the cycle. Under fast convergence each solve may stop once its residual has fallen by
     /// [`crate::solve::params::MgParams::coarse_rel_tol`].
     fn coarse_solve(&mut self) {
+        self.timed(Phase::Coarsest, Self::coarse_solve_untimed)
+    }
+
+    /// [`Multigrid::coarse_solve`] without its timer.
+    fn coarse_solve_untimed(&mut self) {
         self.coarse_backup.copy_from_slice(self.levels[0].p());
         let free = self.params.converge == Converge::Fast;
         for fix_h0 in if free {
@@ -376,17 +410,23 @@ impl<C: Contact> Multigrid<C> {
     /// The coarse problem of level `l`: residual, injection, right-hand sides.
     fn restrict(&mut self, l: usize) {
         let freeze = C::frozen_band(self);
-        let (lo, hi) = self.levels.split_at_mut(l);
-        let (coarse, fine) = (&mut lo[l - 1], &mut hi[0]);
-        let mut r = std::mem::take(fine.delta_mut());
         // The full residual, cavitated nodes included: there it is the complementarity margin
         // (L - f < 0), which keeps the coarse problem strictly cavitated where the fine one is;
         // zeroing it would make P = 0 a degenerate coarse solution.
-        fine.residual_into(&self.phys, false, &mut r);
-        C::restrict(coarse, fine, &r, &self.phys, self.h0, freeze);
-        coarse.set_load_rhs(coarse.load_sum() + (fine.load_rhs() - fine.load_sum()));
-        self.p_hat[l - 1].copy_from_slice(coarse.p());
-        *fine.delta_mut() = r;
+        let r = self.timed(Phase::Residual, |mg| {
+            let fine = &mut mg.levels[l];
+            let mut r = std::mem::take(fine.delta_mut());
+            fine.residual_into(&mg.phys, false, &mut r);
+            r
+        });
+        self.timed(Phase::Transfers, |mg| {
+            let (lo, hi) = mg.levels.split_at_mut(l);
+            let (coarse, fine) = (&mut lo[l - 1], &mut hi[0]);
+            C::restrict(coarse, fine, &r, &mg.phys, mg.h0, freeze);
+            coarse.set_load_rhs(coarse.load_sum() + (fine.load_rhs() - fine.load_sum()));
+            mg.p_hat[l - 1].copy_from_slice(coarse.p());
+        });
+        *self.levels[l].delta_mut() = r;
     }
 
     /// One FAS cycle with level `l` as the finest (see the module docs).
@@ -402,16 +442,10 @@ impl<C: Contact> Multigrid<C> {
         for _ in 0..self.params.cycle.gamma() {
             self.fas_cycle(l - 1);
         }
-        {
-            let (lo, hi) = self.levels.split_at_mut(l);
-            C::correct(
-                &lo[l - 1],
-                &self.p_hat[l - 1],
-                &mut hi[0],
-                &self.phys,
-                self.h0,
-            );
-        }
+        self.timed(Phase::Transfers, |mg| {
+            let (lo, hi) = mg.levels.split_at_mut(l);
+            C::correct(&lo[l - 1], &mg.p_hat[l - 1], &mut hi[0], &mg.phys, mg.h0);
+        });
         for _ in 0..self.params.post {
             self.relax_level(l);
         }
@@ -420,6 +454,11 @@ impl<C: Contact> Multigrid<C> {
     /// Convergence measures of level `l` after a cycle: the mean |f - L| over the pressurised
     /// nodes, the relative load error, the central film (Moes units) and the work so far.
     pub fn record(&mut self, l: usize) -> CycleRecord {
+        self.timed(Phase::Residual, |mg| mg.record_untimed(l))
+    }
+
+    /// [`Multigrid::record`] without its timer.
+    fn record_untimed(&mut self, l: usize) -> CycleRecord {
         let ic = C::centre_index(self, l);
         let h_scale = C::h_scale(self);
         let fine = &mut self.levels[l];
@@ -442,6 +481,7 @@ impl<C: Contact> Multigrid<C> {
     /// to the tolerances ([`crate::solve::fmg::fmg_solve`]), as `params.converge` says.
     pub fn solve(&mut self) -> SolveInfo {
         self.anderson.reset();
+        self.phases = PhaseTimes::default();
         match self.params.converge {
             Converge::Fast => fmg_fast_solve(self),
             Converge::Tight => fmg_solve(self),
@@ -464,13 +504,13 @@ impl<C: Contact> Fas for Multigrid<C> {
         C::initialise(self)
     }
     fn start_coarse(&mut self, with_slope: bool) -> NewtonOutcome {
-        C::start_coarse(self, with_slope)
+        self.timed(Phase::Coarsest, |mg| C::start_coarse(mg, with_slope))
     }
     fn load_slope(&self) -> f64 {
         self.load_slope
     }
     fn fmg_interpolate(&mut self, l: usize) {
-        C::fmg_interpolate(self, l)
+        self.timed(Phase::Transfers, |mg| C::fmg_interpolate(mg, l))
     }
     fn relax(&mut self, l: usize) {
         self.relax_level(l)
@@ -560,6 +600,9 @@ impl<C: Contact> Fas for Multigrid<C> {
     }
     fn work_units(&self) -> f64 {
         self.work_units
+    }
+    fn phases(&self) -> PhaseTimes {
+        self.phases
     }
     fn restart_acceleration(&mut self) {
         self.anderson.reset();

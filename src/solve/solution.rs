@@ -501,6 +501,7 @@ impl Solution {
             levels: outputs.levels,
             algebraic_error: outputs.algebraic_error,
             discretisation_error,
+            phases: Default::default(),
         };
         Solution {
             outputs,

@@ -43,6 +43,9 @@ pub struct LineLevel {
     deform: DeformPlan1d,
     /// Compute the deformation by the O(N^2) direct sum instead of the FFT (baseline).
     pub direct_deformation: bool,
+    /// Seconds spent in this level's deformation products so far
+    /// ([`crate::solve::phases::PhaseTimes::deformation`]).
+    pub deform_seconds: f64,
 }
 
 deref_nodes!(LineLevel);
@@ -60,6 +63,7 @@ impl LineLevel {
             deform: DeformPlan1d::new(&kernel),
             kernel,
             direct_deformation: false,
+            deform_seconds: 0.0,
         }
     }
 
@@ -81,12 +85,16 @@ impl LineLevel {
     /// Recompute H (by the fast product), rho and eps from P and H0.
     pub fn update_film(&mut self, phys: &LinePhysics, h0: f64) {
         let n = self.len();
+        let start = std::time::Instant::now();
         if phys.elastic && self.direct_deformation {
             direct_product(&self.kernel, &self.nodes.p, &mut self.nodes.work);
         } else if phys.elastic {
             self.deform.apply(&self.nodes.p, &mut self.nodes.work);
         } else {
             self.work.fill(0.0);
+        }
+        if phys.elastic {
+            self.deform_seconds += start.elapsed().as_secs_f64();
         }
         // Mixed lubrication: the asperity deformation joins the fluid's.
         let nodes = &mut self.nodes;
@@ -104,11 +112,15 @@ impl LineLevel {
     pub fn deformation_of(&mut self, phys: &LinePhysics, field: &[f64], out: &mut [f64]) {
         if !phys.elastic {
             out.fill(0.0);
-        } else if self.direct_deformation {
+            return;
+        }
+        let start = std::time::Instant::now();
+        if self.direct_deformation {
             direct_product(&self.kernel, field, out);
         } else {
             self.deform.apply(field, out);
         }
+        self.deform_seconds += start.elapsed().as_secs_f64();
     }
 
     /// `fine_field` (on the nodes of a finer level of the same domain) at this level's nodes.

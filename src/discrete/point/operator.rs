@@ -124,6 +124,9 @@ pub struct PointLevel {
     pub gap: Vec<f64>,
     /// Compute the deformation by the O(N^2) direct sum instead of the FFT (baseline).
     pub direct_deformation: bool,
+    /// Seconds spent in this level's deformation products so far
+    /// ([`crate::solve::phases::PhaseTimes::deformation`]).
+    pub deform_seconds: f64,
     /// Compute the film, the coefficients and the residual on the rayon pool (the same values
     /// to the bit as the serial loops, whatever the number of threads).
     pub parallel: bool,
@@ -171,6 +174,7 @@ impl PointLevel {
             kernel,
             gap,
             direct_deformation: false,
+            deform_seconds: 0.0,
             parallel: false,
             far: None,
             h0: 0.0,
@@ -235,6 +239,7 @@ impl PointLevel {
     /// for a `parallel` level), plus the asperity deformation in mixed lubrication.
     pub fn deformation(&mut self, phys: &PointPhysics) {
         if phys.elastic {
+            let start = std::time::Instant::now();
             if self.direct_deformation {
                 direct_product2d(
                     &self.kernel,
@@ -254,6 +259,7 @@ impl PointLevel {
                     *w *= phys.coef;
                 }
             });
+            self.deform_seconds += start.elapsed().as_secs_f64();
         } else {
             self.work.fill(0.0);
         }
@@ -270,6 +276,7 @@ impl PointLevel {
             out.fill(0.0);
             return;
         }
+        let start = std::time::Instant::now();
         if self.direct_deformation {
             direct_product2d(&self.kernel, self.nx, self.ny, field, out);
         } else {
@@ -278,6 +285,7 @@ impl PointLevel {
         for w in out.iter_mut() {
             *w *= phys.coef;
         }
+        self.deform_seconds += start.elapsed().as_secs_f64();
     }
 
     /// `fine_field` (on the nodes of a finer level of the same domain) at this level's nodes.
