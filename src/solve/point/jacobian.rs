@@ -143,6 +143,23 @@ impl PointJacRow {
         v
     }
 
+    /// dL_ij/dP_ij, the diagonal: [`PointJacRow::entry`] at (i, j) to the bit (the same sum in
+    /// the same order; the zero weights that `entry` skips add exact zeros here); `win` holds
+    /// offsets up to at least 2.
+    #[inline]
+    pub fn diagonal(&self, win: &KernelWindow) -> f64 {
+        let mut v = 0.0;
+        if self.coef != 0.0 {
+            let r = win.reach;
+            let [g0, g1, g2, g3] = self.g_h;
+            let [gy0, gy1] = self.g_y;
+            let (k0, k1, k2, ky) = (win.row0[r], win.row0[r + 1], win.row0[r + 2], win.row1[r]);
+            let s = 0.0 + g0 * k2 + g1 * k1 + g2 * k0 + g3 * k1;
+            v = self.coef * (s + gy0 * ky + gy1 * ky);
+        }
+        v + self.local[2]
+    }
+
     /// dL_ij/dP at the nodes (k, j) of the row itself for k in lo..=hi (within
     /// [`KernelWindow::reach`] of i), into `out[k]`: the values of [`PointJacRow::entry`],
     /// computed together (the zero weights that `entry` skips add exact zeros here, so the values
@@ -375,6 +392,8 @@ mod tests {
             for (k, &o) in out.iter().enumerate().take(hi + 1).skip(lo) {
                 assert_eq!(o.to_bits(), row.entry(&lv.kernel, lv.nx, k, j).to_bits());
             }
+            let d = row.entry(&lv.kernel, lv.nx, i, j);
+            assert_eq!(row.diagonal(&win).to_bits(), d.to_bits());
         }
         // So are the whole dense rows of the Jacobian.
         for (r, &c) in unknowns.iter().enumerate() {

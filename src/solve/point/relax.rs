@@ -158,7 +158,7 @@ fn row_changes(
             rows.push(PointJacRow::pinned(i, j));
         } else {
             let row = PointJacRow::new(lv, phys, i, j);
-            let d = row.entry(&lv.kernel, nx, i, j);
+            let d = row.diagonal(window);
             kind[i] = node_kind(false, lv.p[c], r, d);
             rows.push(row);
         }
@@ -202,7 +202,7 @@ fn row_changes(
             undistributed(rhs, jset, i)
         } else {
             // A zero pivot: a damped point update from the diagonal alone.
-            let d = rows[i - 1].entry(&lv.kernel, nx, i, j);
+            let d = rows[i - 1].diagonal(window);
             if d < 0.0 {
                 (lv.f[c] - lv.reynolds(phys, i, j)) / d
             } else {
