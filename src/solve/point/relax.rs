@@ -19,7 +19,7 @@
 
 use crate::discrete::point::operator::{PointLevel, PointPhysics};
 use crate::solve::banded::solve_banded;
-use crate::solve::point::jacobian::{KernelWindow, PointJacRow};
+use crate::solve::point::jacobian::{KernelWindow, PointJacRow, RowDerivatives};
 use crate::solve::relax::{
     distributed, distributed_row, mirror_kernel, node_kind, pinned_row, relaxed, undistributed,
     viscosity_step_limit, xi, Kind, RelaxParams,
@@ -38,6 +38,8 @@ pub struct PointScratch {
     ent: Vec<f64>,
     /// The kernel near the diagonal, in order.
     window: KernelWindow,
+    /// The nodal derivatives of the row.
+    derivs: RowDerivatives,
     change: Vec<f64>,
     /// The changes of one colour in zebra order.
     zebra: Vec<f64>,
@@ -143,32 +145,50 @@ fn row_changes(
         ent,
         change,
         window,
+        derivs,
         ..
     } = s;
     window.fill(&lv.kernel, nx, (bw + 3).min(nx - 1));
-    rows.clear();
     kind.clear();
     kind.resize(nx, Kind::Frozen);
     rhs.clear();
     rhs.resize(m, 0.0);
+    // The residuals, and the kinds of the nodes that need no Jacobian row: frozen, or at P = 0
+    // with r >= 0 (cavitated whatever its diagonal, see node_kind); the others marked Active
+    // until their diagonal decides.
+    let mut relaxed_nodes = nx..=0;
     for i in 1..nx - 1 {
         let c = lv.at(i, j);
         let r = lv.f[c] - lv.reynolds(phys, i, j);
         rhs[i - 1] = r;
-        // A frozen node, or one at P = 0 with r >= 0 (cavitated whatever its diagonal, see
-        // node_kind), needs no Jacobian row.
-        if lv.frozen[c] || (lv.p[c] <= 0.0 && r >= 0.0) {
-            kind[i] = if lv.frozen[c] {
-                Kind::Frozen
-            } else {
-                Kind::Cavitated
-            };
-            rows.push(PointJacRow::pinned(i, j));
+        kind[i] = if lv.frozen[c] {
+            Kind::Frozen
+        } else if lv.p[c] <= 0.0 && r >= 0.0 {
+            Kind::Cavitated
         } else {
-            let row = PointJacRow::new(lv, phys, i, j);
+            relaxed_nodes = (*relaxed_nodes.start()).min(i)..=i;
+            Kind::Active
+        };
+    }
+    // Their Jacobian rows read the nodal derivatives at i - 2..=i + 1.
+    if !relaxed_nodes.is_empty() {
+        let (first, last) = relaxed_nodes.into_inner();
+        derivs.fill(
+            lv,
+            phys,
+            j,
+            first.saturating_sub(2)..=(last + 1).min(nx - 1),
+        );
+    }
+    rows.clear();
+    for i in 1..nx - 1 {
+        if kind[i] == Kind::Active {
+            let row = PointJacRow::in_row(lv, phys, i, j, derivs);
             let d = row.diagonal(window);
-            kind[i] = node_kind(false, lv.p[c], r, d);
+            kind[i] = node_kind(false, lv.p[lv.at(i, j)], rhs[i - 1], d);
             rows.push(row);
+        } else {
+            rows.push(PointJacRow::pinned(i, j));
         }
     }
     jset.clear();
