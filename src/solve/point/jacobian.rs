@@ -217,10 +217,13 @@ impl PointJacRow {
         } else {
             out.fill(0.0);
         }
-        for (t, &v) in self.local.iter().enumerate() {
-            if let Some(k) = (i + t).checked_sub(2).filter(|k| (lo..=hi).contains(k)) {
-                out[k - lo] += v;
-            }
+        // local[t] belongs to node k = i + t - 2, within lo..=hi for t in t_lo..=t_hi (lo <= i <= hi).
+        let (t_lo, t_hi) = ((lo + 2).saturating_sub(i), (hi + 2 - i).min(4));
+        for (o, &v) in out[i + t_lo - 2 - lo..]
+            .iter_mut()
+            .zip(&self.local[t_lo..=t_hi])
+        {
+            *o += v;
         }
     }
 

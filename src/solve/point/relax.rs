@@ -211,14 +211,9 @@ fn row_changes(
         let lo = i.saturating_sub(bw + 1).max(1);
         let hi = (i + bw + 1).min(nx - 2);
         rows[row].row_entries(window, lo, hi, ent);
+        // distributed_row reads lo..=hi and 0 or nx - 1 beyond them (never written: 0).
         let ent = &*ent;
-        distributed_row(a_row, i, bw, nx - 2, jset, |k| {
-            if k >= lo && k <= hi {
-                ent[k]
-            } else {
-                0.0
-            }
-        });
+        distributed_row(a_row, i, bw, nx - 2, jset, |k| ent[k]);
     }
     let solved = solve_banded(a, m, bw, rhs) && rhs.iter().all(|v| v.is_finite());
     change.clear();
