@@ -10,8 +10,9 @@
 //!   the means of the nodal ones ([`face`]); divided by h^2 it is the Poiseuille term.
 //! * [`wedge`]: sum_k w_k (rho H)_{c-k} with the upwind weights w of [`upwind`] (x only, stride 1);
 //!   divided by h it is the wedge term D_x(rho H).
-//! * [`deps_dh`], [`deps_dp`], [`jacobian_x`]: the derivatives a Jacobian row needs (see
-//!   [`jacobian_x`]).
+//! * [`deps_dh`], [`deps_dp`], [`drho`], [`jacobian_x`]: the derivatives a Jacobian row needs
+//!   (see [`jacobian_x`]); [`jacobian_x_with`] takes the nodal derivatives computed beforehand
+//!   ([`NodeDerivatives`]), with the same operations in the same order.
 //!
 //! Invariant: both contacts evaluate these terms only here, with the same operations in the same
 //! order, so their operators and Jacobians agree to the bit on equal data.
@@ -110,6 +111,44 @@ impl<'a> Fields<'a> {
     }
 }
 
+/// The derivatives of the nodal coefficients that [`jacobian_x`] reads at node c: d eps/dH
+/// ([`deps_dh`]) and d eps/dP ([`deps_dp`]) at c-1, c, c+1, and d rho/dP = rho d ln(rho)/dP at
+/// c, c-1, c-2 (index k for node c - k; computed only where the upwind weight w_k is non-zero).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NodeDerivatives {
+    /// d eps/dH at c-1, c, c+1.
+    pub deps_dh: [f64; 3],
+    /// d eps/dP at c-1, c, c+1.
+    pub deps_dp: [f64; 3],
+    /// d rho/dP at c - k.
+    pub drho: [f64; 3],
+}
+
+impl NodeDerivatives {
+    /// The derivatives at node c for the upwind weights w, from the fields.
+    #[inline]
+    pub fn at(fluid: &Fluid, f: Fields, c: usize, w: [f64; 3]) -> Self {
+        let mut d = NodeDerivatives::default();
+        for t in 0..3 {
+            let k = c - 1 + t;
+            d.deps_dh[t] = deps_dh(f.eps, f.film, k);
+            d.deps_dp[t] = deps_dp(fluid, f.eps, f.p, k);
+        }
+        for (k, &wk) in w.iter().enumerate() {
+            if wk != 0.0 {
+                d.drho[k] = drho(fluid, f.rho, f.p, c - k);
+            }
+        }
+        d
+    }
+}
+
+/// d rho_k/dP_k: rho d ln(rho)/dP ([`Fluid::dln_rho`]).
+#[inline]
+pub fn drho(fluid: &Fluid, rho: &[f64], p: &[f64], k: usize) -> f64 {
+    rho[k] * fluid.dln_rho(p[k])
+}
+
 /// The x-direction part of row c of the Jacobian of L: `g_h[m]` = dL/dH at nodes c-2..=c+1 and
 /// `local[m]` = the local dL/dP at nodes c-2..=c+2 (both indexed from c - 2), from
 /// * `dle` = dL/d eps at nodes c-1, c, c+1, through d eps/dH ([`deps_dh`]) and d eps/dP
@@ -128,19 +167,31 @@ pub fn jacobian_x(
     h: f64,
     dle: [f64; 3],
 ) -> ([f64; 4], [f64; 5]) {
+    jacobian_x_with(f, c, w, h, dle, &NodeDerivatives::at(fluid, f, c, w))
+}
+
+/// [`jacobian_x`] with the nodal derivatives given (`d` = [`NodeDerivatives::at`], e.g. taken
+/// from values computed once for a row of nodes): the same operations in the same order.
+#[inline]
+pub fn jacobian_x_with(
+    f: Fields,
+    c: usize,
+    w: [f64; 3],
+    h: f64,
+    dle: [f64; 3],
+    d: &NodeDerivatives,
+) -> ([f64; 4], [f64; 5]) {
     let mut g_h = [0.0; 4];
     let mut local = [0.0; 5];
-    for (t, &d) in dle.iter().enumerate() {
-        let k = c - 1 + t;
-        g_h[t + 1] += d * deps_dh(f.eps, f.film, k);
-        local[t + 1] += d * deps_dp(fluid, f.eps, f.p, k);
+    for (t, &dl) in dle.iter().enumerate() {
+        g_h[t + 1] += dl * d.deps_dh[t];
+        local[t + 1] += dl * d.deps_dp[t];
     }
     for (k, &wk) in w.iter().enumerate() {
         if wk != 0.0 {
             let q = c - k;
             g_h[2 - k] -= wk * f.rho[q] / h;
-            let drho = f.rho[q] * fluid.dln_rho(f.p[q]);
-            local[2 - k] -= wk * drho * f.wfilm[q] / h;
+            local[2 - k] -= wk * d.drho[k] * f.wfilm[q] / h;
         }
     }
     (g_h, local)

@@ -13,7 +13,9 @@
 
 use crate::discrete::point::far_field::{FarField, Slave};
 use crate::discrete::point::operator::{PointLevel, PointPhysics};
-use crate::discrete::stencil::{deps_dh, deps_dp, face, jacobian_x, upwind, Fields};
+use crate::discrete::stencil::{
+    deps_dh, deps_dp, drho, face, jacobian_x_with, upwind, Fields, NodeDerivatives,
+};
 use crate::solve::newton::{dense_jacobian, newton_level_common, NewtonLevel};
 use crate::solve::relax::mirror_kernel;
 use nalgebra::DMatrix;
@@ -33,6 +35,35 @@ pub struct PointJacRow {
 impl PointJacRow {
     /// The Jacobian row of the interior node (i, j) of `lv`.
     pub fn new(lv: &PointLevel, phys: &PointPhysics, i: usize, j: usize) -> Self {
+        Self::build::<true>(lv, phys, i, j, |f, c, w| {
+            NodeDerivatives::at(&phys.fluid, f, c, w)
+        })
+    }
+
+    /// [`PointJacRow::new`] with the nodal derivatives of row j taken from `row` (filled for
+    /// i - 2..=i + 1) and without the local terms of the rows j - 1 and j + 1 (left 0): for
+    /// [`PointJacRow::row_entries`] and [`PointJacRow::diagonal`], which read row j only and
+    /// then give the values of a row from `new` to the bit.
+    pub fn in_row(
+        lv: &PointLevel,
+        phys: &PointPhysics,
+        i: usize,
+        j: usize,
+        row: &RowDerivatives,
+    ) -> Self {
+        Self::build::<false>(lv, phys, i, j, |_, _, w| row.at(i, w))
+    }
+
+    /// The row, with the nodal derivatives from `derivs(fields, c, upwind weights)`, and the
+    /// local terms of the rows j - 1 and j + 1 when `Y`.
+    #[inline(always)]
+    fn build<const Y: bool>(
+        lv: &PointLevel,
+        phys: &PointPhysics,
+        i: usize,
+        j: usize,
+        derivs: impl FnOnce(Fields, usize, [f64; 3]) -> NodeDerivatives,
+    ) -> Self {
         let coef = if phys.elastic { phys.coef } else { 0.0 };
         if phys.dry {
             return PointJacRow {
@@ -64,15 +95,11 @@ impl PointJacRow {
         let dle = [0.5 * a, 0.5 * centre, 0.5 * b];
         let f = Fields::new(p, film, e, &lv.rho, lv.wedge_film());
         let w = upwind(phys.second_order, i);
-        let (g_h, mut local) = jacobian_x(&phys.fluid, f, c, w, lv.hx, dle);
+        let d = derivs(f, c, w);
+        let (g_h, mut local) = jacobian_x_with(f, c, w, lv.hx, dle, &d);
         let g_y = [
             0.5 * ay * deps_dh(ey, film, c - nx),
             0.5 * by * deps_dh(ey, film, c + nx),
-        ];
-        let fl = &phys.fluid;
-        let mut local_y = [
-            0.5 * ay * deps_dp(fl, ey, p, c - nx),
-            0.5 * by * deps_dp(fl, ey, p, c + nx),
         ];
         let exm = face(e, c - 1, c);
         let exp = face(e, c, c + 1);
@@ -81,8 +108,14 @@ impl PointJacRow {
         local[1] += exm / hx2;
         local[3] += exp / hx2;
         local[2] -= (exm + exp) / hx2 + (eym + eyp) / hy2;
-        local_y[0] += eym / hy2;
-        local_y[1] += eyp / hy2;
+        let mut local_y = [0.0; 2];
+        if Y {
+            let fl = &phys.fluid;
+            local_y = [
+                0.5 * ay * deps_dp(fl, ey, p, c - nx) + eym / hy2,
+                0.5 * by * deps_dp(fl, ey, p, c + nx) + eyp / hy2,
+            ];
+        }
         PointJacRow {
             i,
             j,
@@ -143,6 +176,23 @@ impl PointJacRow {
         v
     }
 
+    /// dL_ij/dP_ij, the diagonal: [`PointJacRow::entry`] at (i, j) to the bit (the same sum in
+    /// the same order; the zero weights that `entry` skips add exact zeros here); `win` holds
+    /// offsets up to at least 2.
+    #[inline]
+    pub fn diagonal(&self, win: &KernelWindow) -> f64 {
+        let mut v = 0.0;
+        if self.coef != 0.0 {
+            let r = win.reach;
+            let [g0, g1, g2, g3] = self.g_h;
+            let [gy0, gy1] = self.g_y;
+            let (k0, k1, k2, ky) = (win.row0[r], win.row0[r + 1], win.row0[r + 2], win.row1[r]);
+            let s = 0.0 + g0 * k2 + g1 * k1 + g2 * k0 + g3 * k1;
+            v = self.coef * (s + gy0 * ky + gy1 * ky);
+        }
+        v + self.local[2]
+    }
+
     /// dL_ij/dP at the nodes (k, j) of the row itself for k in lo..=hi (within
     /// [`KernelWindow::reach`] of i), into `out[k]`: the values of [`PointJacRow::entry`],
     /// computed together (the zero weights that `entry` skips add exact zeros here, so the values
@@ -167,10 +217,13 @@ impl PointJacRow {
         } else {
             out.fill(0.0);
         }
-        for (t, &v) in self.local.iter().enumerate() {
-            if let Some(k) = (i + t).checked_sub(2).filter(|k| (lo..=hi).contains(k)) {
-                out[k - lo] += v;
-            }
+        // local[t] belongs to node k = i + t - 2, within lo..=hi for t in t_lo..=t_hi (lo <= i <= hi).
+        let (t_lo, t_hi) = ((lo + 2).saturating_sub(i), (hi + 2 - i).min(4));
+        for (o, &v) in out[i + t_lo - 2 - lo..]
+            .iter_mut()
+            .zip(&self.local[t_lo..=t_hi])
+        {
+            *o += v;
         }
     }
 
@@ -242,6 +295,55 @@ impl KernelWindow {
         self.reach = reach;
         mirror_kernel(&kernel[..nx], reach, &mut self.row0);
         mirror_kernel(&kernel[nx..2 * nx], reach, &mut self.row1);
+    }
+}
+
+/// The nodal derivatives of one grid row that the x-direction Jacobian terms read
+/// ([`NodeDerivatives`]), computed once per node for all the Jacobian rows of the row
+/// ([`PointJacRow::in_row`]), indexed by i.
+#[derive(Default)]
+pub struct RowDerivatives {
+    deps_dh: Vec<f64>,
+    deps_dp: Vec<f64>,
+    drho: Vec<f64>,
+}
+
+impl RowDerivatives {
+    /// Fill for the nodes (i, j), i in `range` (the others left stale), of `lv`.
+    pub fn fill(
+        &mut self,
+        lv: &PointLevel,
+        phys: &PointPhysics,
+        j: usize,
+        range: std::ops::RangeInclusive<usize>,
+    ) {
+        let nx = lv.nx;
+        for v in [&mut self.deps_dh, &mut self.deps_dp, &mut self.drho] {
+            v.resize(nx, 0.0);
+        }
+        let fl = &phys.fluid;
+        for i in range {
+            let c = lv.at(i, j);
+            self.deps_dh[i] = deps_dh(&lv.eps, &lv.film, c);
+            self.deps_dp[i] = deps_dp(fl, &lv.eps, &lv.p, c);
+            self.drho[i] = drho(fl, &lv.rho, &lv.p, c);
+        }
+    }
+
+    /// [`NodeDerivatives::at`] of node i for the upwind weights w.
+    #[inline]
+    fn at(&self, i: usize, w: [f64; 3]) -> NodeDerivatives {
+        let mut d = NodeDerivatives {
+            deps_dh: [self.deps_dh[i - 1], self.deps_dh[i], self.deps_dh[i + 1]],
+            deps_dp: [self.deps_dp[i - 1], self.deps_dp[i], self.deps_dp[i + 1]],
+            drho: [0.0; 3],
+        };
+        for (k, &wk) in w.iter().enumerate() {
+            if wk != 0.0 {
+                d.drho[k] = self.drho[i - k];
+            }
+        }
+        d
     }
 }
 
@@ -374,6 +476,18 @@ mod tests {
             row.row_entries(&win, lo, hi, &mut out);
             for (k, &o) in out.iter().enumerate().take(hi + 1).skip(lo) {
                 assert_eq!(o.to_bits(), row.entry(&lv.kernel, lv.nx, k, j).to_bits());
+            }
+            let d = row.entry(&lv.kernel, lv.nx, i, j);
+            assert_eq!(row.diagonal(&win).to_bits(), d.to_bits());
+            // A row built from the row's nodal derivatives gives the same row entries.
+            let mut derivs = RowDerivatives::default();
+            derivs.fill(&lv, &phys, j, i.saturating_sub(2)..=i + 1);
+            let in_row = PointJacRow::in_row(&lv, &phys, i, j, &derivs);
+            assert_eq!(in_row.diagonal(&win).to_bits(), d.to_bits());
+            let mut out2 = vec![f64::NAN; lv.nx];
+            in_row.row_entries(&win, lo, hi, &mut out2);
+            for k in lo..=hi {
+                assert_eq!(out2[k].to_bits(), out[k].to_bits());
             }
         }
         // So are the whole dense rows of the Jacobian.

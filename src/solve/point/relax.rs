@@ -19,9 +19,9 @@
 
 use crate::discrete::point::operator::{PointLevel, PointPhysics};
 use crate::solve::banded::solve_banded;
-use crate::solve::point::jacobian::{KernelWindow, PointJacRow};
+use crate::solve::point::jacobian::{KernelWindow, PointJacRow, RowDerivatives};
 use crate::solve::relax::{
-    distributed, distributed_row, node_kind, pinned_row, relaxed, undistributed,
+    distributed, distributed_row, mirror_kernel, node_kind, pinned_row, relaxed, undistributed,
     viscosity_step_limit, xi, Kind, RelaxParams,
 };
 
@@ -38,11 +38,17 @@ pub struct PointScratch {
     ent: Vec<f64>,
     /// The kernel near the diagonal, in order.
     window: KernelWindow,
+    /// The nodal derivatives of the row.
+    derivs: RowDerivatives,
     change: Vec<f64>,
     /// The changes of one colour in zebra order.
     zebra: Vec<f64>,
     /// One row scratch per zebra job (rayon thread).
     jobs: Vec<PointScratch>,
+    /// The film correction: c dP of the relaxed row padded by `reach` zeros on both sides, and
+    /// the kernel rows dy = 0, 1, 2 mirrored over -reach..=reach ([`mirror_kernel`]).
+    scaled: Vec<f64>,
+    film_kernel: [Vec<f64>; 3],
 }
 
 /// One sweep of x-line relaxation over all interior rows: Gauss-Seidel from row to row, or, on a
@@ -98,13 +104,17 @@ pub fn point_line_sweep(
         return;
     }
     let reach = 2 * (rp.band + 1);
+    for (dy, m) in s.film_kernel.iter_mut().enumerate() {
+        let row = lv.kernel.get(dy * nx..(dy + 1) * nx).unwrap_or(&[]);
+        mirror_kernel(row, reach, m);
+    }
     for j in 1..ny - 1 {
         row_changes(lv, phys, rp, j, s);
         for i in 1..nx - 1 {
             let c = lv.at(i, j);
             lv.p[c] += s.change[i];
         }
-        local_film_update(lv, phys, j, reach, &s.change);
+        local_film_update(lv, phys, j, reach, s);
     }
     // Every changed row has set its rho and eta lambda: only H and eps are left to refresh.
     lv.update_film_fixed_coefficients(phys, h0);
@@ -135,32 +145,50 @@ fn row_changes(
         ent,
         change,
         window,
+        derivs,
         ..
     } = s;
     window.fill(&lv.kernel, nx, (bw + 3).min(nx - 1));
-    rows.clear();
     kind.clear();
     kind.resize(nx, Kind::Frozen);
     rhs.clear();
     rhs.resize(m, 0.0);
+    // The residuals, and the kinds of the nodes that need no Jacobian row: frozen, or at P = 0
+    // with r >= 0 (cavitated whatever its diagonal, see node_kind); the others marked Active
+    // until their diagonal decides.
+    let mut relaxed_nodes = nx..=0;
     for i in 1..nx - 1 {
         let c = lv.at(i, j);
         let r = lv.f[c] - lv.reynolds(phys, i, j);
         rhs[i - 1] = r;
-        // A frozen node, or one at P = 0 with r >= 0 (cavitated whatever its diagonal, see
-        // node_kind), needs no Jacobian row.
-        if lv.frozen[c] || (lv.p[c] <= 0.0 && r >= 0.0) {
-            kind[i] = if lv.frozen[c] {
-                Kind::Frozen
-            } else {
-                Kind::Cavitated
-            };
-            rows.push(PointJacRow::pinned(i, j));
+        kind[i] = if lv.frozen[c] {
+            Kind::Frozen
+        } else if lv.p[c] <= 0.0 && r >= 0.0 {
+            Kind::Cavitated
         } else {
-            let row = PointJacRow::new(lv, phys, i, j);
-            let d = row.entry(&lv.kernel, nx, i, j);
-            kind[i] = node_kind(false, lv.p[c], r, d);
+            relaxed_nodes = (*relaxed_nodes.start()).min(i)..=i;
+            Kind::Active
+        };
+    }
+    // Their Jacobian rows read the nodal derivatives at i - 2..=i + 1.
+    if !relaxed_nodes.is_empty() {
+        let (first, last) = relaxed_nodes.into_inner();
+        derivs.fill(
+            lv,
+            phys,
+            j,
+            first.saturating_sub(2)..=(last + 1).min(nx - 1),
+        );
+    }
+    rows.clear();
+    for i in 1..nx - 1 {
+        if kind[i] == Kind::Active {
+            let row = PointJacRow::in_row(lv, phys, i, j, derivs);
+            let d = row.diagonal(window);
+            kind[i] = node_kind(false, lv.p[lv.at(i, j)], rhs[i - 1], d);
             rows.push(row);
+        } else {
+            rows.push(PointJacRow::pinned(i, j));
         }
     }
     jset.clear();
@@ -183,14 +211,9 @@ fn row_changes(
         let lo = i.saturating_sub(bw + 1).max(1);
         let hi = (i + bw + 1).min(nx - 2);
         rows[row].row_entries(window, lo, hi, ent);
+        // distributed_row reads lo..=hi and 0 or nx - 1 beyond them (never written: 0).
         let ent = &*ent;
-        distributed_row(a_row, i, bw, nx - 2, jset, |k| {
-            if k >= lo && k <= hi {
-                ent[k]
-            } else {
-                0.0
-            }
-        });
+        distributed_row(a_row, i, bw, nx - 2, jset, |k| ent[k]);
     }
     let solved = solve_banded(a, m, bw, rhs) && rhs.iter().all(|v| v.is_finite());
     change.clear();
@@ -202,7 +225,7 @@ fn row_changes(
             undistributed(rhs, jset, i)
         } else {
             // A zero pivot: a damped point update from the diagonal alone.
-            let d = rows[i - 1].entry(&lv.kernel, nx, i, j);
+            let d = rows[i - 1].diagonal(window);
             if d < 0.0 {
                 (lv.f[c] - lv.reynolds(phys, i, j)) / d
             } else {
@@ -213,39 +236,31 @@ fn row_changes(
     }
 }
 
-/// Correct the film (and rho, eps) of rows j..=j+2 for the pressure changes `change` on row j,
-/// with the kernel kept within `reach` cells along x.
+/// Correct the film (and rho, eps) of rows j..=j+2 for the pressure changes `s.change` on row j,
+/// with the kernel kept within `reach` cells along x (`s.film_kernel` mirrored for this reach).
+///
+/// Node i of row j + dy gains c dP_k K(|i - k|, dy) for every interior k with |i - k| <= reach,
+/// added one after the other with k ascending; the nodes are computed a block at a time
+/// (the changes padded with zeros, whose terms add exact zeros to a non-zero film).
 fn local_film_update(
     lv: &mut PointLevel,
     phys: &PointPhysics,
     j: usize,
     reach: usize,
-    change: &[f64],
+    s: &mut PointScratch,
 ) {
     let (nx, ny) = (lv.nx, lv.ny);
     let law = phys.coefficients();
-    // (moved out for the loop, so the film can be borrowed beside it; put back below)
-    let kernel = std::mem::take(&mut lv.kernel);
+    let changed = if phys.elastic {
+        scale_changes(&s.change, phys.coef, reach, &mut s.scaled)
+    } else {
+        None
+    };
     for jj in j..(j + 3).min(ny - 1) {
         let dy = jj - j;
-        if phys.elastic {
-            // Scattered change by change: film_i += c dP_k K(|i - k|, dy) for |i - k| <= reach,
-            // the nodes at and after k (krow forward) and before it (krow backward).
-            let krow = &kernel[dy * nx..(dy + 1) * nx];
-            let film = &mut lv.film[jj * nx..(jj + 1) * nx];
-            for (k, &dpk) in change.iter().enumerate().take(nx - 1).skip(1) {
-                if dpk == 0.0 {
-                    continue;
-                }
-                let d = phys.coef * dpk;
-                let (lo, hi) = (k.saturating_sub(reach).max(1), (k + reach).min(nx - 2));
-                for (f, &kv) in film[k..=hi].iter_mut().zip(krow) {
-                    *f += d * kv;
-                }
-                for (f, &kv) in film[lo..k].iter_mut().rev().zip(&krow[1..]) {
-                    *f += d * kv;
-                }
-            }
+        if let Some((lo, hi)) = changed {
+            let film = &mut lv.nodes.film[jj * nx..(jj + 1) * nx];
+            add_window(&mut film[lo..=hi], &s.scaled[lo..], &s.film_kernel[dy]);
         }
         if dy == 0 {
             // The relaxed row: P changed.
@@ -263,5 +278,107 @@ fn local_film_update(
             }
         }
     }
-    lv.kernel = kernel;
+}
+
+/// c dP (`coef` c, `change` dP over a row of nodes, 0 at both ends) into `scaled`, padded with
+/// `reach` zeros on both sides; returns the interior nodes lo..=hi whose window of `reach`
+/// holds a non-zero change (None: no change).
+fn scale_changes(
+    change: &[f64],
+    coef: f64,
+    reach: usize,
+    scaled: &mut Vec<f64>,
+) -> Option<(usize, usize)> {
+    let nx = change.len();
+    let first = (1..nx - 1).find(|&k| change[k] != 0.0)?;
+    let last = (first..nx - 1).rev().find(|&k| change[k] != 0.0)?;
+    scaled.clear();
+    scaled.resize(nx + 2 * reach, 0.0);
+    for (d, &dpk) in scaled[reach + 1..].iter_mut().zip(&change[1..nx - 1]) {
+        *d = coef * dpk;
+    }
+    Some((
+        first.saturating_sub(reach).max(1),
+        (last + reach).min(nx - 2),
+    ))
+}
+
+/// `out[t] += d[t + q] m[q]` for q = 0, 1, ..., m.len() - 1 in turn, for every t (`d` holds
+/// out.len() + m.len() - 1 values at least): blocks of [`LANES`] consecutive outputs at once.
+#[inline]
+fn add_window(out: &mut [f64], d: &[f64], m: &[f64]) {
+    let taps = m.len();
+    for (b, block) in out.chunks_exact_mut(LANES).enumerate() {
+        let mut acc = [0.0; LANES];
+        acc.copy_from_slice(block);
+        let d = &d[b * LANES..][..LANES + taps - 1];
+        for (q, &mq) in m.iter().enumerate() {
+            let dq = &d[q..q + LANES];
+            for (a, &x) in acc.iter_mut().zip(dq) {
+                *a += x * mq;
+            }
+        }
+        block.copy_from_slice(&acc);
+    }
+    let done = out.len() - out.len() % LANES;
+    for (t, o) in out.iter_mut().enumerate().skip(done) {
+        for (&x, &mq) in d[t..t + taps].iter().zip(m) {
+            *o += x * mq;
+        }
+    }
+}
+
+/// Outputs per block of [`add_window`].
+const LANES: usize = 8;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::discrete::testing::lcg;
+
+    #[test]
+    fn film_correction_equals_the_scatter_to_the_bit() {
+        let mut seed = 5u64;
+        for (nx, reach) in [(40usize, 10usize), (9, 10), (33, 4), (130, 10), (12, 3)] {
+            let krow: Vec<f64> = (0..nx).map(|d| 1.0 / (1.0 + d as f64)).collect();
+            let mut m = vec![];
+            mirror_kernel(&krow, reach, &mut m);
+            for zeros in [0.0, 0.5, 0.9] {
+                let mut change = vec![0.0; nx];
+                for c in &mut change[1..nx - 1] {
+                    if lcg(&mut seed) >= zeros {
+                        *c = lcg(&mut seed) - 0.5;
+                    }
+                }
+                let film: Vec<f64> = (0..nx).map(|_| 0.1 + lcg(&mut seed)).collect();
+                // The scatter, change by change.
+                let mut want = film.clone();
+                let coef = 0.2026;
+                for (k, &dpk) in change.iter().enumerate().take(nx - 1).skip(1) {
+                    if dpk == 0.0 {
+                        continue;
+                    }
+                    let d = coef * dpk;
+                    let (lo, hi) = (k.saturating_sub(reach).max(1), (k + reach).min(nx - 2));
+                    for (f, &kv) in want[k..=hi].iter_mut().zip(&krow) {
+                        *f += d * kv;
+                    }
+                    for (f, &kv) in want[lo..k].iter_mut().rev().zip(&krow[1..]) {
+                        *f += d * kv;
+                    }
+                }
+                let mut got = film.clone();
+                let mut scaled = vec![];
+                if let Some((lo, hi)) = scale_changes(&change, coef, reach, &mut scaled) {
+                    add_window(&mut got[lo..=hi], &scaled[lo..], &m);
+                }
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(
+                    bits(&got),
+                    bits(&want),
+                    "nx {nx} reach {reach} zeros {zeros}"
+                );
+            }
+        }
+    }
 }
