@@ -133,7 +133,7 @@ fn plot_arg(dir: &std::path::Path, case: &Case, s: &Solution) -> Result<(), CliE
 /// The time split of the answering solve and its cost per work unit (`--trace`, stderr).
 fn trace_phases(t: &ehlmap::solve::phases::PhaseTimes) {
     let per = t.per_work_unit();
-    eprintln!(
+    note!(
         "time split: {t}; {:.2} ms per work unit ({:.1} work units, {:.3} s)",
         1e3 * per.total,
         t.work_units,
