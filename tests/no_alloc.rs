@@ -7,6 +7,7 @@
 use ehlmap::model::case::{LineCase, PointCase};
 use ehlmap::solve::line::multigrid::LineMultigrid;
 use ehlmap::solve::line::LineSolveParams;
+use ehlmap::solve::multilevel::{Contact, Multigrid};
 use ehlmap::solve::point::multigrid::PointMultigrid;
 use ehlmap::solve::point::PointSolveParams;
 use ehlmap::solve::Status;
@@ -70,23 +71,26 @@ fn the_counter_sees_an_allocation() {
     assert_eq!(n, 1);
 }
 
-#[test]
-fn point_sweeps_allocate_nothing_after_the_first_solve() {
-    let case = PointCase::new(20.0, 10.0, 1.0).expect("valid case");
-    let mut p = PointSolveParams::default();
-    p.mg.grid = 129;
-    let mut mg = PointMultigrid::new(&case, &p.mg);
+/// Three sweeps on every level above the coarsest of a solved multigrid allocate nothing.
+fn sweeps_allocate_nothing<C: Contact>(mut mg: Multigrid<C>, what: &str) {
     let info = mg.solve();
-    assert_eq!(info.status, Status::Converged, "{}", info.reason);
-    let top = mg.levels.len() - 1;
-    for l in 1..=top {
+    assert_eq!(info.status, Status::Converged, "{what}: {}", info.reason);
+    for l in 1..mg.levels.len() {
         let n = allocations(|| {
             for _ in 0..3 {
                 mg.relax_level(l);
             }
         });
-        assert_eq!(n, 0, "point level {l}: {n} allocations in three sweeps");
+        assert_eq!(n, 0, "{what} level {l}: {n} allocations in three sweeps");
     }
+}
+
+#[test]
+fn point_sweeps_allocate_nothing_after_the_first_solve() {
+    let case = PointCase::new(20.0, 10.0, 1.0).expect("valid case");
+    let mut p = PointSolveParams::default();
+    p.mg.grid = 129;
+    sweeps_allocate_nothing(PointMultigrid::new(&case, &p.mg), "point");
 }
 
 #[test]
@@ -94,16 +98,5 @@ fn line_sweeps_allocate_nothing_after_the_first_solve() {
     let case = LineCase::new(20.0, 10.0).expect("valid case");
     let mut p = LineSolveParams::default();
     p.mg.grid = 4097;
-    let mut mg = LineMultigrid::new(&case, &p.mg);
-    let info = mg.solve();
-    assert_eq!(info.status, Status::Converged, "{}", info.reason);
-    let top = mg.levels.len() - 1;
-    for l in 1..=top {
-        let n = allocations(|| {
-            for _ in 0..3 {
-                mg.relax_level(l);
-            }
-        });
-        assert_eq!(n, 0, "line level {l}: {n} allocations in three sweeps");
-    }
+    sweeps_allocate_nothing(LineMultigrid::new(&case, &p.mg), "line");
 }

@@ -7,6 +7,7 @@ use ehlmap::model::case::{Elasticity, LineCase, Models, PointCase};
 use ehlmap::solve::line::{solve_line, LineSolveParams};
 use ehlmap::solve::phases::PhaseTimes;
 use ehlmap::solve::point::{solve_point, PointSolveParams};
+use ehlmap::solve::solution::Solution;
 use ehlmap::solve::Status;
 
 fn rigid() -> Models {
@@ -49,6 +50,32 @@ fn check(t: &PhaseTimes, wall_s: f64, work_units: f64, elastic: bool, what: &str
     );
     let per = t.per_work_unit();
     assert!((per.total * t.work_units - t.total).abs() <= 1e-12 * t.total);
+}
+
+/// Solve twice: the first solve's split passes [`check`], and both give the same bits.
+fn check_twice(solve: impl Fn() -> Solution, elastic: bool, what: &str) {
+    let a = solve();
+    assert_eq!(
+        a.info.status,
+        Status::Converged,
+        "{what}: {}",
+        a.info.reason
+    );
+    check(
+        &a.info.phases,
+        a.info.wall_s,
+        a.info.work_units,
+        elastic,
+        what,
+    );
+    let b = solve();
+    assert_eq!(a.outputs.h_c.to_bits(), b.outputs.h_c.to_bits(), "{what}");
+    assert_eq!(
+        a.outputs.h_min.to_bits(),
+        b.outputs.h_min.to_bits(),
+        "{what}"
+    );
+    assert_eq!(a.info.work_units, b.info.work_units, "{what}");
 }
 
 #[test]
