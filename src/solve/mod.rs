@@ -17,6 +17,7 @@ pub mod params;
 pub mod phases;
 pub mod point;
 pub mod relax;
+pub mod seed;
 pub mod single_grid;
 pub mod solution;
 
