@@ -28,7 +28,9 @@
 //!   l-1's final values, e_d = max |Q_l - Q_(l-1)| / (3 |Q_l|);
 //! * the finest level stops when e_a <= max(min(e_d / 10, cap), tol_h) ([`FINEST_FRACTION`];
 //!   the cap is `max_algebraic`, by default [`MAX_ALGEBRAIC_ERROR`] = 1e-2) and its residual is within [`STOP_RESIDUAL_FACTOR`] of the
-//!   smallest its cycles reached, after at
+//!   smallest its cycles reached and H0 was not held over the cycle (where the coarsest
+//!   solve with the load equation failed, H0 moves by the secant step between cycles, and a
+//!   cycle at held H0 changes the film only through P: a rigid film not at all), after at
 //!   most `max_cycles` cycles (status max-iterations then); a coarser level when
 //!   e_a <= max(e_d, tol_h) ([`COARSE_FRACTION`]), after at most 2 `fmg_cycles` cycles.
 //!
@@ -302,7 +304,11 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
         // The cycle of the level's last damping: the contraction check starts again there.
         let mut damped_at = 0;
         for k in 0..max {
+            let h0_before = s.h0();
             let rec = cycle_once(s, l, k);
+            // H0 held over the cycle (its coarsest solve with the load equation failed and no
+            // secant step came before it): the change of H then shows P's part only.
+            let h0_held = s.coarse_load_failed() && s.h0() == h0_before;
             if final_level {
                 history.push(rec);
             }
@@ -356,7 +362,8 @@ pub fn fmg_fast_solve<S: Fas>(s: &mut S) -> SolveInfo {
                 f64::INFINITY
             };
             let goal = (fraction * disc.unwrap_or(0.0)).min(cap).max(c.tol_h);
-            let settled = !final_level || rec.residual <= STOP_RESIDUAL_FACTOR * smallest_res;
+            let settled =
+                !final_level || (rec.residual <= STOP_RESIDUAL_FACTOR * smallest_res && !h0_held);
             if alg <= goal && settled {
                 if final_level {
                     status = Status::Converged;

@@ -172,15 +172,17 @@ macro_rules! newton_level_common {
 pub(crate) use newton_level_common;
 
 /// Estimate dG/dH0 (G = load sum - g) on a level solved at `h0`: solve again at fixed H0 + dh
-/// and difference the load; P and the film are restored afterwards. Falls back to `fallback`
-/// when that solve fails or the slope is not negative. Returns the slope and the Newton
-/// iterations spent.
+/// (stopped at the absolute tolerance or once the residual has fallen by `rel_tol`, 0 for
+/// none) and difference the load; P and the film are restored afterwards. Falls back to
+/// `fallback` when that solve fails or the slope is not negative. Returns the slope and the
+/// Newton iterations spent.
 pub fn load_slope<T: NewtonLevel>(
     lv: &mut T,
     phys: &T::Phys,
     h0: f64,
     dh: f64,
     fallback: f64,
+    rel_tol: f64,
 ) -> (f64, usize) {
     let saved = lv.pressure().to_vec();
     let e0 = lv.load_sum() - lv.load_rhs();
@@ -188,6 +190,7 @@ pub fn load_slope<T: NewtonLevel>(
     let np = NewtonParams {
         fix_h0: true,
         stall_window: MULTIGRID_STALL_WINDOW,
+        rel_tol,
         ..NewtonParams::default()
     };
     let out = newton_solve(lv, phys, &mut h1, &np);

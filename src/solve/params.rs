@@ -182,7 +182,7 @@ pub struct MgParams<D> {
     /// Fast convergence: a cycle's coarsest-level Newton solve also stops once its scaled
     /// residual has fallen by this factor ([`crate::solve::newton::NewtonParams::rel_tol`]; 0:
     /// only at the absolute tolerance). Point contacts take
-    /// [`crate::solve::point::multigrid::POINT_COARSE_REL_TOL`], line contacts 0 (with a relative
+    /// [`crate::solve::point::multigrid::POINT_COARSE_REL_TOL`] = 1e-2, line contacts 0 (with a relative
     /// stop, line M = 1e4, L = 40 no longer converged on 16385 points; docs/performance.md).
     pub coarse_rel_tol: f64,
     /// Point contacts: whether the coarse grids freeze the band along the cavitation boundary

@@ -296,7 +296,7 @@ impl Contact for LineContact {
         let ic = mg.domain.centre_index(lv.len() - 1);
         let dh = 1e-3 * lv.film[ic].abs().max(1e-3 * mg.domain.h_estimate);
         let fallback = -lv.g / mg.domain.h_estimate;
-        mg.load_slope = load_slope(lv, &mg.phys, mg.h0, dh, fallback).0;
+        mg.load_slope = load_slope(lv, &mg.phys, mg.h0, dh, fallback, 0.0).0;
         first
     }
     /// Cubic interpolation of level l-1's pressure as the start on level l (FMG).

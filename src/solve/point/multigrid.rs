@@ -26,7 +26,7 @@ use crate::model::case::{Elasticity, PointCase};
 use crate::solve::deadline::past;
 use crate::solve::multilevel::{grid_level, Contact, DomainRule, Multigrid, Seed};
 use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
-use crate::solve::params::{FinerCoarsest, MgParams};
+use crate::solve::params::{Converge, FinerCoarsest, MgParams};
 use crate::solve::point::relax::{point_line_sweep, PointScratch};
 
 /// The far field's reference points lie at least 1/FAR_FIELD_MAX_N0 of the domain inside.
@@ -38,10 +38,23 @@ pub const PARALLEL_MIN_ROWS: usize = 65;
 
 /// The point contact's [`MgParams::coarse_rel_tol`]: a V cycle contracts the finer residual by
 /// 0.1-0.9, so solving the coarsest problem further than this only polishes a correction that
-/// the next cycle revises. Chosen against 1e-4 and 1e-2 on the benchmark and box cases
+/// the next cycle revises (the coarse correction's own error is then at most a tenth of the
+/// cycle's best contraction). Chosen against 1e-3 and 1e-1 on the benchmark and box cases
 /// (docs/performance.md, "The point cycles' coarsest Newton solve stopped at a relative
 /// reduction").
-pub const POINT_COARSE_REL_TOL: f64 = 1e-3;
+pub const POINT_COARSE_REL_TOL: f64 = 1e-2;
+
+/// Under fast convergence, the coarsest level's first solve (from the Hertzian or rigid
+/// guess) of a multigrid of two or more levels stops once its residual has fallen by this
+/// (or at the absolute tolerance): the first coarse cycles solve that level again with the
+/// finer levels' corrections, so a start polished further changes no answer (the same films
+/// to 9 digits on the benchmark cases, docs/performance.md).
+pub const POINT_START_REL_TOL: f64 = 1e-6;
+
+/// Under fast convergence, the load slope dG/dH0 of the start (the load balance's fallback,
+/// [`crate::solve::newton::load_slope`]) is solved at H0 + dh until its residual has fallen by
+/// this: a finite-difference slope needs no more than three digits.
+pub const POINT_SLOPE_REL_TOL: f64 = 1e-3;
 
 /// Multigrid settings of a point solve.
 pub type PointMgParams = MgParams<PointDomainParams>;
@@ -344,11 +357,15 @@ impl Contact for PointContact {
         lv.update_film(&mg.phys, mg.h0);
     }
     fn start_coarse(mg: &mut PointMultigrid, with_slope: bool) -> NewtonOutcome {
-        let np = NewtonParams::coarsest_start(
+        let mut np = NewtonParams::coarsest_start(
             mg.params.newton_max_iter,
             mg.levels.len(),
             mg.params.deadline,
         );
+        let fast = mg.params.converge == Converge::Fast && mg.levels.len() > 1;
+        if fast {
+            np.rel_tol = POINT_START_REL_TOL;
+        }
         let lv = &mut mg.levels[0];
         lv.f.fill(0.0);
         lv.g = mg.phys.load * mg.phys.fluid_share;
@@ -371,7 +388,8 @@ impl Contact for PointContact {
         let lv = &mut mg.levels[0];
         let dh = 1e-3 * lv.film[ic].abs().max(1e-3 * mg.domain.h_estimate);
         let fallback = -lv.g / mg.domain.h_estimate;
-        let (slope, iterations) = load_slope(lv, &mg.phys, mg.h0, dh, fallback);
+        let rel_tol = if fast { POINT_SLOPE_REL_TOL } else { 0.0 };
+        let (slope, iterations) = load_slope(lv, &mg.phys, mg.h0, dh, fallback, rel_tol);
         mg.load_slope = slope;
         mg.work_units += PointContact::newton_cost(mg, iterations);
         out
