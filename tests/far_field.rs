@@ -250,12 +250,8 @@ fn isoviscous_cases_converge_in_few_cycles_with_an_honest_algebraic_error() {
 /// docs/method.md "The algebraic error estimate and its residual bound") keeps the algebraic
 /// error estimate above the true distance to the tightly converged answer. Without it (c = 0)
 /// circular M = 1, L = 20 on 257^2 stopped after 12.7 work units claiming 1.6e-5 with H_c
-/// 5.1e-4 off, and M = 3, L = 10 after 13.1 claiming 8.5e-5 with 5.8e-4 off (measured with
-/// the coarsest cycle solves stopped at a reduction of 1e-3). Since they stop at 1e-2
-/// (2026-11-28) M = 1, L = 20 stops without the bound after 20.0 work units claiming 1.9e-4
-/// with 3.0e-4 off (with it: 36.1 work units, 7.3e-5 off, estimate 1.6e-4), and M = 3, L = 10
-/// stops at the same cycle either way, within its estimate (4.3e-5 off, estimate 1.1e-4): this
-/// test checks the bounded rule on both and the unbounded one's failure on the first.
+/// 5.1e-4 off, and M = 3, L = 10 after 13.1 claiming 8.5e-5 with 5.8e-4 off: this test checks
+/// both rules.
 #[test]
 fn slow_modes_at_the_cavitation_boundary_stay_inside_the_algebraic_estimate() {
     for (m, l) in [(1.0, 20.0), (3.0, 10.0)] {
@@ -283,14 +279,11 @@ fn slow_modes_at_the_cavitation_boundary_stay_inside_the_algebraic_estimate() {
             "M = {m}, L = {l}: {:.1e} from the tight answer, estimate {e_a:.1e}",
             dev(&fast)
         );
-        if m > 1.0 {
-            continue;
-        }
         p.mg.residual_bound = 0.0;
         let unbounded = solve_point(&case, &p);
         let e_0 = unbounded.info.algebraic_error.unwrap();
         assert!(
-            dev(&unbounded) > 1.5 * e_0,
+            dev(&unbounded) > 3.0 * e_0,
             "M = {m}, L = {l}: without the bound {:.1e} from the tight answer, estimate {e_0:.1e}",
             dev(&unbounded)
         );

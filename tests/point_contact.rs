@@ -438,7 +438,7 @@ fn the_lightly_damped_rung_answers_where_the_first_attempt_fails() {
     // tied to today's solver: if the first attempt learns to converge here, move the test to
     // another case. Independent check: the tight rule with W cycles on the same grid (converged
     // to 1e-6 in H_c; the tight V cycles do not converge in 200 cycles here) agrees within the
-    // rung's algebraic error estimate (measured H_c 9.537894 against 9.536139: 1.8e-4, H_min
+    // rung's algebraic error estimate (measured H_c 9.537887 against 9.536139: 1.8e-4, H_min
     // 3.2e-5, estimate 3.7e-4).
     use ehlmap::solve::params::CycleType;
     let case = PointCase::new(10.0, 30.0, 1.0).unwrap();
@@ -483,9 +483,11 @@ fn a_rigid_film_at_held_h0_is_not_taken_for_converged() {
     // almost every cycle, so H0 moves only by the secant step between cycles, and a cycle at
     // held H0 leaves a rigid film unchanged to the bit. Taking that zero change for the
     // algebraic error, the lightly damped rung stopped 1.5e-3 from the tight answer claiming
-    // 1.2e-5 (measured 2026-11-28 with the coarsest solves stopped at a reduction of 1e-2); a
-    // cycle at held H0 is now no stopping point. Whatever rung answers, its answer is within
-    // its algebraic estimate (or 1e-6 where the tight rung answers) of the tight rule's.
+    // 1.2e-5 (measured 2026-11-28 with the coarsest solves stopped at a reduction of 1e-2
+    // without a separate condition on the load equation, the setting used here; with the
+    // default condition the rung happens to stop elsewhere); a cycle at held H0 is now no
+    // stopping point. Whatever rung answers, its answer is within its algebraic estimate (or
+    // 1e-6 where the tight rung answers) of the tight rule's.
     use ehlmap::model::case::{Elasticity, Models};
     use ehlmap::solve::params::CycleType;
     let rigid = Models {
@@ -493,10 +495,9 @@ fn a_rigid_film_at_held_h0_is_not_taken_for_converged() {
         ..Models::default()
     };
     let case = PointCase::with_models(0.01, 0.0, 0.0464158883361, rigid).unwrap();
-    let laddered = solve_point(
-        &case,
-        &ladder_params(257, Converge::Fast, true, CycleType::V),
-    );
+    let mut params = ladder_params(257, Converge::Fast, true, CycleType::V);
+    params.mg.coarse_load_rel_tol = f64::INFINITY;
+    let laddered = solve_point(&case, &params);
     let o = &laddered.outputs;
     assert_eq!(o.status, Status::Converged, "{}", o.reason);
     let tight = solve_point(

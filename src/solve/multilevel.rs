@@ -339,6 +339,7 @@ impl<C: Contact> Multigrid<C> {
                 } else {
                     0.0
                 },
+                load_rel_tol: self.params.coarse_load_rel_tol,
                 ..NewtonParams::default()
             };
             let mut h0 = self.h0;

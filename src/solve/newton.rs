@@ -29,6 +29,11 @@ pub struct NewtonParams {
     /// start (0: only `tol`). A multigrid's coarsest-level solves inside a cycle need not go
     /// further than the cycle's own contraction.
     pub rel_tol: f64,
+    /// With `rel_tol`: that stop also needs the load equation's part of the residual norm below
+    /// this fraction of the norm's value at the start (infinite: no such condition). Where the
+    /// film follows H0 closely (rigid-like contacts), an H0 left inexact by the coarsest solve
+    /// moves the finer films by more than the cycle's own contraction.
+    pub load_rel_tol: f64,
     /// Hold H0 fixed and drop the load equation.
     pub fix_h0: bool,
     /// Give up when the residual norm has not halved over this many iterations (0: never). A
@@ -68,6 +73,7 @@ impl Default for NewtonParams {
             max_iter: 40,
             tol: 1e-10,
             rel_tol: 0.0,
+            load_rel_tol: f64::INFINITY,
             fix_h0: false,
             stall_window: 0,
             deadline: None,
@@ -92,6 +98,8 @@ struct Linearisation {
     jac: DMatrix<f64>,
     rhs: DVector<f64>,
     merit: f64,
+    /// The load equation's part of `merit` (0 at fixed H0).
+    load: f64,
 }
 
 /// The dense Jacobian of (L at the unknowns, the load sum) with respect to (the unknowns, H0), H0
@@ -217,6 +225,7 @@ fn linearise<T: NewtonLevel>(
     let mut jac = lv.dense_jacobian(phys, unknowns);
     let mut rhs = DVector::<f64>::zeros(m + 1);
     let mut merit = 0.0;
+    let mut load = 0.0;
     for (row, &c) in unknowns.iter().enumerate() {
         let r = lv.residual_at(phys, c);
         let d = jac[(row, row)];
@@ -246,11 +255,13 @@ fn linearise<T: NewtonLevel>(
         let lr = g - lv.load_sum();
         rhs[hcol] = lr;
         merit += (lr / g) * (lr / g);
+        load = (lr / g).abs();
     }
     Linearisation {
         jac,
         rhs,
         merit: merit.sqrt(),
+        load,
     }
 }
 
@@ -272,10 +283,12 @@ pub fn newton_solve<T: NewtonLevel>(
         singular: false,
     };
     let goal = np.tol.max(np.rel_tol * lin.merit);
+    let load_goal = np.tol.max(np.load_rel_tol * lin.merit);
+    let done = |l: &Linearisation| l.merit < np.tol || (l.merit < goal && l.load <= load_goal);
     let mut p_old = vec![0.0; m];
     let mut merits = Vec::with_capacity(np.max_iter);
     for it in 0..np.max_iter {
-        if lin.merit < goal {
+        if done(&lin) {
             out.converged = true;
             break;
         }
@@ -325,7 +338,7 @@ pub fn newton_solve<T: NewtonLevel>(
         }
         out.residual = lin.merit;
     }
-    if lin.merit < goal {
+    if done(&lin) {
         out.converged = true;
     }
     out.residual = lin.merit;

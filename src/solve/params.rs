@@ -185,6 +185,11 @@ pub struct MgParams<D> {
     /// [`crate::solve::point::multigrid::POINT_COARSE_REL_TOL`] = 1e-2, line contacts 0 (with a relative
     /// stop, line M = 1e4, L = 40 no longer converged on 16385 points; docs/performance.md).
     pub coarse_rel_tol: f64,
+    /// Fast convergence, with `coarse_rel_tol`: that stop also needs the load equation's part
+    /// of the residual below this fraction of the initial norm
+    /// ([`crate::solve::newton::NewtonParams::load_rel_tol`]; infinite: no such condition).
+    /// Point contacts take [`crate::solve::point::multigrid::POINT_COARSE_LOAD_REL_TOL`].
+    pub coarse_load_rel_tol: f64,
     /// Point contacts: whether the coarse grids freeze the band along the cavitation boundary
     /// from alpha_bar = [`crate::solve::point::multigrid::FREEZE_ALPHA_BAR`] on (default; off on
     /// the [`Rung::Unfrozen`] rung). Line contacts always freeze it.
@@ -236,6 +241,7 @@ impl<D> MgParams<D> {
             residual_bound: crate::solve::fmg_fast::RESIDUAL_BOUND,
             anderson: false,
             coarse_rel_tol: 0.0,
+            coarse_load_rel_tol: f64::INFINITY,
             freeze_band: true,
             domain,
             coarse_intervals: None,
