@@ -200,8 +200,8 @@ fn elliptic_films_follow_nvm_where_it_is_a_good_fit() {
 
 #[test]
 fn parallel_rows_give_the_same_answer_whatever_the_thread_count() {
-    // Zebra row order on a rayon pool: the same discrete solution as the Gauss-Seidel order (to
-    // the convergence tolerance), and bit-identical results for 1 and 2 threads.
+    // Blocks of rows relaxed at once on a rayon pool: the same discrete solution as the serial
+    // row order (to the convergence tolerance), and bit-identical results for 1 and 2 threads.
     let case = PointCase::new(20.0, 10.0, 0.5).unwrap();
     let mut p = PointSolveParams::default();
     p.mg.converge = Converge::Tight;

@@ -171,8 +171,8 @@ pub struct SolveArgs {
     /// Do not retry a failed solve with conservative settings; --method multigrid only.
     #[arg(long)]
     pub no_fallback: bool,
-    /// Point contacts: relax the grid rows in parallel (zebra order) on this many threads, 1 to
-    /// 4096 (default: one thread, Gauss-Seidel row order); not with --method newton.
+    /// Point contacts: relax blocks of grid rows in parallel on this many threads, 1 to 4096
+    /// (default: one thread, the rows in order); not with --method newton.
     #[arg(long)]
     pub threads: Option<usize>,
     /// Point contacts: P = 0 on the domain's boundary (the classic references' truncated

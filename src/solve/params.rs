@@ -204,9 +204,10 @@ pub struct MgParams<D> {
     pub newton_max_iter: usize,
     /// Deformation by the O(N^2) direct sum on every level instead of the FFT (baseline).
     pub direct_deformation: bool,
-    /// Point contacts: relax the rows of each colour in parallel (zebra order) on the current
-    /// rayon pool, on levels of 65 rows or more. Off by default: a sweep already runs one solve
-    /// per thread, and the default Gauss-Seidel row order converges faster per sweep.
+    /// Point contacts: relax blocks of rows at once on the current rayon pool, on levels of 65
+    /// rows or more (Gauss-Seidel within each block, the rows between blocks after them:
+    /// [`crate::solve::point::relax`]); the result does not depend on the number of threads.
+    /// Off by default: a sweep already runs one solve per thread.
     pub parallel: bool,
     /// Receives every cycle of the solve.
     pub observer: Option<crate::solve::Observer>,

@@ -82,8 +82,8 @@ pub struct SolveParams {
     pub full_model: bool,
     /// Return the line profile or the point fields.
     pub keep_fields: bool,
-    /// Point contacts: relax the rows of each colour in parallel on the current rayon pool
-    /// (zebra order); off, one thread in Gauss-Seidel row order.
+    /// Point contacts: relax blocks of rows in parallel on the current rayon pool
+    /// ([`crate::solve::params::MgParams::parallel`]); off, one thread, the rows in order.
     pub parallel: bool,
     /// Receives every multigrid cycle (`ehlmap solve --trace` prints them).
     pub observer: Option<Observer>,

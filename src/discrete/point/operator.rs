@@ -97,6 +97,9 @@ pub fn for_each_row<T: Send>(
     }
 }
 
+/// The panic of a deformation product asked of a strip ([`PointLevel::strip`]).
+const NO_PLAN: &str = "a strip level has no deformation plan";
+
 /// Nodes per rayon job in [`PointLevel::update_film_parallel`].
 const PARALLEL_CHUNK: usize = 4096;
 
@@ -119,7 +122,8 @@ pub struct PointLevel {
     pub nodes: NodeFields,
     /// K(dx, dy) at dy nx + dx.
     pub kernel: Vec<f64>,
-    deform: DeformPlan2d,
+    /// The FFT plan of the deformation product (`None` on a strip, [`PointLevel::strip`]).
+    deform: Option<DeformPlan2d>,
     /// The rigid gap X^2/2 + D Y^2/2.
     pub gap: Vec<f64>,
     /// Compute the deformation by the O(N^2) direct sum instead of the FFT (baseline).
@@ -170,7 +174,7 @@ impl PointLevel {
             x,
             y,
             nodes: NodeFields::new(n, phys.load),
-            deform: DeformPlan2d::new(&kernel, nx, ny),
+            deform: Some(DeformPlan2d::new(&kernel, nx, ny)),
             kernel,
             gap,
             direct_deformation: false,
@@ -179,6 +183,64 @@ impl PointLevel {
             far: None,
             h0: 0.0,
         }
+    }
+
+    /// Rows j0..j0 + rows of this level as a level of their own, for the parallel smoother's
+    /// blocks ([`crate::solve::point::relax`]): the same spacing, the kernel rows dy < rows (the
+    /// kernel of the strip's grid), the gap of those rows, node fields sized but not filled
+    /// ([`PointLevel::copy_rows_into`]); no deformation plan (a strip's film is corrected
+    /// locally, never recomputed: its deformation product panics), no far field, not parallel.
+    pub fn strip(&self, j0: usize, rows: usize) -> PointLevel {
+        let nx = self.nx;
+        PointLevel {
+            nx,
+            ny: rows,
+            hx: self.hx,
+            hy: self.hy,
+            x: self.x.clone(),
+            y: self.y[j0..j0 + rows].to_vec(),
+            nodes: NodeFields::new(rows * nx, self.nodes.g),
+            kernel: self.kernel[..rows * nx].to_vec(),
+            deform: None,
+            gap: self.gap[j0 * nx..(j0 + rows) * nx].to_vec(),
+            direct_deformation: false,
+            deform_seconds: 0.0,
+            parallel: false,
+            far: None,
+            h0: self.h0,
+        }
+    }
+
+    /// Copy the node fields of rows j0.. of this level (as many rows as `strip` has) into
+    /// `strip`: P, f, the frozen flags, H, eps, rho, eta lambda and the rough and mixed fields
+    /// where this level has them (no allocation once `strip` has held them).
+    pub fn copy_rows_into(&self, j0: usize, strip: &mut PointLevel) {
+        let r = j0 * self.nx..j0 * self.nx + strip.len();
+        let (src, dst) = (&self.nodes, &mut strip.nodes);
+        dst.p.copy_from_slice(&src.p[r.clone()]);
+        dst.f.copy_from_slice(&src.f[r.clone()]);
+        dst.frozen.copy_from_slice(&src.frozen[r.clone()]);
+        dst.film.copy_from_slice(&src.film[r.clone()]);
+        dst.eps.copy_from_slice(&src.eps[r.clone()]);
+        dst.rho.copy_from_slice(&src.rho[r.clone()]);
+        dst.divisor.copy_from_slice(&src.divisor[r.clone()]);
+        dst.g = src.g;
+        for (s, d) in [
+            (&src.eps_along_y, &mut dst.eps_along_y),
+            (&src.wfilm, &mut dst.wfilm),
+            (&src.asperity_gap, &mut dst.asperity_gap),
+        ] {
+            d.clear();
+            if !s.is_empty() {
+                d.extend_from_slice(&s[r.clone()]);
+            }
+        }
+        strip.h0 = self.h0;
+    }
+
+    /// The deformation plan (not on a strip).
+    fn plan(&mut self) -> &mut DeformPlan2d {
+        self.deform.as_mut().expect(NO_PLAN)
     }
 
     /// Use the asymptotic far field on this level ([`FarField`]) for the ellipticity `d`, with
@@ -248,11 +310,13 @@ impl PointLevel {
                     &self.nodes.p,
                     &mut self.nodes.work,
                 );
-            } else if self.parallel {
-                self.deform
-                    .apply_parallel(&self.nodes.p, &mut self.nodes.work);
             } else {
-                self.deform.apply(&self.nodes.p, &mut self.nodes.work);
+                let plan = self.deform.as_mut().expect(NO_PLAN);
+                if self.parallel {
+                    plan.apply_parallel(&self.nodes.p, &mut self.nodes.work);
+                } else {
+                    plan.apply(&self.nodes.p, &mut self.nodes.work);
+                }
             }
             for_each_row(self.parallel, &mut self.nodes.work, self.nx, |_, row| {
                 for w in row {
@@ -280,7 +344,7 @@ impl PointLevel {
         if self.direct_deformation {
             direct_product2d(&self.kernel, self.nx, self.ny, field, out);
         } else {
-            self.deform.apply(field, out);
+            self.plan().apply(field, out);
         }
         for w in out.iter_mut() {
             *w *= phys.coef;
@@ -355,6 +419,9 @@ impl PointLevel {
     /// (`divisor`): for a P whose rho and divisor are up to date (the smoother's rows have set
     /// them as they changed P); the result equals [`PointLevel::update_film`]'s.
     pub fn update_film_fixed_coefficients(&mut self, phys: &PointPhysics, h0: f64) {
+        if self.parallel {
+            return self.update_film_fixed_parallel(phys, h0);
+        }
         self.film_only(phys, h0);
         let law = phys.coefficients();
         let nodes = &mut self.nodes;
@@ -366,6 +433,31 @@ impl PointLevel {
         {
             *e = law.eps_with(r, h, d);
         }
+        nodes.refresh_rough(&law);
+    }
+
+    /// [`PointLevel::update_film_fixed_coefficients`] on the rayon pool (the same values to
+    /// the bit).
+    fn update_film_fixed_parallel(&mut self, phys: &PointPhysics, h0: f64) {
+        use rayon::prelude::*;
+        self.apply_far_field(phys, h0);
+        self.deformation(phys);
+        let law = phys.coefficients();
+        let nodes = &mut self.nodes;
+        nodes
+            .film
+            .par_chunks_mut(PARALLEL_CHUNK)
+            .zip(nodes.eps.par_chunks_mut(PARALLEL_CHUNK))
+            .zip(nodes.work.par_chunks(PARALLEL_CHUNK))
+            .zip(self.gap.par_chunks(PARALLEL_CHUNK))
+            .zip(nodes.rho.par_chunks(PARALLEL_CHUNK))
+            .zip(nodes.divisor.par_chunks(PARALLEL_CHUNK))
+            .for_each(|(((((film, eps), work), gap), rho), divisor)| {
+                for (k, f) in film.iter_mut().enumerate() {
+                    *f = h0 + gap[k] + work[k];
+                    eps[k] = law.eps_with(rho[k], *f, divisor[k]);
+                }
+            });
         nodes.refresh_rough(&law);
     }
 

@@ -32,8 +32,8 @@ use crate::solve::point::relax::{point_line_sweep, PointScratch};
 /// The far field's reference points lie at least 1/FAR_FIELD_MAX_N0 of the domain inside.
 const FAR_FIELD_MAX_N0: usize = 16;
 
-/// With [`MgParams::parallel`], the levels of at least this many rows per direction relax in
-/// zebra order and compute their films and residuals on the rayon pool.
+/// With [`MgParams::parallel`], the levels of at least this many rows per direction relax
+/// blocks of rows at once and compute their films and residuals on the rayon pool.
 pub const PARALLEL_MIN_ROWS: usize = 65;
 
 /// The point contact's [`MgParams::coarse_rel_tol`]: a V cycle contracts the finer residual by
@@ -130,7 +130,7 @@ impl Multigrid<PointContact> {
                 lv = lv.with_far_field(phys.d, coarse);
             }
             lv.direct_deformation = params.direct_deformation;
-            // Zebra rows on the rayon pool only where a level has enough rows to share.
+            // Parallel rows only where a level has enough rows to share.
             lv.parallel = params.parallel && n + 1 >= PARALLEL_MIN_ROWS;
             levels.push(lv);
             if n + 1 >= params.grid {

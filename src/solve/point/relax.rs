@@ -41,10 +41,8 @@ pub struct PointScratch {
     /// The nodal derivatives of the row.
     derivs: RowDerivatives,
     change: Vec<f64>,
-    /// The changes of one colour in zebra order.
-    zebra: Vec<f64>,
-    /// One row scratch per zebra job (rayon thread).
-    jobs: Vec<PointScratch>,
+    /// The blocks of each parallel level relaxed so far ([`blocked_sweep`]).
+    blocks: Vec<LevelBlocks>,
     /// The film correction: c dP of the relaxed row padded by `reach` zeros on both sides, and
     /// the kernel rows dy = 0, 1, 2 mirrored over -reach..=reach ([`mirror_kernel`]).
     scaled: Vec<f64>,
@@ -52,9 +50,9 @@ pub struct PointScratch {
 }
 
 /// One sweep of x-line relaxation over all interior rows: Gauss-Seidel from row to row, or, on a
-/// `parallel` level ([`PointLevel::parallel`]), zebra order (all odd rows from the same state, then all even rows; the rows of one
-/// colour solved in parallel on the current rayon pool, the film updated by the FFT product between
-/// the colours). Zebra results do not depend on the number of threads.
+/// `parallel` level ([`PointLevel::parallel`]), the same in blocks of rows relaxed at once on the
+/// current rayon pool ([`blocked_sweep`]; the result does not depend on the number of threads);
+/// then H and eps refreshed by the FFT product.
 pub fn point_line_sweep(
     lv: &mut PointLevel,
     phys: &PointPhysics,
@@ -63,61 +61,163 @@ pub fn point_line_sweep(
     s: &mut PointScratch,
 ) {
     let (nx, ny) = (lv.nx, lv.ny);
-    if lv.parallel {
-        use rayon::prelude::*;
-        // The changes of one colour, row after row, filled by one job per thread, each with its
-        // own row scratch kept between sweeps (taken out of `s` so the jobs can borrow them).
-        let mut zebra = std::mem::take(&mut s.zebra);
-        let mut jobs = std::mem::take(&mut s.jobs);
-        jobs.resize_with(rayon::current_num_threads().max(1), PointScratch::default);
-        for first in [1usize, 2] {
-            let count = (ny - 1 - first).div_ceil(2);
-            // Every value is written by the jobs below: no clearing.
-            zebra.resize(count * nx, 0.0);
-            let per_job = count.div_ceil(jobs.len());
-            {
-                let lv = &*lv;
-                zebra
-                    .par_chunks_mut(per_job * nx)
-                    .zip(jobs.par_iter_mut())
-                    .enumerate()
-                    .for_each(|(b, (block, rs))| {
-                        for (k, out) in block.chunks_mut(nx).enumerate() {
-                            row_changes(lv, phys, rp, first + 2 * (b * per_job + k), rs);
-                            out.copy_from_slice(&rs.change);
-                        }
-                    });
-            }
-            // Row first + 2k of P is the first half of its chunk of two rows.
-            lv.p[first * nx..]
-                .par_chunks_mut(2 * nx)
-                .zip(zebra.par_chunks(nx))
-                .for_each(|(rows, ch)| {
-                    for i in 1..nx - 1 {
-                        rows[i] += ch[i];
-                    }
-                });
-            lv.update_film(phys, h0);
-        }
-        s.zebra = zebra;
-        s.jobs = jobs;
-        return;
-    }
     let reach = 2 * (rp.band + 1);
     for (dy, m) in s.film_kernel.iter_mut().enumerate() {
         let row = lv.kernel.get(dy * nx..(dy + 1) * nx).unwrap_or(&[]);
         mirror_kernel(row, reach, m);
     }
-    for j in 1..ny - 1 {
-        row_changes(lv, phys, rp, j, s);
-        for i in 1..nx - 1 {
-            let c = lv.at(i, j);
-            lv.p[c] += s.change[i];
+    if lv.parallel {
+        blocked_sweep(lv, phys, rp, reach, s);
+    } else {
+        for j in 1..ny - 1 {
+            relax_row(lv, phys, rp, j, reach, s);
         }
-        local_film_update(lv, phys, j, reach, s);
     }
     // Every changed row has set its rho and eta lambda: only H and eps are left to refresh.
     lv.update_film_fixed_coefficients(phys, h0);
+}
+
+/// Relax row j: its changes ([`row_changes`]) added to P, the film of rows j..=j+2 corrected
+/// ([`local_film_update`]).
+fn relax_row(
+    lv: &mut PointLevel,
+    phys: &PointPhysics,
+    rp: &RelaxParams,
+    j: usize,
+    reach: usize,
+    s: &mut PointScratch,
+) {
+    row_changes(lv, phys, rp, j, s);
+    let nx = lv.nx;
+    for (p, &d) in lv.nodes.p[j * nx + 1..(j + 1) * nx - 1]
+        .iter_mut()
+        .zip(&s.change[1..nx - 1])
+    {
+        *p += d;
+    }
+    local_film_update(lv, phys, j, reach, s);
+}
+
+/// Interior rows per block of a parallel sweep ([`blocked_sweep`]), about.
+pub const BLOCK_ROWS: usize = 64;
+
+/// The blocks of one parallel level: each relaxes rows lo..hi of the level in a strip of its
+/// own (rows lo - 1 .. hi + 3, [`PointLevel::strip`]) with a row scratch of its own.
+struct LevelBlocks {
+    nx: usize,
+    ny: usize,
+    blocks: Vec<Block>,
+}
+
+/// One block: its rows lo..hi of the level, its strip (rows lo - 1 .. hi + 3) and row scratch.
+struct Block {
+    lo: usize,
+    hi: usize,
+    strip: PointLevel,
+    scratch: PointScratch,
+}
+
+/// The rows lo..hi of each block of a level of `ny` rows: the interior rows 1..ny - 1 cut into
+/// an even number of blocks, 2 max(1, (ny - 2) / (2 [`BLOCK_ROWS`])) (two halves of equal work
+/// on a contact symmetric in Y), of nearly equal size, [`BLOCK_GAP`] rows apart.
+pub fn block_rows(ny: usize) -> Vec<(usize, usize)> {
+    let interior = ny - 2;
+    let count = 2 * (interior / (2 * BLOCK_ROWS)).max(1);
+    let relaxed = interior - BLOCK_GAP * (count - 1);
+    let mut lo = 1;
+    (0..count)
+        .map(|b| {
+            let size = relaxed / count + usize::from(b < relaxed % count);
+            let block = (lo, lo + size);
+            lo += size + BLOCK_GAP;
+            block
+        })
+        .collect()
+}
+
+/// Rows between two blocks of a parallel sweep: a relaxed row corrects the film of the next
+/// two ([`local_film_update`]), and the row after those is the first that the next block's
+/// equations read, so no block writes what another reads.
+pub const BLOCK_GAP: usize = 3;
+
+/// One sweep of a parallel level: Gauss-Seidel x-line relaxation in blocks of rows
+/// ([`block_rows`]) relaxed at once on the rayon pool, each in a copy of its rows and their
+/// neighbours (a strip, rows lo - 1 .. hi + 3) from the state before the sweep; then the rows
+/// each block changed copied back (P of its rows, film, eps, rho and eta lambda of its rows and
+/// the two after them); then the rows between consecutive blocks relaxed in order on the level.
+/// No block reads a row that another writes ([`BLOCK_GAP`]), so the sweep equals the serial one
+/// taking the rows in the order: each block's rows, then the rows between blocks (tested to the
+/// bit). The blocks depend on the grid only: the result does not depend on the number of
+/// threads.
+fn blocked_sweep(
+    lv: &mut PointLevel,
+    phys: &PointPhysics,
+    rp: &RelaxParams,
+    reach: usize,
+    s: &mut PointScratch,
+) {
+    use rayon::prelude::*;
+    let (nx, ny) = (lv.nx, lv.ny);
+    let k = match s.blocks.iter().position(|b| b.nx == nx && b.ny == ny) {
+        Some(k) => k,
+        None => {
+            let blocks = block_rows(ny)
+                .into_iter()
+                .map(|(lo, hi)| Block {
+                    lo,
+                    hi,
+                    strip: lv.strip(lo - 1, (hi + 3).min(ny) - (lo - 1)),
+                    scratch: PointScratch::default(),
+                })
+                .collect();
+            s.blocks.push(LevelBlocks { nx, ny, blocks });
+            s.blocks.len() - 1
+        }
+    };
+    let mut set = std::mem::take(&mut s.blocks[k].blocks);
+    for b in &mut set {
+        for (d, m) in b.scratch.film_kernel.iter_mut().zip(&s.film_kernel) {
+            d.clone_from(m);
+        }
+    }
+    {
+        let lv = &*lv;
+        set.par_iter_mut().for_each(|b| {
+            let j0 = b.lo - 1;
+            lv.copy_rows_into(j0, &mut b.strip);
+            for j in b.lo - j0..b.hi - j0 {
+                relax_row(&mut b.strip, phys, rp, j, reach, &mut b.scratch);
+            }
+        });
+    }
+    for b in &set {
+        let j0 = b.lo - 1;
+        let (src, dst) = (&b.strip.nodes, &mut lv.nodes);
+        let local = |j: usize| (j - j0) * nx;
+        let p = b.lo * nx..b.hi * nx;
+        dst.p[p.clone()].copy_from_slice(&src.p[local(b.lo)..local(b.hi)]);
+        let end = (b.hi + 2).min(ny - 1);
+        let (r, l) = (b.lo * nx..end * nx, local(b.lo)..local(end));
+        dst.film[r.clone()].copy_from_slice(&src.film[l.clone()]);
+        dst.eps[r.clone()].copy_from_slice(&src.eps[l.clone()]);
+        dst.rho[r.clone()].copy_from_slice(&src.rho[l.clone()]);
+        dst.divisor[r.clone()].copy_from_slice(&src.divisor[l.clone()]);
+        for (sf, df) in [
+            (&src.eps_along_y, &mut dst.eps_along_y),
+            (&src.wfilm, &mut dst.wfilm),
+        ] {
+            if !sf.is_empty() {
+                df.resize(nx * ny, 0.0);
+                df[r.clone()].copy_from_slice(&sf[l.clone()]);
+            }
+        }
+    }
+    for w in set.windows(2) {
+        for j in w[0].hi..w[1].lo {
+            relax_row(lv, phys, rp, j, reach, s);
+        }
+    }
+    s.blocks[k].blocks = set;
 }
 
 /// The relaxation changes of row j (into `s.change`, indexed by i) from the current state.
@@ -335,6 +435,96 @@ const LANES: usize = 8;
 mod tests {
     use super::*;
     use crate::discrete::testing::lcg;
+
+    #[test]
+    fn blocks_cover_the_interior_rows_once_an_even_number_apart_by_the_gap() {
+        for ny in [65usize, 66, 129, 257, 300, 513, 1025] {
+            let blocks = block_rows(ny);
+            assert_eq!(blocks.len() % 2, 0, "ny {ny}");
+            assert_eq!(blocks[0].0, 1);
+            assert_eq!(blocks[blocks.len() - 1].1, ny - 1);
+            for w in blocks.windows(2) {
+                assert_eq!(w[1].0 - w[0].1, BLOCK_GAP, "ny {ny}");
+            }
+            let sizes: Vec<usize> = blocks.iter().map(|(lo, hi)| hi - lo).collect();
+            let (min, max) = (sizes.iter().min().unwrap(), sizes.iter().max().unwrap());
+            assert!(max - min <= 1 && *min > BLOCK_GAP, "ny {ny}: {sizes:?}");
+        }
+        assert_eq!(block_rows(513).len(), 6);
+        assert_eq!(block_rows(1025).len(), 14);
+    }
+
+    /// A point level of a piezoviscous, compressible case with a Hertzian pressure and its
+    /// film: the state a sweep starts from.
+    fn level(phys: &PointPhysics) -> PointLevel {
+        let mut lv = PointLevel::new(phys, -2.5, 1.5, 2.0, 64, 140);
+        for j in 1..lv.ny - 1 {
+            for i in 1..lv.nx - 1 {
+                let c = lv.at(i, j);
+                let (x, y) = (lv.x[i], lv.y[j] / phys.k);
+                lv.p[c] = (1.0 - x * x - y * y).max(0.0).sqrt() * (1.0 + 0.03 * x);
+            }
+        }
+        lv.update_film(phys, -0.2);
+        lv
+    }
+
+    #[test]
+    fn the_parallel_sweep_is_the_serial_sweep_in_block_order_to_the_bit() {
+        use crate::model::case::{Models, PointCase};
+        let case = PointCase::with_models(
+            20.0,
+            10.0,
+            0.5,
+            Models {
+                density: crate::model::lubricant::Density::DowsonHigginson { ph_pa: 0.5e9 },
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        let phys = PointPhysics::from_case(&case);
+        let rp = RelaxParams::default();
+        let h0 = -0.2;
+        // The oracle: the serial sweep's rows in the order each block, then the gaps.
+        let mut serial = level(&phys);
+        let blocks = block_rows(serial.ny);
+        assert!(blocks.len() >= 2);
+        let mut order: Vec<usize> = blocks.iter().flat_map(|&(lo, hi)| lo..hi).collect();
+        order.extend(blocks.windows(2).flat_map(|w| w[0].1..w[1].0));
+        let mut s = PointScratch::default();
+        let reach = 2 * (rp.band + 1);
+        for (dy, m) in s.film_kernel.iter_mut().enumerate() {
+            mirror_kernel(&serial.kernel[dy * serial.nx..][..serial.nx], reach, m);
+        }
+        for &j in &order {
+            relax_row(&mut serial, &phys, &rp, j, reach, &mut s);
+        }
+        serial.update_film_fixed_coefficients(&phys, h0);
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        for threads in [1, 2, 3] {
+            let mut par = level(&phys);
+            par.parallel = true;
+            let mut s = PointScratch::default();
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| {
+                    // Twice: the second sweep reuses the blocks made by the first.
+                    point_line_sweep(&mut par, &phys, h0, &rp, &mut s);
+                    let p = par.p.clone();
+                    let mut again = level(&phys);
+                    again.parallel = true;
+                    point_line_sweep(&mut again, &phys, h0, &rp, &mut s);
+                    assert_eq!(bits(&again.p), bits(&p));
+                });
+            assert!(par.p != level(&phys).p, "the sweep changed nothing");
+            assert_eq!(bits(&par.p), bits(&serial.p), "{threads} threads");
+            assert_eq!(bits(&par.film), bits(&serial.film), "{threads} threads");
+            assert_eq!(bits(&par.eps), bits(&serial.eps), "{threads} threads");
+            assert_eq!(bits(&par.rho), bits(&serial.rho), "{threads} threads");
+        }
+    }
 
     #[test]
     fn film_correction_equals_the_scatter_to_the_bit() {
