@@ -270,7 +270,7 @@ impl DeformPlan2d {
             self.jobs = (0..threads)
                 .map(|_| FftJob {
                     row: vec![0.0; mx],
-                    hat: vec![Complex::default(); cx],
+                    hat: vec![Complex::default(); BLOCK * cx],
                     scratch: vec![Complex::default(); scratch_len],
                 })
                 .collect();
@@ -300,21 +300,26 @@ impl DeformPlan2d {
             .zip(self.jobs.par_iter_mut())
             .enumerate()
             .for_each(|(b, ((cols, kernel), job))| {
-                for (k, (col, kc)) in cols
-                    .chunks_exact_mut(my)
-                    .zip(kernel.chunks_exact(my))
+                // BLOCK columns at a time: each row's BLOCK half-spectrum bins are read at once.
+                for (g, (group, kernel)) in cols
+                    .chunks_mut(BLOCK * my)
+                    .zip(kernel.chunks(BLOCK * my))
                     .enumerate()
                 {
-                    let c = b * cols_per + k;
-                    for (r, z) in col[..ny].iter_mut().enumerate() {
-                        *z = row_spec[r * cx + c];
+                    let (c0, ng) = (b * cols_per + g * BLOCK, group.len() / my);
+                    for r in 0..ny {
+                        for (k, &z) in row_spec[r * cx + c0..][..ng].iter().enumerate() {
+                            group[k * my + r] = z;
+                        }
                     }
-                    col[ny..].fill(Complex::default());
-                    col_fwd.process_with_scratch(col, &mut job.scratch);
-                    for (z, &kv) in col.iter_mut().zip(kc) {
-                        *z *= kv;
+                    for (col, kc) in group.chunks_exact_mut(my).zip(kernel.chunks_exact(my)) {
+                        col[ny..].fill(Complex::default());
+                        col_fwd.process_with_scratch(col, &mut job.scratch);
+                        for (z, &kv) in col.iter_mut().zip(kc) {
+                            *z *= kv;
+                        }
+                        col_inv.process_with_scratch(col, &mut job.scratch);
                     }
-                    col_inv.process_with_scratch(col, &mut job.scratch);
                 }
             });
         let spec = &self.spec;
@@ -322,18 +327,23 @@ impl DeformPlan2d {
             .zip(self.jobs.par_iter_mut())
             .enumerate()
             .for_each(|(b, (rows, job))| {
-                for (k, dst) in rows.chunks_exact_mut(nx).enumerate() {
-                    let r = b * rows_per + k;
-                    for (c, z) in job.hat.iter_mut().enumerate() {
-                        *z = spec[c * my + r];
+                // BLOCK rows at a time: each column's BLOCK bins are read at once.
+                for (g, dst) in rows.chunks_mut(BLOCK * nx).enumerate() {
+                    let (r0, ng) = (b * rows_per + g * BLOCK, dst.len() / nx);
+                    for c in 0..cx {
+                        for (k, &z) in spec[c * my + r0..][..ng].iter().enumerate() {
+                            job.hat[k * cx + c] = z;
+                        }
                     }
-                    // Bins 0 and mx/2 of a real row are real: clear their imaginary rounding.
-                    job.hat[0].im = 0.0;
-                    job.hat[cx - 1].im = 0.0;
-                    row_inv
-                        .process_with_scratch(&mut job.hat, &mut job.row, &mut job.scratch)
-                        .expect("sizes fixed by the plan");
-                    dst.copy_from_slice(&job.row[..nx]);
+                    for (hat, dst) in job.hat.chunks_exact_mut(cx).zip(dst.chunks_exact_mut(nx)) {
+                        // Bins 0 and mx/2 of a real row are real: clear their imaginary rounding.
+                        hat[0].im = 0.0;
+                        hat[cx - 1].im = 0.0;
+                        row_inv
+                            .process_with_scratch(hat, &mut job.row, &mut job.scratch)
+                            .expect("sizes fixed by the plan");
+                        dst.copy_from_slice(&job.row[..nx]);
+                    }
                 }
             });
     }

@@ -373,16 +373,17 @@ impl PointLevel {
     /// the level is `parallel`).
     pub fn update_film(&mut self, phys: &PointPhysics, h0: f64) {
         if self.parallel {
-            return self.update_film_parallel(phys, h0);
+            return self.update_film_parallel(phys, h0, false);
         }
         self.film_only(phys, h0);
         self.update_coefficients(phys);
     }
 
-    /// [`PointLevel::update_film`] with the film and the coefficients computed on the rayon pool
-    /// (and the deformation by [`PointLevel::deformation`]'s parallel product); the result is
-    /// the same to the bit, whatever the number of threads.
-    fn update_film_parallel(&mut self, phys: &PointPhysics, h0: f64) {
+    /// [`PointLevel::update_film`] (or, `fixed`, [`PointLevel::update_film_fixed_coefficients`])
+    /// with the film and the coefficients computed on the rayon pool (and the deformation by
+    /// [`PointLevel::deformation`]'s parallel product); the result is the same to the bit,
+    /// whatever the number of threads.
+    fn update_film_parallel(&mut self, phys: &PointPhysics, h0: f64, fixed: bool) {
         use rayon::prelude::*;
         self.apply_far_field(phys, h0);
         self.deformation(phys);
@@ -401,7 +402,13 @@ impl PointLevel {
                 for ((f, &w), &g) in film.iter_mut().zip(work).zip(gap) {
                     *f = h0 + g + w;
                 }
-                law.update(p, film, rho, eps, divisor);
+                if fixed {
+                    for (k, e) in eps.iter_mut().enumerate() {
+                        *e = law.eps_with(rho[k], film[k], divisor[k]);
+                    }
+                } else {
+                    law.update(p, film, rho, eps, divisor);
+                }
             });
         nodes.refresh_rough(&law);
     }
@@ -420,7 +427,7 @@ impl PointLevel {
     /// them as they changed P); the result equals [`PointLevel::update_film`]'s.
     pub fn update_film_fixed_coefficients(&mut self, phys: &PointPhysics, h0: f64) {
         if self.parallel {
-            return self.update_film_fixed_parallel(phys, h0);
+            return self.update_film_parallel(phys, h0, true);
         }
         self.film_only(phys, h0);
         let law = phys.coefficients();
@@ -433,31 +440,6 @@ impl PointLevel {
         {
             *e = law.eps_with(r, h, d);
         }
-        nodes.refresh_rough(&law);
-    }
-
-    /// [`PointLevel::update_film_fixed_coefficients`] on the rayon pool (the same values to
-    /// the bit).
-    fn update_film_fixed_parallel(&mut self, phys: &PointPhysics, h0: f64) {
-        use rayon::prelude::*;
-        self.apply_far_field(phys, h0);
-        self.deformation(phys);
-        let law = phys.coefficients();
-        let nodes = &mut self.nodes;
-        nodes
-            .film
-            .par_chunks_mut(PARALLEL_CHUNK)
-            .zip(nodes.eps.par_chunks_mut(PARALLEL_CHUNK))
-            .zip(nodes.work.par_chunks(PARALLEL_CHUNK))
-            .zip(self.gap.par_chunks(PARALLEL_CHUNK))
-            .zip(nodes.rho.par_chunks(PARALLEL_CHUNK))
-            .zip(nodes.divisor.par_chunks(PARALLEL_CHUNK))
-            .for_each(|(((((film, eps), work), gap), rho), divisor)| {
-                for (k, f) in film.iter_mut().enumerate() {
-                    *f = h0 + gap[k] + work[k];
-                    eps[k] = law.eps_with(rho[k], *f, divisor[k]);
-                }
-            });
         nodes.refresh_rough(&law);
     }
 
