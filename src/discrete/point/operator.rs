@@ -40,6 +40,19 @@ pub struct PointPhysics {
 }
 
 impl PointPhysics {
+    /// The physics of M = 20, L = 10, D = 0.5 with Barus viscosity and Dowson-Higginson
+    /// density (p_h = 0.5 GPa), for tests: every coefficient of the Reynolds operator varies
+    /// with P.
+    #[cfg(test)]
+    pub(crate) fn piezoviscous_compressible() -> Self {
+        use crate::model::case::{Models, PointCase};
+        let models = Models {
+            density: crate::model::lubricant::Density::DowsonHigginson { ph_pa: 0.5e9 },
+            ..Default::default()
+        };
+        Self::from_case(&PointCase::with_models(20.0, 10.0, 0.5, models).expect("a valid case"))
+    }
+
     /// The physics of a point case.
     pub fn from_case(case: &PointCase) -> Self {
         let v = case.venner();

@@ -416,21 +416,10 @@ impl PointLevel {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::case::{Models, PointCase};
 
     #[test]
     fn jacobian_matches_finite_differences() {
-        let case = PointCase::with_models(
-            20.0,
-            10.0,
-            0.5,
-            Models {
-                density: crate::model::lubricant::Density::DowsonHigginson { ph_pa: 0.5e9 },
-                ..Default::default()
-            },
-        )
-        .unwrap();
-        let phys = PointPhysics::from_case(&case);
+        let phys = PointPhysics::piezoviscous_compressible();
         let mk = || PointLevel::new(&phys, -3.0, 1.5, 2.5, 16, 12);
         let mut lv = mk();
         let fill = |lv: &mut PointLevel| {

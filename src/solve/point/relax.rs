@@ -471,18 +471,7 @@ mod tests {
 
     #[test]
     fn the_parallel_sweep_is_the_serial_sweep_in_block_order_to_the_bit() {
-        use crate::model::case::{Models, PointCase};
-        let case = PointCase::with_models(
-            20.0,
-            10.0,
-            0.5,
-            Models {
-                density: crate::model::lubricant::Density::DowsonHigginson { ph_pa: 0.5e9 },
-                ..Default::default()
-            },
-        )
-        .unwrap();
-        let phys = PointPhysics::from_case(&case);
+        let phys = PointPhysics::piezoviscous_compressible();
         let rp = RelaxParams::default();
         let h0 = -0.2;
         // The oracle: the serial sweep's rows in the order each block, then the gaps.
