@@ -251,6 +251,48 @@ impl PointLevel {
         strip.h0 = self.h0;
     }
 
+    /// Copy back what a strip taken at row j0 changed: P of the level's rows `p_rows`, H, eps,
+    /// rho, eta lambda and the rough fields of its rows `rows` (the inverse of
+    /// [`PointLevel::copy_rows_into`] over those rows).
+    pub fn copy_rows_from(
+        &mut self,
+        strip: &PointLevel,
+        j0: usize,
+        p_rows: std::ops::Range<usize>,
+        rows: std::ops::Range<usize>,
+    ) {
+        let nx = self.nx;
+        let (src, dst) = (&strip.nodes, &mut self.nodes);
+        let local = |j: usize| (j - j0) * nx;
+        let (r, l) = (
+            p_rows.start * nx..p_rows.end * nx,
+            local(p_rows.start)..local(p_rows.end),
+        );
+        dst.p[r].copy_from_slice(&src.p[l]);
+        let (r, l) = (
+            rows.start * nx..rows.end * nx,
+            local(rows.start)..local(rows.end),
+        );
+        for (s, d) in [
+            (&src.film, &mut dst.film),
+            (&src.eps, &mut dst.eps),
+            (&src.rho, &mut dst.rho),
+            (&src.divisor, &mut dst.divisor),
+        ] {
+            d[r.clone()].copy_from_slice(&s[l.clone()]);
+        }
+        let n = self.nx * self.ny;
+        for (s, d) in [
+            (&src.eps_along_y, &mut dst.eps_along_y),
+            (&src.wfilm, &mut dst.wfilm),
+        ] {
+            if !s.is_empty() {
+                d.resize(n, 0.0);
+                d[r.clone()].copy_from_slice(&s[l.clone()]);
+            }
+        }
+    }
+
     /// The deformation plan (not on a strip).
     fn plan(&mut self) -> &mut DeformPlan2d {
         self.deform.as_mut().expect(NO_PLAN)

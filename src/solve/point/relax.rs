@@ -102,14 +102,15 @@ fn relax_row(
 pub const BLOCK_ROWS: usize = 64;
 
 /// The blocks of one parallel level: each relaxes rows lo..hi of the level in a strip of its
-/// own (rows lo - 1 .. hi + 3, [`PointLevel::strip`]) with a row scratch of its own.
+/// own (rows lo - 1 .. hi + [`BLOCK_GAP`], [`PointLevel::strip`]) with a row scratch of its own.
 struct LevelBlocks {
     nx: usize,
     ny: usize,
     blocks: Vec<Block>,
 }
 
-/// One block: its rows lo..hi of the level, its strip (rows lo - 1 .. hi + 3) and row scratch.
+/// One block: its rows lo..hi of the level, its strip (rows lo - 1 .. hi + [`BLOCK_GAP`]) and
+/// row scratch.
 struct Block {
     lo: usize,
     hi: usize,
@@ -142,9 +143,10 @@ pub const BLOCK_GAP: usize = 3;
 
 /// One sweep of a parallel level: Gauss-Seidel x-line relaxation in blocks of rows
 /// ([`block_rows`]) relaxed at once on the rayon pool, each in a copy of its rows and their
-/// neighbours (a strip, rows lo - 1 .. hi + 3) from the state before the sweep; then the rows
-/// each block changed copied back (P of its rows, film, eps, rho and eta lambda of its rows and
-/// the two after them); then the rows between consecutive blocks relaxed in order on the level.
+/// neighbours (a strip, rows lo - 1 .. hi + [`BLOCK_GAP`]) from the state before the sweep;
+/// then the rows each block changed copied back ([`PointLevel::copy_rows_from`]: P of its rows,
+/// film, eps, rho and eta lambda of its rows and the two after them); then the rows between
+/// consecutive blocks relaxed in order on the level.
 /// No block reads a row that another writes ([`BLOCK_GAP`]), so the sweep equals the serial one
 /// taking the rows in the order: each block's rows, then the rows between blocks (tested to the
 /// bit). The blocks depend on the grid only: the result does not depend on the number of
@@ -166,7 +168,7 @@ fn blocked_sweep(
                 .map(|(lo, hi)| Block {
                     lo,
                     hi,
-                    strip: lv.strip(lo - 1, (hi + 3).min(ny) - (lo - 1)),
+                    strip: lv.strip(lo - 1, (hi + BLOCK_GAP).min(ny) - (lo - 1)),
                     scratch: PointScratch::default(),
                 })
                 .collect();
@@ -191,26 +193,9 @@ fn blocked_sweep(
         });
     }
     for b in &set {
-        let j0 = b.lo - 1;
-        let (src, dst) = (&b.strip.nodes, &mut lv.nodes);
-        let local = |j: usize| (j - j0) * nx;
-        let p = b.lo * nx..b.hi * nx;
-        dst.p[p.clone()].copy_from_slice(&src.p[local(b.lo)..local(b.hi)]);
-        let end = (b.hi + 2).min(ny - 1);
-        let (r, l) = (b.lo * nx..end * nx, local(b.lo)..local(end));
-        dst.film[r.clone()].copy_from_slice(&src.film[l.clone()]);
-        dst.eps[r.clone()].copy_from_slice(&src.eps[l.clone()]);
-        dst.rho[r.clone()].copy_from_slice(&src.rho[l.clone()]);
-        dst.divisor[r.clone()].copy_from_slice(&src.divisor[l.clone()]);
-        for (sf, df) in [
-            (&src.eps_along_y, &mut dst.eps_along_y),
-            (&src.wfilm, &mut dst.wfilm),
-        ] {
-            if !sf.is_empty() {
-                df.resize(nx * ny, 0.0);
-                df[r.clone()].copy_from_slice(&sf[l.clone()]);
-            }
-        }
+        // The block's rows, and the rows after them that its film corrections reach.
+        let end = (b.hi + BLOCK_GAP - 1).min(ny - 1);
+        lv.copy_rows_from(&b.strip, b.lo - 1, b.lo..b.hi, b.lo..end);
     }
     for w in set.windows(2) {
         for j in w[0].hi..w[1].lo {
