@@ -65,20 +65,47 @@ fn corner(x: f64, y: f64) -> f64 {
 /// cells share corners, so the corner function is evaluated once per corner of the grid of cell
 /// edges (x = (a - 1/2) hx, y = (b - 1/2) hy): a quarter of the `asinh` calls.
 pub fn kernel2d(nx: usize, ny: usize, hx: f64, hy: f64) -> Vec<f64> {
+    kernel2d_on(nx, ny, hx, hy, false)
+}
+
+/// [`kernel2d`], its rows computed on the rayon pool where `parallel` (the same values to the
+/// bit).
+pub fn kernel2d_on(nx: usize, ny: usize, hx: f64, hy: f64, parallel: bool) -> Vec<f64> {
     let w = nx + 1;
-    let mut corners = Vec::with_capacity(w * (ny + 1));
-    for b in 0..=ny {
+    let mut corners = vec![0.0; w * (ny + 1)];
+    rows_on(parallel, &mut corners, w, |b, row| {
         let y = (b as f64 - 0.5) * hy;
-        corners.extend((0..=nx).map(|a| corner((a as f64 - 0.5) * hx, y)));
-    }
-    let mut k = Vec::with_capacity(nx * ny);
-    for dy in 0..ny {
+        for (a, v) in row.iter_mut().enumerate() {
+            *v = corner((a as f64 - 0.5) * hx, y);
+        }
+    });
+    let mut k = vec![0.0; nx * ny];
+    rows_on(parallel, &mut k, nx, |dy, row| {
         let (lo, hi) = (&corners[dy * w..][..w], &corners[(dy + 1) * w..][..w]);
-        for dx in 0..nx {
-            k.push(hi[dx + 1] - hi[dx] - lo[dx + 1] + lo[dx]);
+        for (dx, v) in row.iter_mut().enumerate() {
+            *v = hi[dx + 1] - hi[dx] - lo[dx + 1] + lo[dx];
+        }
+    });
+    k
+}
+
+/// `f(j, row)` for each row of `width` values of `data`, on the rayon pool where `parallel`.
+fn rows_on<T: Send>(
+    parallel: bool,
+    data: &mut [T],
+    width: usize,
+    f: impl Fn(usize, &mut [T]) + Sync + Send,
+) {
+    if parallel {
+        use rayon::prelude::*;
+        data.par_chunks_mut(width)
+            .enumerate()
+            .for_each(|(j, row)| f(j, row));
+    } else {
+        for (j, row) in data.chunks_mut(width).enumerate() {
+            f(j, row);
         }
     }
-    k
 }
 
 /// Reference O(N^2) product out[k*nx + i] = sum_{j,l} K(|i-j|, |k-l|) p[l*nx + j], with `kernel`
@@ -106,6 +133,11 @@ pub fn direct_product2d(kernel: &[f64], nx: usize, ny: usize, p: &[f64], out: &m
 /// Rows moved together between the row transforms and the column-major spectrum.
 const BLOCK: usize = 8;
 
+/// Unused bins after each column of the spectrum: the columns lie `my + COL_PAD` bins apart,
+/// not a power of two (my = 2(ny - 1) often is), so that reading one bin of every column does
+/// not map them all to the same few cache sets.
+const COL_PAD: usize = 8;
+
 /// A reusable plan for the fast 2D deformation product on one grid: FFT plans, the transformed
 /// kernel and all work buffers are made once, so [`DeformPlan2d::apply`] never allocates.
 pub struct DeformPlan2d {
@@ -115,12 +147,14 @@ pub struct DeformPlan2d {
     mx: usize,
     my: usize,
     cx: usize,
+    /// The column stride of the spectrum, my + [`COL_PAD`].
+    cs: usize,
     row_fwd: Arc<dyn RealToComplex<f64>>,
     row_inv: Arc<dyn ComplexToReal<f64>>,
     col_fwd: Arc<dyn Fft<f64>>,
     col_inv: Arc<dyn Fft<f64>>,
     /// Real 2D DFT of the circulant kernel over mx * my (the inverse FFT's factor folded in),
-    /// column-major like `spec`: bin (column c, row r) at c * my + r.
+    /// column-major like `spec`: bin (column c, row r) at c * cs + r (0 in the padding).
     kernel_hat: Vec<f64>,
     spec: Vec<Complex<f64>>,
     rows: Vec<f64>,
@@ -143,6 +177,12 @@ struct FftJob {
 impl DeformPlan2d {
     /// Plan for an nx x ny grid (each at least 2) with `kernel` from [`kernel2d`].
     pub fn new(kernel: &[f64], nx: usize, ny: usize) -> Self {
+        Self::new_on(kernel, nx, ny, false)
+    }
+
+    /// [`DeformPlan2d::new`], the kernel's transform computed on the rayon pool where
+    /// `parallel` (the same plan to the bit).
+    pub fn new_on(kernel: &[f64], nx: usize, ny: usize, parallel: bool) -> Self {
         assert!(
             nx >= 2 && ny >= 2,
             "a 2D deformation plan needs at least two nodes per direction"
@@ -150,6 +190,7 @@ impl DeformPlan2d {
         assert_eq!(kernel.len(), nx * ny, "kernel size does not match the grid");
         let (mx, my) = (2 * (nx - 1), 2 * (ny - 1));
         let cx = mx / 2 + 1;
+        let cs = my + COL_PAD;
         let mut rplanner = RealFftPlanner::<f64>::new();
         let row_fwd = rplanner.plan_fft_forward(mx);
         let row_inv = rplanner.plan_fft_inverse(mx);
@@ -170,12 +211,13 @@ impl DeformPlan2d {
             mx,
             my,
             cx,
+            cs,
             row_fwd,
             row_inv,
             col_fwd,
             col_inv,
             kernel_hat: Vec::new(),
-            spec: vec![Complex::default(); cx * my],
+            spec: vec![Complex::default(); cx * cs],
             rows: vec![0.0; BLOCK * mx],
             rows_hat: vec![Complex::default(); BLOCK * cx],
             row_scratch,
@@ -186,13 +228,20 @@ impl DeformPlan2d {
         // The even circulant extension of K over the full mx x my period.
         let wrap = |d: usize, n: usize, m: usize| if d < n { d } else { m - d };
         let mut circ = vec![0.0; mx * my];
-        for r in 0..my {
+        rows_on(parallel, &mut circ, mx, |r, row| {
             let kr = wrap(r, ny, my);
-            for c in 0..mx {
-                circ[r * mx + c] = kernel[kr * nx + wrap(c, nx, mx)];
+            for (c, v) in row.iter_mut().enumerate() {
+                *v = kernel[kr * nx + wrap(c, nx, mx)];
             }
+        });
+        if parallel {
+            plan.rows_forward_parallel(&circ, mx, my);
+            plan.columns_parallel(my, false);
+            // The products need ny rows of it, not my.
+            plan.row_spec = Vec::new();
+        } else {
+            plan.forward(&circ, mx, my);
         }
-        plan.forward(&circ, mx, my);
         let scale = 1.0 / (mx * my) as f64;
         plan.kernel_hat = plan.spec.iter().map(|z| z.re * scale).collect();
         plan
@@ -220,13 +269,15 @@ impl DeformPlan2d {
         for (s, &k) in self.spec.iter_mut().zip(&self.kernel_hat) {
             *s *= k;
         }
-        self.col_inv
-            .process_with_scratch(&mut self.spec, &mut self.col_scratch);
-        let (mx, my, cx) = (self.mx, self.my, self.cx);
+        let (mx, my, cx, cs) = (self.mx, self.my, self.cx, self.cs);
+        for col in self.spec.chunks_exact_mut(cs) {
+            self.col_inv
+                .process_with_scratch(&mut col[..my], &mut self.col_scratch);
+        }
         for r0 in (0..ny).step_by(BLOCK) {
             let nb = BLOCK.min(ny - r0);
             for c in 0..cx {
-                let col = &self.spec[c * my + r0..][..nb];
+                let col = &self.spec[c * cs + r0..][..nb];
                 for (b, &z) in col.iter().enumerate() {
                     self.rows_hat[b * cx + c] = z;
                 }
@@ -245,83 +296,23 @@ impl DeformPlan2d {
         }
     }
 
-    /// [`DeformPlan2d::apply`] on the rayon pool: the row transforms, then each column's
-    /// transform, kernel product and inverse, then the inverse row transforms, each stage split
-    /// into one contiguous share per thread. Every row and column goes through the same
-    /// transforms whatever the share, so the result does not depend on the number of threads.
-    pub fn apply_parallel(&mut self, p: &[f64], out: &mut [f64]) {
+    /// [`DeformPlan2d::apply`] times `scale` on the rayon pool (each value of the product
+    /// multiplied by `scale` once, as a caller scaling the product would): the row transforms,
+    /// then each column's transform, kernel product and inverse, then the inverse row
+    /// transforms, each stage split into one contiguous share per thread. Every row and column
+    /// goes through the same transforms whatever the share, so the result does not depend on the
+    /// number of threads.
+    pub fn apply_parallel(&mut self, p: &[f64], out: &mut [f64], scale: f64) {
         use rayon::prelude::*;
-        let (nx, ny, mx, my, cx) = (self.nx, self.ny, self.mx, self.my, self.cx);
+        let (nx, ny, mx, cx, cs) = (self.nx, self.ny, self.mx, self.cx, self.cs);
         assert!(
             p.len() == nx * ny && out.len() == nx * ny,
             "2D deformation plan size mismatch"
         );
-        let threads = rayon::current_num_threads().max(1);
-        if self.jobs.len() != threads {
-            let scratch_len = [
-                self.row_fwd.get_scratch_len(),
-                self.row_inv.get_scratch_len(),
-                self.col_fwd.get_inplace_scratch_len(),
-                self.col_inv.get_inplace_scratch_len(),
-            ]
-            .into_iter()
-            .max()
-            .unwrap_or(0);
-            self.jobs = (0..threads)
-                .map(|_| FftJob {
-                    row: vec![0.0; mx],
-                    hat: vec![Complex::default(); BLOCK * cx],
-                    scratch: vec![Complex::default(); scratch_len],
-                })
-                .collect();
-        }
-        self.row_spec.resize(ny * cx, Complex::default());
-        let (row_fwd, row_inv) = (&self.row_fwd, &self.row_inv);
-        let (col_fwd, col_inv) = (&self.col_fwd, &self.col_inv);
-        let rows_per = ny.div_ceil(threads);
-        self.row_spec
-            .par_chunks_mut(rows_per * cx)
-            .zip(p.par_chunks(rows_per * nx))
-            .zip(self.jobs.par_iter_mut())
-            .for_each(|((hats, src), job)| {
-                for (hat, src) in hats.chunks_exact_mut(cx).zip(src.chunks_exact(nx)) {
-                    job.row[..nx].copy_from_slice(src);
-                    job.row[nx..].fill(0.0);
-                    row_fwd
-                        .process_with_scratch(&mut job.row, hat, &mut job.scratch)
-                        .expect("sizes fixed by the plan");
-                }
-            });
-        let cols_per = cx.div_ceil(threads);
-        let row_spec = &self.row_spec;
-        self.spec
-            .par_chunks_mut(cols_per * my)
-            .zip(self.kernel_hat.par_chunks(cols_per * my))
-            .zip(self.jobs.par_iter_mut())
-            .enumerate()
-            .for_each(|(b, ((cols, kernel), job))| {
-                // BLOCK columns at a time: each row's BLOCK half-spectrum bins are read at once.
-                for (g, (group, kernel)) in cols
-                    .chunks_mut(BLOCK * my)
-                    .zip(kernel.chunks(BLOCK * my))
-                    .enumerate()
-                {
-                    let (c0, ng) = (b * cols_per + g * BLOCK, group.len() / my);
-                    for r in 0..ny {
-                        for (k, &z) in row_spec[r * cx + c0..][..ng].iter().enumerate() {
-                            group[k * my + r] = z;
-                        }
-                    }
-                    for (col, kc) in group.chunks_exact_mut(my).zip(kernel.chunks_exact(my)) {
-                        col[ny..].fill(Complex::default());
-                        col_fwd.process_with_scratch(col, &mut job.scratch);
-                        for (z, &kv) in col.iter_mut().zip(kc) {
-                            *z *= kv;
-                        }
-                        col_inv.process_with_scratch(col, &mut job.scratch);
-                    }
-                }
-            });
+        self.rows_forward_parallel(p, nx, ny);
+        self.columns_parallel(ny, true);
+        let rows_per = ny.div_ceil(self.jobs.len());
+        let row_inv = &self.row_inv;
         let spec = &self.spec;
         out.par_chunks_mut(rows_per * nx)
             .zip(self.jobs.par_iter_mut())
@@ -331,7 +322,7 @@ impl DeformPlan2d {
                 for (g, dst) in rows.chunks_mut(BLOCK * nx).enumerate() {
                     let (r0, ng) = (b * rows_per + g * BLOCK, dst.len() / nx);
                     for c in 0..cx {
-                        for (k, &z) in spec[c * my + r0..][..ng].iter().enumerate() {
+                        for (k, &z) in spec[c * cs + r0..][..ng].iter().enumerate() {
                             job.hat[k * cx + c] = z;
                         }
                     }
@@ -340,9 +331,106 @@ impl DeformPlan2d {
                         hat[0].im = 0.0;
                         hat[cx - 1].im = 0.0;
                         row_inv
-                            .process_with_scratch(hat, &mut job.row, &mut job.scratch)
+                            .process_with_scratch(hat, &mut job.row[..mx], &mut job.scratch)
                             .expect("sizes fixed by the plan");
-                        dst.copy_from_slice(&job.row[..nx]);
+                        for (d, &v) in dst.iter_mut().zip(&job.row[..nx]) {
+                            *d = v * scale;
+                        }
+                    }
+                }
+            });
+    }
+
+    /// One set of buffers per rayon job of the parallel stages (made once per thread count).
+    fn ensure_jobs(&mut self) {
+        let threads = rayon::current_num_threads().max(1);
+        if self.jobs.len() == threads {
+            return;
+        }
+        let scratch_len = [
+            self.row_fwd.get_scratch_len(),
+            self.row_inv.get_scratch_len(),
+            self.col_fwd.get_inplace_scratch_len(),
+            self.col_inv.get_inplace_scratch_len(),
+        ]
+        .into_iter()
+        .max()
+        .unwrap_or(0);
+        self.jobs = (0..threads)
+            .map(|_| FftJob {
+                row: vec![0.0; self.mx],
+                hat: vec![Complex::default(); BLOCK * self.cx],
+                scratch: vec![Complex::default(); scratch_len],
+            })
+            .collect();
+    }
+
+    /// The real transforms of `rows` rows of `width` values of `src` (zero padded to mx) into
+    /// `row_spec` (rows of cx bins), one contiguous share of rows per rayon job.
+    fn rows_forward_parallel(&mut self, src: &[f64], width: usize, rows: usize) {
+        use rayon::prelude::*;
+        self.ensure_jobs();
+        let (mx, cx) = (self.mx, self.cx);
+        self.row_spec.resize(rows * cx, Complex::default());
+        let row_fwd = &self.row_fwd;
+        let rows_per = rows.div_ceil(self.jobs.len());
+        self.row_spec[..rows * cx]
+            .par_chunks_mut(rows_per * cx)
+            .zip(src.par_chunks(rows_per * width))
+            .zip(self.jobs.par_iter_mut())
+            .for_each(|((hats, src), job)| {
+                let row = &mut job.row[..mx];
+                for (hat, src) in hats.chunks_exact_mut(cx).zip(src.chunks_exact(width)) {
+                    row[..width].copy_from_slice(src);
+                    row[width..].fill(0.0);
+                    row_fwd
+                        .process_with_scratch(row, hat, &mut job.scratch)
+                        .expect("sizes fixed by the plan");
+                }
+            });
+    }
+
+    /// The column stage of the parallel transforms: each column of the spectrum gathered from
+    /// the first `rows` rows of `row_spec` (zeros below), transformed; with `product`, also
+    /// multiplied by the kernel's transform and transformed back. One contiguous share of
+    /// columns per rayon job.
+    fn columns_parallel(&mut self, rows: usize, product: bool) {
+        use rayon::prelude::*;
+        let (my, cx, cs) = (self.my, self.cx, self.cs);
+        let cols_per = cx.div_ceil(self.jobs.len());
+        let (col_fwd, col_inv) = (&self.col_fwd, &self.col_inv);
+        let (row_spec, kernel_hat) = (&self.row_spec, &self.kernel_hat);
+        self.spec
+            .par_chunks_mut(cols_per * cs)
+            .zip(self.jobs.par_iter_mut())
+            .enumerate()
+            .for_each(|(b, (cols, job))| {
+                // BLOCK columns at a time: each row's BLOCK half-spectrum bins are read at once.
+                for (g, group) in cols.chunks_mut(BLOCK * cs).enumerate() {
+                    let (c0, ng) = (b * cols_per + g * BLOCK, group.len() / cs);
+                    for r in 0..rows {
+                        for (k, &z) in row_spec[r * cx + c0..][..ng].iter().enumerate() {
+                            group[k * cs + r] = z;
+                        }
+                    }
+                    // Each step over the whole group before the next (faster than each
+                    // column through all steps in turn).
+                    for col in group.chunks_exact_mut(cs) {
+                        let col = &mut col[..my];
+                        col[rows..].fill(Complex::default());
+                        col_fwd.process_with_scratch(col, &mut job.scratch);
+                    }
+                    if !product {
+                        continue;
+                    }
+                    for (k, col) in group.chunks_exact_mut(cs).enumerate() {
+                        let kc = &kernel_hat[(c0 + k) * cs..][..my];
+                        for (z, &kv) in col.iter_mut().zip(kc) {
+                            *z *= kv;
+                        }
+                    }
+                    for col in group.chunks_exact_mut(cs) {
+                        col_inv.process_with_scratch(&mut col[..my], &mut job.scratch);
                     }
                 }
             });
@@ -350,7 +438,7 @@ impl DeformPlan2d {
 
     /// 2D forward DFT of `src` (`rows` rows of `width` values, zero padded to my x mx) into `spec`.
     fn forward(&mut self, src: &[f64], width: usize, rows: usize) {
-        let (mx, my, cx) = (self.mx, self.my, self.cx);
+        let (mx, my, cx, cs) = (self.mx, self.my, self.cx, self.cs);
         for r0 in (0..rows).step_by(BLOCK) {
             let nb = BLOCK.min(rows - r0);
             for b in 0..nb {
@@ -366,19 +454,18 @@ impl DeformPlan2d {
                     .expect("sizes fixed by the plan");
             }
             for c in 0..cx {
-                let col = &mut self.spec[c * my + r0..][..nb];
+                let col = &mut self.spec[c * cs + r0..][..nb];
                 for (b, z) in col.iter_mut().enumerate() {
                     *z = self.rows_hat[b * cx + c];
                 }
             }
         }
-        if rows < my {
-            for col in self.spec.chunks_exact_mut(my) {
-                col[rows..].fill(Complex::default());
-            }
+        for col in self.spec.chunks_exact_mut(cs) {
+            let col = &mut col[..my];
+            col[rows..].fill(Complex::default());
+            self.col_fwd
+                .process_with_scratch(col, &mut self.col_scratch);
         }
-        self.col_fwd
-            .process_with_scratch(&mut self.spec, &mut self.col_scratch);
     }
 }
 
@@ -418,7 +505,7 @@ mod tests {
                         .num_threads(threads)
                         .build()
                         .unwrap()
-                        .install(|| plan.apply_parallel(&p, &mut c));
+                        .install(|| plan.apply_parallel(&p, &mut c, 1.0));
                     runs.push(c);
                 }
                 assert_agree(&a, &runs[0], 1e-10, &format!("parallel {nx}x{ny}"));

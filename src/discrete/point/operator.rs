@@ -17,7 +17,7 @@
 use crate::discrete::level::{deref_nodes, NodeFields};
 use crate::discrete::physics::Physics;
 use crate::discrete::point::far_field::FarField;
-use crate::discrete::point::kernel::{direct_product2d, kernel2d, DeformPlan2d};
+use crate::discrete::point::kernel::{direct_product2d, kernel2d_on, DeformPlan2d};
 use crate::discrete::stencil::{flux_difference, upwind, wedge};
 use crate::model::case::PointCase;
 
@@ -156,6 +156,23 @@ pub struct PointLevel {
 
 deref_nodes!(PointLevel);
 
+/// Values per field (each strip's `rows` times nx, summed) from which
+/// [`PointLevel::copy_rows_from`] copies on the rayon pool: about a megabyte of the five main
+/// fields, 0.1 ms of copying.
+const PARALLEL_COPY_MIN: usize = 1 << 15;
+
+/// A strip's place in its level and the rows it changed ([`PointLevel::copy_rows_from`]).
+pub struct StripRows<'a> {
+    /// The strip ([`PointLevel::strip`]).
+    pub strip: &'a PointLevel,
+    /// The level row of its first row.
+    pub j0: usize,
+    /// The level rows whose P it changed.
+    pub p_rows: std::ops::Range<usize>,
+    /// The level rows whose H, eps, rho, eta lambda and rough fields it changed.
+    pub rows: std::ops::Range<usize>,
+}
+
 impl PointLevel {
     /// A level with `ix` x `iy` intervals on [x_in, x_out] x [-y_half, y_half], P = 0.
     pub fn new(
@@ -166,12 +183,24 @@ impl PointLevel {
         ix: usize,
         iy: usize,
     ) -> Self {
+        Self::new_on(phys, (x_in, x_out, y_half), ix, iy, false)
+    }
+
+    /// [`PointLevel::new`] on the domain `(x_in, x_out, y_half)`, made on the rayon pool and
+    /// [`PointLevel::parallel`] where `parallel` (the same level to the bit).
+    pub fn new_on(
+        phys: &PointPhysics,
+        (x_in, x_out, y_half): (f64, f64, f64),
+        ix: usize,
+        iy: usize,
+        parallel: bool,
+    ) -> Self {
         let (nx, ny) = (ix + 1, iy + 1);
         let hx = (x_out - x_in) / ix as f64;
         let hy = 2.0 * y_half / iy as f64;
         let x: Vec<f64> = (0..nx).map(|i| x_in + i as f64 * hx).collect();
         let y: Vec<f64> = (0..ny).map(|j| -y_half + j as f64 * hy).collect();
-        let kernel = kernel2d(nx, ny, hx, hy);
+        let kernel = kernel2d_on(nx, ny, hx, hy, parallel);
         let mut gap = vec![0.0; nx * ny];
         for j in 0..ny {
             for i in 0..nx {
@@ -187,12 +216,12 @@ impl PointLevel {
             x,
             y,
             nodes: NodeFields::new(n, phys.load),
-            deform: Some(DeformPlan2d::new(&kernel, nx, ny)),
+            deform: Some(DeformPlan2d::new_on(&kernel, nx, ny, parallel)),
             kernel,
             gap,
             direct_deformation: false,
             deform_seconds: 0.0,
-            parallel: false,
+            parallel,
             far: None,
             h0: 0.0,
         }
@@ -251,45 +280,55 @@ impl PointLevel {
         strip.h0 = self.h0;
     }
 
-    /// Copy back what a strip taken at row j0 changed: P of the level's rows `p_rows`, H, eps,
-    /// rho, eta lambda and the rough fields of its rows `rows` (the inverse of
-    /// [`PointLevel::copy_rows_into`] over those rows).
-    pub fn copy_rows_from(
+    /// Copy back what each strip of `strips` changed (`at(s)`: the strip, the level row j0 it
+    /// was taken at, the level's rows `p_rows` whose P it changed, and the rows `rows` whose H,
+    /// eps, rho, eta lambda and rough fields it changed; the ranges of different strips
+    /// disjoint): the inverse of [`PointLevel::copy_rows_into`] over those rows, one field at a
+    /// time on the rayon pool.
+    pub fn copy_rows_from<S: Sync>(
         &mut self,
-        strip: &PointLevel,
-        j0: usize,
-        p_rows: std::ops::Range<usize>,
-        rows: std::ops::Range<usize>,
+        strips: &[S],
+        at: impl Fn(&S) -> StripRows<'_> + Sync,
     ) {
-        let nx = self.nx;
-        let (src, dst) = (&strip.nodes, &mut self.nodes);
-        let local = |j: usize| (j - j0) * nx;
-        let (r, l) = (
-            p_rows.start * nx..p_rows.end * nx,
-            local(p_rows.start)..local(p_rows.end),
-        );
-        dst.p[r].copy_from_slice(&src.p[l]);
-        let (r, l) = (
-            rows.start * nx..rows.end * nx,
-            local(rows.start)..local(rows.end),
-        );
-        for (s, d) in [
-            (&src.film, &mut dst.film),
-            (&src.eps, &mut dst.eps),
-            (&src.rho, &mut dst.rho),
-            (&src.divisor, &mut dst.divisor),
-        ] {
-            d[r.clone()].copy_from_slice(&s[l.clone()]);
-        }
-        let n = self.nx * self.ny;
-        for (s, d) in [
-            (&src.eps_along_y, &mut dst.eps_along_y),
-            (&src.wfilm, &mut dst.wfilm),
-        ] {
-            if !s.is_empty() {
-                d.resize(n, 0.0);
-                d[r.clone()].copy_from_slice(&s[l.clone()]);
+        use rayon::prelude::*;
+        let (nx, n) = (self.nx, self.len());
+        type Field = fn(&NodeFields) -> &Vec<f64>;
+        let dst = &mut self.nodes;
+        let fields: [(&mut Vec<f64>, Field, bool); 7] = [
+            (&mut dst.p, |f| &f.p, true),
+            (&mut dst.film, |f| &f.film, false),
+            (&mut dst.eps, |f| &f.eps, false),
+            (&mut dst.rho, |f| &f.rho, false),
+            (&mut dst.divisor, |f| &f.divisor, false),
+            (&mut dst.eps_along_y, |f| &f.eps_along_y, false),
+            (&mut dst.wfilm, |f| &f.wfilm, false),
+        ];
+        let copy = |(d, field, is_p): (&mut Vec<f64>, Field, bool)| {
+            for s in strips {
+                let StripRows {
+                    strip,
+                    j0,
+                    p_rows,
+                    rows,
+                } = at(s);
+                let src = field(&strip.nodes);
+                if src.is_empty() {
+                    continue;
+                }
+                if d.len() < n {
+                    d.resize(n, 0.0);
+                }
+                let rows = if is_p { p_rows } else { rows };
+                let local = (rows.start - j0) * nx..(rows.end - j0) * nx;
+                d[rows.start * nx..rows.end * nx].copy_from_slice(&src[local]);
             }
+        };
+        // On the pool only where the copy outweighs waking a thread (tens of microseconds).
+        let values: usize = strips.iter().map(|s| at(s).rows.len() * nx).sum();
+        if values >= PARALLEL_COPY_MIN {
+            fields.into_par_iter().for_each(copy);
+        } else {
+            fields.into_iter().for_each(copy);
         }
     }
 
@@ -368,16 +407,16 @@ impl PointLevel {
             } else {
                 let plan = self.deform.as_mut().expect(NO_PLAN);
                 if self.parallel {
-                    plan.apply_parallel(&self.nodes.p, &mut self.nodes.work);
+                    plan.apply_parallel(&self.nodes.p, &mut self.nodes.work, phys.coef);
                 } else {
                     plan.apply(&self.nodes.p, &mut self.nodes.work);
                 }
             }
-            for_each_row(self.parallel, &mut self.nodes.work, self.nx, |_, row| {
-                for w in row {
+            if !self.parallel || self.direct_deformation {
+                for w in &mut self.nodes.work {
                     *w *= phys.coef;
                 }
-            });
+            }
             self.deform_seconds += start.elapsed().as_secs_f64();
         } else {
             self.work.fill(0.0);

@@ -125,13 +125,14 @@ impl Multigrid<PointContact> {
         });
         let mut n = domain.n0;
         loop {
-            let mut lv = PointLevel::new(&phys, domain.x_in, domain.x_out, domain.y_half, n, n);
+            // Parallel rows only where a level has enough rows to share.
+            let parallel = params.parallel && n + 1 >= PARALLEL_MIN_ROWS;
+            let extent = (domain.x_in, domain.x_out, domain.y_half);
+            let mut lv = PointLevel::new_on(&phys, extent, n, n, parallel);
             if let Some(coarse) = far_spacing {
                 lv = lv.with_far_field(phys.d, coarse);
             }
             lv.direct_deformation = params.direct_deformation;
-            // Parallel rows only where a level has enough rows to share.
-            lv.parallel = params.parallel && n + 1 >= PARALLEL_MIN_ROWS;
             levels.push(lv);
             if n + 1 >= params.grid {
                 break;

@@ -17,7 +17,7 @@
 //! The contact-independent steps of the banded row solve are the line smoother's
 //! ([`crate::solve::line::relax`]: node kinds, distributed rows, the change of a node).
 
-use crate::discrete::point::operator::{PointLevel, PointPhysics};
+use crate::discrete::point::operator::{PointLevel, PointPhysics, StripRows};
 use crate::solve::banded::solve_banded;
 use crate::solve::point::jacobian::{KernelWindow, PointJacRow, RowDerivatives};
 use crate::solve::relax::{
@@ -41,7 +41,7 @@ pub struct PointScratch {
     /// The nodal derivatives of the row.
     derivs: RowDerivatives,
     change: Vec<f64>,
-    /// The blocks of each parallel level relaxed so far ([`blocked_sweep`]).
+    /// The blocks and gaps of each parallel level relaxed so far ([`blocked_sweep`]).
     blocks: Vec<LevelBlocks>,
     /// The film correction: c dP of the relaxed row padded by `reach` zeros on both sides, and
     /// the kernel rows dy = 0, 1, 2 mirrored over -reach..=reach ([`mirror_kernel`]).
@@ -101,21 +101,33 @@ fn relax_row(
 /// Interior rows per block of a parallel sweep ([`blocked_sweep`]), about.
 pub const BLOCK_ROWS: usize = 64;
 
-/// The blocks of one parallel level: each relaxes rows lo..hi of the level in a strip of its
-/// own (rows lo - 1 .. hi + [`BLOCK_GAP`], [`PointLevel::strip`]) with a row scratch of its own.
+/// The blocks of one parallel level and the gaps between them ([`blocked_sweep`]).
 struct LevelBlocks {
     nx: usize,
     ny: usize,
     blocks: Vec<Block>,
+    gaps: Vec<Block>,
 }
 
-/// One block: its rows lo..hi of the level, its strip (rows lo - 1 .. hi + [`BLOCK_GAP`]) and
-/// row scratch.
+/// Rows lo..hi of a level relaxed in a strip of their own (rows lo - 1 .. hi + [`BLOCK_GAP`],
+/// [`PointLevel::strip`]) with a row scratch of their own.
 struct Block {
     lo: usize,
     hi: usize,
     strip: PointLevel,
     scratch: PointScratch,
+}
+
+impl Block {
+    fn new(lv: &PointLevel, lo: usize, hi: usize) -> Block {
+        let j0 = lo - 1;
+        Block {
+            lo,
+            hi,
+            strip: lv.strip(j0, (hi + BLOCK_GAP).min(lv.ny) - j0),
+            scratch: PointScratch::default(),
+        }
+    }
 }
 
 /// The rows lo..hi of each block of a level of `ny` rows: the interior rows 1..ny - 1 cut into
@@ -142,13 +154,10 @@ pub fn block_rows(ny: usize) -> Vec<(usize, usize)> {
 pub const BLOCK_GAP: usize = 3;
 
 /// One sweep of a parallel level: Gauss-Seidel x-line relaxation in blocks of rows
-/// ([`block_rows`]) relaxed at once on the rayon pool, each in a copy of its rows and their
-/// neighbours (a strip, rows lo - 1 .. hi + [`BLOCK_GAP`]) from the state before the sweep;
-/// then the rows each block changed copied back ([`PointLevel::copy_rows_from`]: P of its rows,
-/// film, eps, rho and eta lambda of its rows and the two after them); then the rows between
-/// consecutive blocks relaxed in order on the level.
-/// No block reads a row that another writes ([`BLOCK_GAP`]), so the sweep equals the serial one
-/// taking the rows in the order: each block's rows, then the rows between blocks (tested to the
+/// ([`block_rows`]) relaxed at once on the rayon pool, then the rows between consecutive blocks
+/// (the gaps), also at once ([`relax_at_once`]). No block reads a row that another writes
+/// ([`BLOCK_GAP`]), and gaps lie more than [`BLOCK_GAP`] rows apart, so the sweep equals the
+/// serial one taking the rows in the order: each block's rows, then each gap's (tested to the
 /// bit). The blocks depend on the grid only: the result does not depend on the number of
 /// threads.
 fn blocked_sweep(
@@ -158,30 +167,51 @@ fn blocked_sweep(
     reach: usize,
     s: &mut PointScratch,
 ) {
-    use rayon::prelude::*;
     let (nx, ny) = (lv.nx, lv.ny);
     let k = match s.blocks.iter().position(|b| b.nx == nx && b.ny == ny) {
         Some(k) => k,
         None => {
-            let blocks = block_rows(ny)
-                .into_iter()
-                .map(|(lo, hi)| Block {
-                    lo,
-                    hi,
-                    strip: lv.strip(lo - 1, (hi + BLOCK_GAP).min(ny) - (lo - 1)),
-                    scratch: PointScratch::default(),
-                })
+            let rows = block_rows(ny);
+            let blocks = rows
+                .iter()
+                .map(|&(lo, hi)| Block::new(lv, lo, hi))
                 .collect();
-            s.blocks.push(LevelBlocks { nx, ny, blocks });
+            let gaps = rows
+                .windows(2)
+                .map(|w| Block::new(lv, w[0].1, w[1].0))
+                .collect();
+            s.blocks.push(LevelBlocks {
+                nx,
+                ny,
+                blocks,
+                gaps,
+            });
             s.blocks.len() - 1
         }
     };
-    let mut set = std::mem::take(&mut s.blocks[k].blocks);
-    for b in &mut set {
-        for (d, m) in b.scratch.film_kernel.iter_mut().zip(&s.film_kernel) {
-            d.clone_from(m);
+    let LevelBlocks { blocks, gaps, .. } = &mut s.blocks[k];
+    for set in [blocks, gaps] {
+        for b in set.iter_mut() {
+            for (d, m) in b.scratch.film_kernel.iter_mut().zip(&s.film_kernel) {
+                d.clone_from(m);
+            }
         }
+        relax_at_once(lv, phys, rp, reach, set);
     }
+}
+
+/// Relax the rows of each block of `set` at once on the rayon pool, each in serial Gauss-Seidel
+/// order in its strip (copied from the level's state before), then copy back the rows each
+/// changed ([`PointLevel::copy_rows_from`]: P of its rows, H, eps, rho and eta lambda of its
+/// rows and the two after them, which its film corrections reach).
+fn relax_at_once(
+    lv: &mut PointLevel,
+    phys: &PointPhysics,
+    rp: &RelaxParams,
+    reach: usize,
+    set: &mut [Block],
+) {
+    use rayon::prelude::*;
     {
         let lv = &*lv;
         set.par_iter_mut().for_each(|b| {
@@ -192,17 +222,13 @@ fn blocked_sweep(
             }
         });
     }
-    for b in &set {
-        // The block's rows, and the rows after them that its film corrections reach.
-        let end = (b.hi + BLOCK_GAP - 1).min(ny - 1);
-        lv.copy_rows_from(&b.strip, b.lo - 1, b.lo..b.hi, b.lo..end);
-    }
-    for w in set.windows(2) {
-        for j in w[0].hi..w[1].lo {
-            relax_row(lv, phys, rp, j, reach, s);
-        }
-    }
-    s.blocks[k].blocks = set;
+    let ny = lv.ny;
+    lv.copy_rows_from(set, |b| StripRows {
+        strip: &b.strip,
+        j0: b.lo - 1,
+        p_rows: b.lo..b.hi,
+        rows: b.lo..(b.hi + BLOCK_GAP - 1).min(ny - 1),
+    });
 }
 
 /// The relaxation changes of row j (into `s.change`, indexed by i) from the current state.
