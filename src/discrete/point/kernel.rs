@@ -31,6 +31,7 @@
 //! column by column so each column is contiguous; rows are moved in blocks to keep the transposes
 //! cache friendly).
 
+use crate::discrete::rows::for_each_row;
 use realfft::num_complex::Complex;
 use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::{Fft, FftPlanner};
@@ -73,39 +74,20 @@ pub fn kernel2d(nx: usize, ny: usize, hx: f64, hy: f64) -> Vec<f64> {
 pub fn kernel2d_on(nx: usize, ny: usize, hx: f64, hy: f64, parallel: bool) -> Vec<f64> {
     let w = nx + 1;
     let mut corners = vec![0.0; w * (ny + 1)];
-    rows_on(parallel, &mut corners, w, |b, row| {
+    for_each_row(parallel, &mut corners, w, |b, row| {
         let y = (b as f64 - 0.5) * hy;
         for (a, v) in row.iter_mut().enumerate() {
             *v = corner((a as f64 - 0.5) * hx, y);
         }
     });
     let mut k = vec![0.0; nx * ny];
-    rows_on(parallel, &mut k, nx, |dy, row| {
+    for_each_row(parallel, &mut k, nx, |dy, row| {
         let (lo, hi) = (&corners[dy * w..][..w], &corners[(dy + 1) * w..][..w]);
         for (dx, v) in row.iter_mut().enumerate() {
             *v = hi[dx + 1] - hi[dx] - lo[dx + 1] + lo[dx];
         }
     });
     k
-}
-
-/// `f(j, row)` for each row of `width` values of `data`, on the rayon pool where `parallel`.
-fn rows_on<T: Send>(
-    parallel: bool,
-    data: &mut [T],
-    width: usize,
-    f: impl Fn(usize, &mut [T]) + Sync + Send,
-) {
-    if parallel {
-        use rayon::prelude::*;
-        data.par_chunks_mut(width)
-            .enumerate()
-            .for_each(|(j, row)| f(j, row));
-    } else {
-        for (j, row) in data.chunks_mut(width).enumerate() {
-            f(j, row);
-        }
-    }
 }
 
 /// Reference O(N^2) product out[k*nx + i] = sum_{j,l} K(|i-j|, |k-l|) p[l*nx + j], with `kernel`
@@ -228,7 +210,7 @@ impl DeformPlan2d {
         // The even circulant extension of K over the full mx x my period.
         let wrap = |d: usize, n: usize, m: usize| if d < n { d } else { m - d };
         let mut circ = vec![0.0; mx * my];
-        rows_on(parallel, &mut circ, mx, |r, row| {
+        for_each_row(parallel, &mut circ, mx, |r, row| {
             let kr = wrap(r, ny, my);
             for (c, v) in row.iter_mut().enumerate() {
                 *v = kernel[kr * nx + wrap(c, nx, mx)];

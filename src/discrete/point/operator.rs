@@ -18,6 +18,7 @@ use crate::discrete::level::{deref_nodes, NodeFields};
 use crate::discrete::physics::Physics;
 use crate::discrete::point::far_field::FarField;
 use crate::discrete::point::kernel::{direct_product2d, kernel2d_on, DeformPlan2d};
+use crate::discrete::rows::for_each_row;
 use crate::discrete::stencil::{flux_difference, upwind, wedge};
 use crate::model::case::PointCase;
 
@@ -87,26 +88,6 @@ impl crate::discrete::physics::AsPhysics for PointPhysics {
 impl std::ops::DerefMut for PointPhysics {
     fn deref_mut(&mut self) -> &mut Physics {
         &mut self.common
-    }
-}
-
-/// `f(j, row)` for every row j of `data` (rows of `nx` values, row-major like a level's fields),
-/// on the rayon pool when `parallel`; the rows are independent, so the result is the same.
-pub fn for_each_row<T: Send>(
-    parallel: bool,
-    data: &mut [T],
-    nx: usize,
-    f: impl Fn(usize, &mut [T]) + Sync + Send,
-) {
-    if parallel {
-        use rayon::prelude::*;
-        data.par_chunks_mut(nx)
-            .enumerate()
-            .for_each(|(j, row)| f(j, row));
-    } else {
-        for (j, row) in data.chunks_mut(nx).enumerate() {
-            f(j, row);
-        }
     }
 }
 

@@ -21,7 +21,8 @@
 
 use crate::discrete::point::domain::PointDomain;
 use crate::discrete::point::domain::PointDomainParams;
-use crate::discrete::point::operator::{for_each_row, PointLevel, PointPhysics};
+use crate::discrete::point::operator::{PointLevel, PointPhysics};
+use crate::discrete::rows::for_each_row;
 use crate::model::case::{Elasticity, PointCase};
 use crate::solve::deadline::past;
 use crate::solve::multilevel::{grid_level, Contact, DomainRule, Multigrid, Seed};
