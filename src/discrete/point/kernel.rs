@@ -499,6 +499,41 @@ mod tests {
         }
     }
 
+    #[test]
+    fn the_pool_makes_the_serial_kernel_plan_and_product_to_the_bit() {
+        let mut seed = 11;
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        for &(nx, ny) in &[(2usize, 2usize), (3, 5), (17, 9), (33, 65), (64, 31)] {
+            let (hx, hy) = (4.0 / (nx - 1) as f64, 3.0 / (ny - 1) as f64);
+            let k = kernel2d(nx, ny, hx, hy);
+            let mut plan = DeformPlan2d::new(&k, nx, ny);
+            let p: Vec<f64> = (0..nx * ny).map(|_| lcg(&mut seed) - 0.3).collect();
+            let mut serial = vec![0.0; nx * ny];
+            plan.apply(&p, &mut serial);
+            let scale = 0.2026;
+            let scaled: Vec<f64> = serial.iter().map(|v| v * scale).collect();
+            for threads in [1, 2, 3] {
+                let pool = rayon::ThreadPoolBuilder::new()
+                    .num_threads(threads)
+                    .build()
+                    .unwrap();
+                let (kp, mut pp) = pool.install(|| {
+                    let kp = kernel2d_on(nx, ny, hx, hy, true);
+                    let pp = DeformPlan2d::new_on(&kp, nx, ny, true);
+                    (kp, pp)
+                });
+                let what = format!("{nx}x{ny}, {threads} threads");
+                assert_eq!(bits(&kp), bits(&k), "kernel, {what}");
+                assert_eq!(bits(&pp.kernel_hat), bits(&plan.kernel_hat), "plan, {what}");
+                let mut c = vec![0.0; nx * ny];
+                pool.install(|| pp.apply_parallel(&p, &mut c, 1.0));
+                assert_eq!(bits(&c), bits(&serial), "product, {what}");
+                pool.install(|| pp.apply_parallel(&p, &mut c, scale));
+                assert_eq!(bits(&c), bits(&scaled), "scaled product, {what}");
+            }
+        }
+    }
+
     /// Integral of 1/r over [0, a] x [0, b] (a, b > 0) in polar coordinates about the corner:
     /// int_0^t0 a/cos(t) dt + int_t0^{pi/2} b/sin(t) dt, t0 = atan(b/a), by composite Simpson.
     fn quadrant_quad(a: f64, b: f64) -> f64 {
