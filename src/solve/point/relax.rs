@@ -17,7 +17,8 @@
 //! The contact-independent steps of the banded row solve are the line smoother's
 //! ([`crate::solve::line::relax`]: node kinds, distributed rows, the change of a node).
 
-use crate::discrete::point::operator::{PointLevel, PointPhysics, StripRows};
+use crate::discrete::point::operator::{PointLevel, PointPhysics};
+use crate::discrete::point::strip::StripRows;
 use crate::solve::banded::solve_banded;
 use crate::solve::point::jacobian::{KernelWindow, PointJacRow, RowDerivatives};
 use crate::solve::relax::{
