@@ -91,7 +91,7 @@ impl NodeFields {
         }
     }
 
-    /// [`NodeFields::refresh_rough`] at node `c` alone.
+    /// [`NodeFields::refresh_rough`] at node `c` alone (the rough fields sized first).
     #[inline]
     pub fn refresh_rough_at(&mut self, law: &Coefficients, c: usize) {
         let Some(r) = &law.rough else { return };
@@ -99,15 +99,17 @@ impl NodeFields {
         if self.wfilm.len() != n {
             self.wfilm.resize(n, 0.0);
         }
-        let film = self.film[c];
-        self.wfilm[c] = r.wedge_film(film);
-        if !r.isotropic() {
-            if self.eps_along_y.len() != n {
-                self.eps_along_y.resize(n, 0.0);
-            }
-            let (fx, fy) = r.factors(film);
-            self.eps_along_y[c] = self.eps[c] * fy / fx;
+        if !r.isotropic() && self.eps_along_y.len() != n {
+            self.eps_along_y.resize(n, 0.0);
         }
+        rough_at(
+            law,
+            &self.film,
+            &self.eps,
+            &mut self.wfilm,
+            &mut self.eps_along_y,
+            c,
+        );
     }
 
     /// Recompute rho and eps from P and the current H by the coefficient law `law`.
@@ -120,6 +122,26 @@ impl NodeFields {
             &mut self.divisor,
         );
         self.refresh_rough(&law);
+    }
+}
+
+/// The rough fields of node `c` from its film and eps: the wedge film q(H) into `wfilm` and,
+/// for anisotropic roughness, eps phi_y/phi_x into `eps_along_y` (both sized to hold node `c`
+/// where `law` needs them); nothing on smooth surfaces.
+#[inline]
+pub fn rough_at(
+    law: &Coefficients,
+    film: &[f64],
+    eps: &[f64],
+    wfilm: &mut [f64],
+    eps_along_y: &mut [f64],
+    c: usize,
+) {
+    let Some(r) = &law.rough else { return };
+    wfilm[c] = r.wedge_film(film[c]);
+    if !r.isotropic() {
+        let (fx, fy) = r.factors(film[c]);
+        eps_along_y[c] = eps[c] * fy / fx;
     }
 }
 

@@ -1,5 +1,6 @@
 //! Point contacts of any ellipticity: domain rule, the 2D 1/r kernel, the far field and the
-//! discrete operator, and a level's rows as a level of their own (strips, for parallel rows).
+//! discrete operator, and bands of a level's rows borrowed in place (strips, for the smoother and
+//! its parallel rows).
 
 pub mod domain;
 pub mod far_field;

@@ -19,7 +19,6 @@ use crate::discrete::physics::Physics;
 use crate::discrete::point::far_field::FarField;
 use crate::discrete::point::kernel::{direct_product2d, kernel2d_on, DeformPlan2d};
 use crate::discrete::rows::for_each_row;
-use crate::discrete::stencil::{flux_difference, upwind, wedge};
 use crate::model::case::PointCase;
 
 /// The physics of a point case in Hertzian scaling, shared by all levels: the physics every
@@ -91,9 +90,6 @@ impl std::ops::DerefMut for PointPhysics {
     }
 }
 
-/// The panic of a deformation product asked of a strip ([`PointLevel::strip`]).
-const NO_PLAN: &str = "a strip level has no deformation plan";
-
 /// Nodes per rayon job in [`PointLevel::update_film_parallel`].
 const PARALLEL_CHUNK: usize = 4096;
 
@@ -116,8 +112,8 @@ pub struct PointLevel {
     pub nodes: NodeFields,
     /// K(dx, dy) at dy nx + dx.
     pub kernel: Vec<f64>,
-    /// The FFT plan of the deformation product (`None` on a strip, [`PointLevel::strip`]).
-    pub(super) deform: Option<DeformPlan2d>,
+    /// The FFT plan of the deformation product.
+    deform: DeformPlan2d,
     /// The rigid gap X^2/2 + D Y^2/2.
     pub gap: Vec<f64>,
     /// Compute the deformation by the O(N^2) direct sum instead of the FFT (baseline).
@@ -180,7 +176,7 @@ impl PointLevel {
             x,
             y,
             nodes: NodeFields::new(n, phys.load),
-            deform: Some(DeformPlan2d::new_on(&kernel, nx, ny, parallel)),
+            deform: DeformPlan2d::new_on(&kernel, nx, ny, parallel),
             kernel,
             gap,
             direct_deformation: false,
@@ -189,11 +185,6 @@ impl PointLevel {
             far: None,
             h0: 0.0,
         }
-    }
-
-    /// The deformation plan (not on a strip).
-    fn plan(&mut self) -> &mut DeformPlan2d {
-        self.deform.as_mut().expect(NO_PLAN)
     }
 
     /// Use the asymptotic far field on this level ([`FarField`]) for the ellipticity `d`, with
@@ -264,7 +255,7 @@ impl PointLevel {
                     &mut self.nodes.work,
                 );
             } else {
-                let plan = self.deform.as_mut().expect(NO_PLAN);
+                let plan = &mut self.deform;
                 if self.parallel {
                     plan.apply_parallel(&self.nodes.p, &mut self.nodes.work, phys.coef);
                 } else {
@@ -297,7 +288,7 @@ impl PointLevel {
         if self.direct_deformation {
             direct_product2d(&self.kernel, self.nx, self.ny, field, out);
         } else {
-            self.plan().apply(field, out);
+            self.deform.apply(field, out);
         }
         for w in out.iter_mut() {
             *w *= phys.coef;
@@ -401,18 +392,10 @@ impl PointLevel {
         self.nodes.update_coefficients(phys.coefficients());
     }
 
-    /// L at interior node (i, j).
+    /// L at interior node (i, j) ([`crate::discrete::point::strip::Rows::reynolds`]).
     #[inline]
     pub fn reynolds(&self, phys: &PointPhysics, i: usize, j: usize) -> f64 {
-        let c = self.at(i, j);
-        if phys.dry {
-            return -self.film[c];
-        }
-        let (e, p) = (&self.eps, &self.p);
-        let pois = flux_difference(e, p, c, 1) / (self.hx * self.hx)
-            + flux_difference(self.eps_y(), p, c, self.nx) / (self.hy * self.hy);
-        let w = upwind(phys.second_order, i);
-        pois - wedge(w, &self.rho, self.wedge_film(), c) / self.hx
+        self.rows().reynolds(phys, i, j)
     }
 
     /// r = f - L at interior nodes, 0 on the boundary; with `active_only`, 0 also where P = 0.
@@ -424,12 +407,13 @@ impl PointLevel {
 
     /// [`PointLevel::residual`] of row j into `row` (nx values).
     fn residual_row(&self, phys: &PointPhysics, active_only: bool, j: usize, row: &mut [f64]) {
+        let rows = self.rows();
         for (i, r) in row.iter_mut().enumerate() {
             let c = self.at(i, j);
             *r = if self.boundary(i, j) || (active_only && self.p[c] <= 0.0) {
                 0.0
             } else {
-                self.f[c] - self.reynolds(phys, i, j)
+                self.f[c] - rows.reynolds(phys, i, j)
             };
         }
     }

@@ -1,132 +1,280 @@
-//! A point level's rows as a level of their own (a strip), for the parallel smoother's blocks
-//! ([`crate::solve::point::relax`]): made once per block, filled from the level's rows before
-//! each sweep ([`PointLevel::copy_rows_into`]) and copied back after it
-//! ([`PointLevel::copy_rows_from`]). A strip has the level's spacing, the kernel rows it spans
-//! and no deformation plan: its film is corrected locally, never recomputed.
+//! A band of a point level's rows, borrowed from the level (a strip): what the x-line smoother
+//! ([`crate::solve::point::relax`]) and the Jacobian rows ([`crate::solve::point::jacobian`])
+//! read and write. Rows j0..j0 + rows of the level's node fields, indexed in level coordinates:
+//! node (i, j) of the level is entry (j - j0) nx + i of every field of the strip.
+//!
+//! A read-only strip ([`RowsRef`]) borrows the fields shared; a writable one ([`RowsMut`])
+//! borrows P, H, eps, rho, eta lambda and the rough fields mutably (f, the frozen flags and the
+//! kernel shared) and splits at a row into two writable strips
+//! ([`RowsMut::split_at_row`]): the parallel smoother's blocks of rows, each relaxed in place on
+//! its own thread with no copy of the level. Invariant: every field of a strip covers its rows
+//! (the rough fields are empty on smooth surfaces, and sized by
+//! [`PointLevel::size_rough_fields`] on rough ones before a writable strip is taken).
 
-use crate::discrete::level::NodeFields;
-use crate::discrete::point::operator::PointLevel;
+use crate::discrete::level::rough_at;
+use crate::discrete::physics::Coefficients;
+use crate::discrete::point::operator::{PointLevel, PointPhysics};
+use crate::discrete::stencil::{flux_difference, upwind, wedge};
+use std::ops::Deref;
 
-/// Values per field (each strip's `rows` times nx, summed) from which
-/// [`PointLevel::copy_rows_from`] copies on the rayon pool: about a megabyte of the five main
-/// fields, 0.1 ms of copying.
-const PARALLEL_COPY_MIN: usize = 1 << 15;
-
-/// A strip's place in its level and the rows it changed ([`PointLevel::copy_rows_from`]).
-pub struct StripRows<'a> {
-    /// The strip ([`PointLevel::strip`]).
-    pub strip: &'a PointLevel,
-    /// The level row of its first row.
+/// Rows of a point level's node fields, `F` the borrow of the fields that a writable strip
+/// changes (see the module docs).
+pub struct Rows<'a, F> {
+    /// Nodes along x.
+    pub nx: usize,
+    /// Rows of the whole level.
+    pub level_ny: usize,
+    /// The level row of the strip's first row.
     pub j0: usize,
-    /// The level rows whose P it changed.
-    pub p_rows: std::ops::Range<usize>,
-    /// The level rows whose H, eps, rho, eta lambda and rough fields it changed.
-    pub rows: std::ops::Range<usize>,
+    /// Grid spacing along x.
+    pub hx: f64,
+    /// Grid spacing along y.
+    pub hy: f64,
+    /// The level's whole kernel, K(dx, dy) at dy nx + dx.
+    pub kernel: &'a [f64],
+    /// FAS right-hand side of the Reynolds equation.
+    pub f: &'a [f64],
+    /// The frozen flags.
+    pub frozen: &'a [bool],
+    /// The pressure.
+    pub p: F,
+    /// The film.
+    pub film: F,
+    /// eps = rho H^3/(eta lambda).
+    pub eps: F,
+    /// The density.
+    pub rho: F,
+    /// eta lambda, the divisor of eps.
+    pub divisor: F,
+    /// eps along y (rough anisotropic surfaces; empty otherwise).
+    pub eps_along_y: F,
+    /// The wedge film q(H) (rough surfaces; empty otherwise).
+    pub wfilm: F,
+}
+
+/// A read-only strip.
+pub type RowsRef<'a> = Rows<'a, &'a [f64]>;
+
+/// A writable strip.
+pub type RowsMut<'a> = Rows<'a, &'a mut [f64]>;
+
+impl<F: Deref<Target = [f64]>> Rows<'_, F> {
+    /// Index of the level's node (i, j) in the strip's fields.
+    #[inline]
+    pub fn at(&self, i: usize, j: usize) -> usize {
+        (j - self.j0) * self.nx + i
+    }
+
+    /// The Poiseuille coefficient along y ([`crate::discrete::level::NodeFields::eps_y`]).
+    #[inline]
+    pub fn eps_y(&self) -> &[f64] {
+        if self.eps_along_y.is_empty() {
+            &self.eps
+        } else {
+            &self.eps_along_y
+        }
+    }
+
+    /// The film of the wedge term
+    /// ([`crate::discrete::level::NodeFields::wedge_film`]).
+    #[inline]
+    pub fn wedge_film(&self) -> &[f64] {
+        if self.wfilm.is_empty() {
+            &self.film
+        } else {
+            &self.wfilm
+        }
+    }
+
+    /// The discrete Reynolds operator L at the level's interior node (i, j) (module docs of
+    /// [`crate::discrete::point::operator`]; -H for a dry contact), which reads rows j - 1..=j + 1.
+    #[inline]
+    pub fn reynolds(&self, phys: &PointPhysics, i: usize, j: usize) -> f64 {
+        let c = self.at(i, j);
+        if phys.dry {
+            return -self.film[c];
+        }
+        let (e, p) = (&*self.eps, &*self.p);
+        let pois = flux_difference(e, p, c, 1) / (self.hx * self.hx)
+            + flux_difference(self.eps_y(), p, c, self.nx) / (self.hy * self.hy);
+        let w = upwind(phys.second_order, i);
+        pois - wedge(w, &self.rho, self.wedge_film(), c) / self.hx
+    }
+
+    /// The same strip, read-only.
+    #[inline]
+    pub fn as_ref(&self) -> RowsRef<'_> {
+        Rows {
+            nx: self.nx,
+            level_ny: self.level_ny,
+            j0: self.j0,
+            hx: self.hx,
+            hy: self.hy,
+            kernel: self.kernel,
+            f: self.f,
+            frozen: self.frozen,
+            p: &self.p,
+            film: &self.film,
+            eps: &self.eps,
+            rho: &self.rho,
+            divisor: &self.divisor,
+            eps_along_y: &self.eps_along_y,
+            wfilm: &self.wfilm,
+        }
+    }
+}
+
+impl<'a> RowsMut<'a> {
+    /// The strip cut before the level row `j`: rows j0..j and j.. (j0 < j < the strip's end).
+    pub fn split_at_row(self, j: usize) -> (RowsMut<'a>, RowsMut<'a>) {
+        let k = (j - self.j0) * self.nx;
+        let cut = |v: &'a mut [f64]| {
+            if v.is_empty() {
+                (Default::default(), Default::default())
+            } else {
+                v.split_at_mut(k)
+            }
+        };
+        let (f, f2) = self.f.split_at(k);
+        let (frozen, frozen2) = self.frozen.split_at(k);
+        let (p, p2) = cut(self.p);
+        let (film, film2) = cut(self.film);
+        let (eps, eps2) = cut(self.eps);
+        let (rho, rho2) = cut(self.rho);
+        let (divisor, divisor2) = cut(self.divisor);
+        let (eps_along_y, eps_along_y2) = cut(self.eps_along_y);
+        let (wfilm, wfilm2) = cut(self.wfilm);
+        let head = Rows {
+            f,
+            frozen,
+            p,
+            film,
+            eps,
+            rho,
+            divisor,
+            eps_along_y,
+            wfilm,
+            ..self
+        };
+        let tail = Rows {
+            j0: j,
+            f: f2,
+            frozen: frozen2,
+            p: p2,
+            film: film2,
+            eps: eps2,
+            rho: rho2,
+            divisor: divisor2,
+            eps_along_y: eps_along_y2,
+            wfilm: wfilm2,
+            ..head
+        };
+        (head, tail)
+    }
+
+    /// The rough fields of node `c` from its H and eps
+    /// ([`crate::discrete::level::NodeFields::refresh_rough_at`]; nothing on smooth surfaces).
+    #[inline]
+    pub fn refresh_rough_at(&mut self, law: &Coefficients, c: usize) {
+        rough_at(
+            law,
+            self.film,
+            self.eps,
+            self.wfilm,
+            self.eps_along_y,
+            c,
+        );
+    }
 }
 
 impl PointLevel {
-    /// Rows j0..j0 + rows of this level as a level of their own, for the parallel smoother's
-    /// blocks ([`crate::solve::point::relax`]): the same spacing, the kernel rows dy < rows (the
-    /// kernel of the strip's grid), the gap of those rows, node fields sized but not filled
-    /// ([`PointLevel::copy_rows_into`]); no deformation plan (a strip's film is corrected
-    /// locally, never recomputed: its deformation product panics), no far field, not parallel.
-    pub fn strip(&self, j0: usize, rows: usize) -> PointLevel {
-        let nx = self.nx;
-        PointLevel {
-            nx,
-            ny: rows,
+    /// All rows of the level, read-only.
+    pub fn rows(&self) -> RowsRef<'_> {
+        let n = &self.nodes;
+        Rows {
+            nx: self.nx,
+            level_ny: self.ny,
+            j0: 0,
             hx: self.hx,
             hy: self.hy,
-            x: self.x.clone(),
-            y: self.y[j0..j0 + rows].to_vec(),
-            nodes: NodeFields::new(rows * nx, self.nodes.g),
-            kernel: self.kernel[..rows * nx].to_vec(),
-            deform: None,
-            gap: self.gap[j0 * nx..(j0 + rows) * nx].to_vec(),
-            direct_deformation: false,
-            deform_seconds: 0.0,
-            parallel: false,
-            far: None,
-            h0: self.h0,
+            kernel: &self.kernel,
+            f: &n.f,
+            frozen: &n.frozen,
+            p: &n.p,
+            film: &n.film,
+            eps: &n.eps,
+            rho: &n.rho,
+            divisor: &n.divisor,
+            eps_along_y: &n.eps_along_y,
+            wfilm: &n.wfilm,
         }
     }
 
-    /// Copy the node fields of rows j0.. of this level (as many rows as `strip` has) into
-    /// `strip`: P, f, the frozen flags, H, eps, rho, eta lambda and the rough and mixed fields
-    /// where this level has them (no allocation once `strip` has held them).
-    pub fn copy_rows_into(&self, j0: usize, strip: &mut PointLevel) {
-        let r = j0 * self.nx..j0 * self.nx + strip.len();
-        let (src, dst) = (&self.nodes, &mut strip.nodes);
-        dst.p.copy_from_slice(&src.p[r.clone()]);
-        dst.f.copy_from_slice(&src.f[r.clone()]);
-        dst.frozen.copy_from_slice(&src.frozen[r.clone()]);
-        dst.film.copy_from_slice(&src.film[r.clone()]);
-        dst.eps.copy_from_slice(&src.eps[r.clone()]);
-        dst.rho.copy_from_slice(&src.rho[r.clone()]);
-        dst.divisor.copy_from_slice(&src.divisor[r.clone()]);
-        dst.g = src.g;
-        for (s, d) in [
-            (&src.eps_along_y, &mut dst.eps_along_y),
-            (&src.wfilm, &mut dst.wfilm),
-            (&src.asperity_gap, &mut dst.asperity_gap),
-        ] {
-            d.clear();
-            if !s.is_empty() {
-                d.extend_from_slice(&s[r.clone()]);
-            }
+    /// All rows of the level, writable (the rough fields sized first where `law` has them,
+    /// [`PointLevel::size_rough_fields`]).
+    pub fn rows_mut(&mut self, law: &Coefficients) -> RowsMut<'_> {
+        self.size_rough_fields(law);
+        let n = &mut self.nodes;
+        Rows {
+            nx: self.nx,
+            level_ny: self.ny,
+            j0: 0,
+            hx: self.hx,
+            hy: self.hy,
+            kernel: &self.kernel,
+            f: &n.f,
+            frozen: &n.frozen,
+            p: &mut n.p,
+            film: &mut n.film,
+            eps: &mut n.eps,
+            rho: &mut n.rho,
+            divisor: &mut n.divisor,
+            eps_along_y: &mut n.eps_along_y,
+            wfilm: &mut n.wfilm,
         }
-        strip.h0 = self.h0;
     }
 
-    /// Copy back what each strip of `strips` changed (`at(s)`: the strip, the level row j0 it
-    /// was taken at, the level's rows `p_rows` whose P it changed, and the rows `rows` whose H,
-    /// eps, rho, eta lambda and rough fields it changed; the ranges of different strips
-    /// disjoint): the inverse of [`PointLevel::copy_rows_into`] over those rows, one field at a
-    /// time on the rayon pool.
-    pub fn copy_rows_from<S: Sync>(
-        &mut self,
-        strips: &[S],
-        at: impl Fn(&S) -> StripRows<'_> + Sync,
-    ) {
-        use rayon::prelude::*;
-        let (nx, n) = (self.nx, self.len());
-        type Field = fn(&NodeFields) -> &Vec<f64>;
-        let dst = &mut self.nodes;
-        let fields: [(&mut Vec<f64>, Field, bool); 7] = [
-            (&mut dst.p, |f| &f.p, true),
-            (&mut dst.film, |f| &f.film, false),
-            (&mut dst.eps, |f| &f.eps, false),
-            (&mut dst.rho, |f| &f.rho, false),
-            (&mut dst.divisor, |f| &f.divisor, false),
-            (&mut dst.eps_along_y, |f| &f.eps_along_y, false),
-            (&mut dst.wfilm, |f| &f.wfilm, false),
-        ];
-        let copy = |(d, field, is_p): (&mut Vec<f64>, Field, bool)| {
-            for s in strips {
-                let StripRows {
-                    strip,
-                    j0,
-                    p_rows,
-                    rows,
-                } = at(s);
-                let src = field(&strip.nodes);
-                if src.is_empty() {
-                    continue;
-                }
-                if d.len() < n {
-                    d.resize(n, 0.0);
-                }
-                let rows = if is_p { p_rows } else { rows };
-                let local = (rows.start - j0) * nx..(rows.end - j0) * nx;
-                d[rows.start * nx..rows.end * nx].copy_from_slice(&src[local]);
-            }
-        };
-        // On the pool only where the copy outweighs waking a thread (tens of microseconds).
-        let values: usize = strips.iter().map(|s| at(s).rows.len() * nx).sum();
-        if values >= PARALLEL_COPY_MIN {
-            fields.into_par_iter().for_each(copy);
-        } else {
-            fields.into_iter().for_each(copy);
+    /// Give the rough fields that `law` needs a value per node (zeros where new), so that a
+    /// strip can set them node by node.
+    pub fn size_rough_fields(&mut self, law: &Coefficients) {
+        let Some(r) = &law.rough else { return };
+        let n = self.len();
+        let nodes = &mut self.nodes;
+        if nodes.wfilm.len() != n {
+            nodes.wfilm.resize(n, 0.0);
         }
+        if !r.isotropic() && nodes.eps_along_y.len() != n {
+            nodes.eps_along_y.resize(n, 0.0);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn split_strips_index_the_level_nodes_they_cover() {
+        let phys = PointPhysics::piezoviscous_compressible();
+        let mut lv = PointLevel::new(&phys, -2.5, 1.5, 2.0, 16, 12);
+        for (c, p) in lv.nodes.p.iter_mut().enumerate() {
+            *p = c as f64;
+        }
+        let (nx, ny) = (lv.nx, lv.ny);
+        let law = phys.coefficients();
+        let (a, rest) = lv.rows_mut(&law).split_at_row(4);
+        let (b, c) = rest.split_at_row(9);
+        assert_eq!((a.j0, b.j0, c.j0), (0, 4, 9));
+        assert_eq!(a.p.len(), 4 * nx);
+        assert_eq!(b.p.len(), 5 * nx);
+        assert_eq!(c.p.len(), (ny - 9) * nx);
+        for (s, j) in [(&b, 5), (&c, 9), (&c, ny - 1)] {
+            assert_eq!(s.p[s.at(3, j)], (j * nx + 3) as f64);
+        }
+        // Smooth surfaces: no rough fields to split.
+        assert!(b.wfilm.is_empty() && b.eps_along_y.is_empty());
+        let k = a.at(2, 1);
+        a.p[k] = -1.0;
+        assert_eq!(lv.p[nx + 2], -1.0);
     }
 }

@@ -13,6 +13,7 @@
 
 use crate::discrete::point::far_field::{FarField, Slave};
 use crate::discrete::point::operator::{PointLevel, PointPhysics};
+use crate::discrete::point::strip::RowsRef;
 use crate::discrete::stencil::{
     deps_dh, deps_dp, drho, face, jacobian_x_with, upwind, Fields, NodeDerivatives,
 };
@@ -34,7 +35,7 @@ pub struct PointJacRow {
 
 impl PointJacRow {
     /// The Jacobian row of the interior node (i, j) of `lv`.
-    pub fn new(lv: &PointLevel, phys: &PointPhysics, i: usize, j: usize) -> Self {
+    pub fn new(lv: &RowsRef, phys: &PointPhysics, i: usize, j: usize) -> Self {
         Self::build::<true>(lv, phys, i, j, |f, c, w| {
             NodeDerivatives::at(&phys.fluid, f, c, w)
         })
@@ -45,7 +46,7 @@ impl PointJacRow {
     /// [`PointJacRow::row_entries`] and [`PointJacRow::diagonal`], which read row j only and
     /// then give the values of a row from `new` to the bit.
     pub fn in_row(
-        lv: &PointLevel,
+        lv: &RowsRef,
         phys: &PointPhysics,
         i: usize,
         j: usize,
@@ -58,7 +59,7 @@ impl PointJacRow {
     /// local terms of the rows j - 1 and j + 1 when `Y`.
     #[inline(always)]
     fn build<const Y: bool>(
-        lv: &PointLevel,
+        lv: &RowsRef,
         phys: &PointPhysics,
         i: usize,
         j: usize,
@@ -93,7 +94,7 @@ impl PointJacRow {
             a + b + (ay + by) * (ey[c] / e[c])
         };
         let dle = [0.5 * a, 0.5 * centre, 0.5 * b];
-        let f = Fields::new(p, film, e, &lv.rho, lv.wedge_film());
+        let f = Fields::new(p, film, e, lv.rho, lv.wedge_film());
         let w = upwind(phys.second_order, i);
         let d = derivs(f, c, w);
         let (g_h, mut local) = jacobian_x_with(f, c, w, lv.hx, dle, &d);
@@ -312,7 +313,7 @@ impl RowDerivatives {
     /// Fill for the nodes (i, j), i in `range` (the others left stale), of `lv`.
     pub fn fill(
         &mut self,
-        lv: &PointLevel,
+        lv: &RowsRef,
         phys: &PointPhysics,
         j: usize,
         range: std::ops::RangeInclusive<usize>,
@@ -324,9 +325,9 @@ impl RowDerivatives {
         let fl = &phys.fluid;
         for i in range {
             let c = lv.at(i, j);
-            self.deps_dh[i] = deps_dh(&lv.eps, &lv.film, c);
-            self.deps_dp[i] = deps_dp(fl, &lv.eps, &lv.p, c);
-            self.drho[i] = drho(fl, &lv.rho, &lv.p, c);
+            self.deps_dh[i] = deps_dh(lv.eps, lv.film, c);
+            self.deps_dp[i] = deps_dp(fl, lv.eps, lv.p, c);
+            self.drho[i] = drho(fl, lv.rho, lv.p, c);
         }
     }
 
@@ -362,7 +363,8 @@ impl NewtonLevel for PointLevel {
         let (nx, ny) = (self.nx, self.ny);
         // dense_row covers every interior node in order: the unknowns of this level.
         debug_assert_eq!(unknowns.len(), (nx - 2) * (ny - 2));
-        let row = |c| PointJacRow::new(self, phys, c % nx, c / nx);
+        let rows = self.rows();
+        let row = |c| PointJacRow::new(&rows, phys, c % nx, c / nx);
         let fill = |r: &PointJacRow, out: &mut [f64]| r.dense_row(&self.kernel, nx, ny, out);
         let mut jac = dense_jacobian(unknowns, self.hx * self.hy, row, fill, PointJacRow::d_h0);
         if let Some(far) = &self.far {
@@ -390,8 +392,9 @@ impl PointLevel {
         let m = unknowns.len();
         let col = |c: usize| (c / nx - 1) * (nx - 2) + (c % nx - 1);
         let slaves: Vec<Slave> = far.slaves(&self.gap, self.h0).collect();
+        let rows = self.rows();
         for (r, &c) in unknowns.iter().enumerate() {
-            let row = PointJacRow::new(self, phys, c % nx, c / nx);
+            let row = PointJacRow::new(&rows, phys, c % nx, c / nx);
             for s in &slaves {
                 let v = row.entry(&self.kernel, nx, s.node % nx, s.node / nx);
                 if v != 0.0 {
@@ -460,7 +463,7 @@ mod tests {
         let mut win = KernelWindow::default();
         win.fill(&lv.kernel, lv.nx, 7);
         for (i, j) in [(1usize, 1usize), (2, 5), (7, 6), (14, 10)] {
-            let row = PointJacRow::new(&lv, &phys, i, j);
+            let row = PointJacRow::new(&lv.rows(), &phys, i, j);
             let (lo, hi) = (i.saturating_sub(5).max(1), (i + 5).min(lv.nx - 2));
             row.row_entries(&win, lo, hi, &mut out);
             for (k, &o) in out.iter().enumerate().take(hi + 1).skip(lo) {
@@ -470,8 +473,8 @@ mod tests {
             assert_eq!(row.diagonal(&win).to_bits(), d.to_bits());
             // A row built from the row's nodal derivatives gives the same row entries.
             let mut derivs = RowDerivatives::default();
-            derivs.fill(&lv, &phys, j, i.saturating_sub(2)..=i + 1);
-            let in_row = PointJacRow::in_row(&lv, &phys, i, j, &derivs);
+            derivs.fill(&lv.rows(), &phys, j, i.saturating_sub(2)..=i + 1);
+            let in_row = PointJacRow::in_row(&lv.rows(), &phys, i, j, &derivs);
             assert_eq!(in_row.diagonal(&win).to_bits(), d.to_bits());
             let mut out2 = vec![f64::NAN; lv.nx];
             in_row.row_entries(&win, lo, hi, &mut out2);
@@ -481,7 +484,7 @@ mod tests {
         }
         // So are the whole dense rows of the Jacobian.
         for (r, &c) in unknowns.iter().enumerate() {
-            let row = PointJacRow::new(&lv, &phys, c % lv.nx, c / lv.nx);
+            let row = PointJacRow::new(&lv.rows(), &phys, c % lv.nx, c / lv.nx);
             for (q, &cc) in unknowns.iter().enumerate() {
                 let e = row.entry(&lv.kernel, lv.nx, cc % lv.nx, cc / lv.nx);
                 assert_eq!(jac[(r, q)].to_bits(), e.to_bits(), "row {r} col {q}");

@@ -18,7 +18,7 @@
 //! ([`crate::solve::line::relax`]: node kinds, distributed rows, the change of a node).
 
 use crate::discrete::point::operator::{PointLevel, PointPhysics};
-use crate::discrete::point::strip::StripRows;
+use crate::discrete::point::strip::{RowsMut, RowsRef};
 use crate::solve::banded::solve_banded;
 use crate::solve::point::jacobian::{KernelWindow, PointJacRow, RowDerivatives};
 use crate::solve::relax::{
@@ -70,30 +70,29 @@ pub fn point_line_sweep(
     if lv.parallel {
         blocked_sweep(lv, phys, rp, reach, s);
     } else {
+        let mut rows = lv.rows_mut(&phys.coefficients());
         for j in 1..ny - 1 {
-            relax_row(lv, phys, rp, j, reach, s);
+            relax_row(&mut rows, phys, rp, j, reach, s);
         }
     }
     // Every changed row has set its rho and eta lambda: only H and eps are left to refresh.
     lv.update_film_fixed_coefficients(phys, h0);
 }
 
-/// Relax row j: its changes ([`row_changes`]) added to P, the film of rows j..=j+2 corrected
-/// ([`local_film_update`]).
+/// Relax the level's row j of the strip `lv` (which holds rows j - 1..=j + 2, or up to the
+/// level's last row): its changes ([`row_changes`], which read rows j - 1..=j + 1) added to P,
+/// the film of rows j..=j+2 corrected ([`local_film_update`]).
 fn relax_row(
-    lv: &mut PointLevel,
+    lv: &mut RowsMut,
     phys: &PointPhysics,
     rp: &RelaxParams,
     j: usize,
     reach: usize,
     s: &mut PointScratch,
 ) {
-    row_changes(lv, phys, rp, j, s);
-    let nx = lv.nx;
-    for (p, &d) in lv.nodes.p[j * nx + 1..(j + 1) * nx - 1]
-        .iter_mut()
-        .zip(&s.change[1..nx - 1])
-    {
+    row_changes(&lv.as_ref(), phys, rp, j, s);
+    let (nx, c) = (lv.nx, lv.at(0, j));
+    for (p, &d) in lv.p[c + 1..c + nx - 1].iter_mut().zip(&s.change[1..nx - 1]) {
         *p += d;
     }
     local_film_update(lv, phys, j, reach, s);
@@ -110,22 +109,18 @@ struct LevelBlocks {
     gaps: Vec<Block>,
 }
 
-/// Rows lo..hi of a level relaxed in a strip of their own (rows lo - 1 .. hi + [`BLOCK_GAP`],
-/// [`PointLevel::strip`]) with a row scratch of their own.
+/// Rows lo..hi of a level relaxed in order, in place, with a row scratch of their own.
 struct Block {
     lo: usize,
     hi: usize,
-    strip: PointLevel,
     scratch: PointScratch,
 }
 
 impl Block {
-    fn new(lv: &PointLevel, lo: usize, hi: usize) -> Block {
-        let j0 = lo - 1;
+    fn new(lo: usize, hi: usize) -> Block {
         Block {
             lo,
             hi,
-            strip: lv.strip(j0, (hi + BLOCK_GAP).min(lv.ny) - j0),
             scratch: PointScratch::default(),
         }
     }
@@ -173,13 +168,10 @@ fn blocked_sweep(
         Some(k) => k,
         None => {
             let rows = block_rows(ny);
-            let blocks = rows
-                .iter()
-                .map(|&(lo, hi)| Block::new(lv, lo, hi))
-                .collect();
+            let blocks = rows.iter().map(|&(lo, hi)| Block::new(lo, hi)).collect();
             let gaps = rows
                 .windows(2)
-                .map(|w| Block::new(lv, w[0].1, w[1].0))
+                .map(|w| Block::new(w[0].1, w[1].0))
                 .collect();
             s.blocks.push(LevelBlocks {
                 nx,
@@ -191,50 +183,52 @@ fn blocked_sweep(
         }
     };
     let LevelBlocks { blocks, gaps, .. } = &mut s.blocks[k];
+    let law = phys.coefficients();
     for set in [blocks, gaps] {
         for b in set.iter_mut() {
             for (d, m) in b.scratch.film_kernel.iter_mut().zip(&s.film_kernel) {
                 d.clone_from(m);
             }
         }
-        relax_at_once(lv, phys, rp, reach, set);
+        relax_at_once(lv.rows_mut(&law), phys, rp, reach, set);
     }
 }
 
-/// Relax the rows of each block of `set` at once on the rayon pool, each in serial Gauss-Seidel
-/// order in its strip (copied from the level's state before), then copy back the rows each
-/// changed ([`PointLevel::copy_rows_from`]: P of its rows, H, eps, rho and eta lambda of its
-/// rows and the two after them, which its film corrections reach).
+/// Relax the rows of each block of `set` (in row order, disjoint, more than [`BLOCK_GAP`] rows
+/// apart) at once on the rayon pool, each in serial Gauss-Seidel order in place: the strip
+/// `rows` is cut before the row under each block (block b gets rows lo_b - 1 up to the row
+/// under the next block), and the halves are relaxed by `rayon::join`. A block reads its rows
+/// lo - 1..=hi and writes rows lo..=hi + 1, all within its own strip.
 fn relax_at_once(
-    lv: &mut PointLevel,
+    rows: RowsMut,
     phys: &PointPhysics,
     rp: &RelaxParams,
     reach: usize,
     set: &mut [Block],
 ) {
-    use rayon::prelude::*;
-    {
-        let lv = &*lv;
-        set.par_iter_mut().for_each(|b| {
-            let j0 = b.lo - 1;
-            lv.copy_rows_into(j0, &mut b.strip);
-            for j in b.lo - j0..b.hi - j0 {
-                relax_row(&mut b.strip, phys, rp, j, reach, &mut b.scratch);
+    match set {
+        [] => {}
+        [b] => {
+            let mut rows = rows;
+            for j in b.lo..b.hi {
+                relax_row(&mut rows, phys, rp, j, reach, &mut b.scratch);
             }
-        });
+        }
+        _ => {
+            let mid = set.len() / 2;
+            let (head, tail) = rows.split_at_row(set[mid].lo - 1);
+            let (first, second) = set.split_at_mut(mid);
+            rayon::join(
+                || relax_at_once(head, phys, rp, reach, first),
+                || relax_at_once(tail, phys, rp, reach, second),
+            );
+        }
     }
-    let ny = lv.ny;
-    lv.copy_rows_from(set, |b| StripRows {
-        strip: &b.strip,
-        j0: b.lo - 1,
-        p_rows: b.lo..b.hi,
-        rows: b.lo..(b.hi + BLOCK_GAP - 1).min(ny - 1),
-    });
 }
 
 /// The relaxation changes of row j (into `s.change`, indexed by i) from the current state.
 fn row_changes(
-    lv: &PointLevel,
+    lv: &RowsRef,
     phys: &PointPhysics,
     rp: &RelaxParams,
     j: usize,
@@ -260,7 +254,7 @@ fn row_changes(
         derivs,
         ..
     } = s;
-    window.fill(&lv.kernel, nx, (bw + 3).min(nx - 1));
+    window.fill(lv.kernel, nx, (bw + 3).min(nx - 1));
     kind.clear();
     kind.resize(nx, Kind::Frozen);
     rhs.clear();
@@ -306,7 +300,7 @@ fn row_changes(
     jset.clear();
     jset.extend((0..nx).map(|i| {
         distributed(kind, i, || {
-            phys.dry || xi(&lv.eps, lv.at(i, j), hx2) < rp.xi_threshold
+            phys.dry || xi(lv.eps, lv.at(i, j), hx2) < rp.xi_threshold
         })
     }));
     // Every row writes all its band entries (pinned_row, distributed_row): no clearing.
@@ -355,13 +349,13 @@ fn row_changes(
 /// added one after the other with k ascending; the nodes are computed a block at a time
 /// (the changes padded with zeros, whose terms add exact zeros to a non-zero film).
 fn local_film_update(
-    lv: &mut PointLevel,
+    lv: &mut RowsMut,
     phys: &PointPhysics,
     j: usize,
     reach: usize,
     s: &mut PointScratch,
 ) {
-    let (nx, ny) = (lv.nx, lv.ny);
+    let (nx, ny) = (lv.nx, lv.level_ny);
     let law = phys.coefficients();
     let changed = if phys.elastic {
         scale_changes(&s.change, phys.coef, reach, &mut s.scaled)
@@ -371,7 +365,8 @@ fn local_film_update(
     for jj in j..(j + 3).min(ny - 1) {
         let dy = jj - j;
         if let Some((lo, hi)) = changed {
-            let film = &mut lv.nodes.film[jj * nx..(jj + 1) * nx];
+            let c = lv.at(0, jj);
+            let film = &mut lv.film[c..c + nx];
             add_window(&mut film[lo..=hi], &s.scaled[lo..], &s.film_kernel[dy]);
         }
         if dy == 0 {
@@ -379,14 +374,14 @@ fn local_film_update(
             for i in 1..nx - 1 {
                 let c = lv.at(i, jj);
                 (lv.rho[c], lv.eps[c], lv.divisor[c]) = law.at(lv.p[c], lv.film[c]);
-                lv.nodes.refresh_rough_at(&law, c);
+                lv.refresh_rough_at(&law, c);
             }
         } else {
             // The rows after it: only H changed.
             for i in 1..nx - 1 {
                 let c = lv.at(i, jj);
                 lv.eps[c] = law.eps_with(lv.rho[c], lv.film[c], lv.divisor[c]);
-                lv.nodes.refresh_rough_at(&law, c);
+                lv.refresh_rough_at(&law, c);
             }
         }
     }
@@ -497,8 +492,9 @@ mod tests {
         for (dy, m) in s.film_kernel.iter_mut().enumerate() {
             mirror_kernel(&serial.kernel[dy * serial.nx..][..serial.nx], reach, m);
         }
+        let law = phys.coefficients();
         for &j in &order {
-            relax_row(&mut serial, &phys, &rp, j, reach, &mut s);
+            relax_row(&mut serial.rows_mut(&law), &phys, &rp, j, reach, &mut s);
         }
         serial.update_film_fixed_coefficients(&phys, h0);
         let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
