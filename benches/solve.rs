@@ -170,19 +170,26 @@ fn main() {
                 outs[k] = Some(o);
             }
         }
+        // On a shared machine the neighbours' load slows some runs: the fastest runs show what
+        // the code does on a quiet machine (the target is judged on the medians).
+        let [m0, _, m2] = times
+            .clone()
+            .map(|v| v.into_iter().fold(f64::INFINITY, f64::min));
         let [t0, t1, t2] = times.map(median);
         let [o0, o1, o2] = outs.map(|o| o.expect("at least one repeat"));
         let same = o1.h_c.to_bits() == o2.h_c.to_bits();
         println!(
             "{grid:>5}^2: serial {t0:.3} s ({:.1} WU), parallel rows on 1 thread {t1:.3} s, on 2 \
              threads {t2:.3} s ({:.1} WU): {:.2}x the serial solve, {:.2}x the same on 1 thread \
-             (identical H_c on 1 and 2 threads: {same}; H_c {:.7} against {:.7} serial)",
+             (identical H_c on 1 and 2 threads: {same}; H_c {:.7} against {:.7} serial); fastest \
+             runs: serial {m0:.3} s, 2 threads {m2:.3} s, {:.2}x",
             o0.work_units,
             o2.work_units,
             t0 / t2,
             t1 / t2,
             o2.h_c,
             o0.h_c,
+            m0 / m2,
         );
         summary.push(format!(
             "{grid}^2 on 2 threads >= 1.7x the serial solve: {:.2}x: {}",

@@ -176,14 +176,7 @@ impl<'a> RowsMut<'a> {
     /// ([`crate::discrete::level::NodeFields::refresh_rough_at`]; nothing on smooth surfaces).
     #[inline]
     pub fn refresh_rough_at(&mut self, law: &Coefficients, c: usize) {
-        rough_at(
-            law,
-            self.film,
-            self.eps,
-            self.wfilm,
-            self.eps_along_y,
-            c,
-        );
+        rough_at(law, self.film, self.eps, self.wfilm, self.eps_along_y, c);
     }
 }
 
