@@ -5,7 +5,13 @@
 //! bracket [lo, hi] with G(lo) > 0 > G(hi); the next H0 is the secant step from the last two
 //! evaluations, replaced by regula falsi when it leaves the bracket, and limited to `max_step`
 //! (a fraction of the central film) while no bracket exists. The slope is carried from level to
-//! level, so on the finest level one or two steps usually suffice.
+//! level, so on the finest level one or two steps usually suffice. A secant slope from two
+//! evaluations whose P had not settled can be near zero (G hardly changed over a small step of
+//! H0) and would send the next step to the limit: a new slope is kept within
+//! [`SLOPE_CHANGE`] times the last one, either way.
+
+/// The largest factor by which one evaluation changes the slope estimate, either way.
+pub const SLOPE_CHANGE: f64 = 10.0;
 
 /// State of the H0 iteration.
 #[derive(Clone, Debug)]
@@ -68,7 +74,7 @@ impl LoadBalance {
             if dh.abs() > 1e-14 * (1.0 + h0.abs()) {
                 let s = (g - g1) / dh;
                 if s.is_finite() && s < 0.0 {
-                    self.slope = s;
+                    self.slope = s.clamp(SLOPE_CHANGE * self.slope, self.slope / SLOPE_CHANGE);
                 }
             }
         }
@@ -120,6 +126,23 @@ mod tests {
             h = lb.next(h, g(h), 0.1);
         }
         assert!((h - 0.5).abs() < 1e-10, "{h}");
+    }
+
+    #[test]
+    fn a_flat_secant_from_an_unsettled_evaluation_does_not_send_h0_to_its_limit() {
+        // G barely changes over the first step (P had not settled at the new H0): the secant
+        // slope, -2e-7, would ask for a step of 2.5e6, held only by the step limit of 100.
+        let mut lb = LoadBalance::new(-1.0);
+        let h1 = lb.next(1.0, 0.5, 100.0);
+        assert_eq!(h1, 1.5);
+        let h2 = lb.next(h1, 0.4999999, 100.0);
+        // The slope is kept within SLOPE_CHANGE of the last one: the step grows 10 times, no more.
+        assert!((h2 - (h1 + SLOPE_CHANGE * 0.4999999)).abs() < 1e-12, "{h2}");
+        assert!((lb.slope() + 1.0 / SLOPE_CHANGE).abs() < 1e-15);
+        // A steeper secant is taken up to the same factor.
+        let h3 = lb.next(h2, -1e6, 100.0);
+        assert!((lb.slope() + 1.0).abs() < 1e-12, "{}", lb.slope());
+        assert!(h3 < h2);
     }
 
     #[test]
