@@ -60,6 +60,41 @@ fn rigid_circular_contact_meets_the_published_constants_in_one_solve() {
     assert!(cut.h_c < 0.75 * o.h_c, "{} vs {}", cut.h_c, o.h_c);
 }
 
+/// Rigid-isoviscous circular contacts are one problem up to scale (the domain follows the
+/// hydrodynamic length): M^2 H_c is the same at every M, and the tight solve converges at its
+/// first attempt however small the pressures in Hertzian units (P of 1e-11 at M = 0.01). Before
+/// the coarsest Newton solves took their tolerance relative to the pressure, M = 0.01 failed
+/// every rung on 65^2 and M = 1e-3 ended max-iterations with M^2 H_c 5 % off.
+#[test]
+fn rigid_isoviscous_contacts_converge_alike_at_any_m() {
+    let rigid = Models {
+        elasticity: Elasticity::Rigid,
+        ..Models::default()
+    };
+    let solve = |m: f64| {
+        let case = PointCase::with_models(m, 0.0, 1.0, rigid).unwrap();
+        let mut p = PointSolveParams::default();
+        p.mg.grid = 65;
+        p.mg.converge = Converge::Tight;
+        let s = solve_point(&case, &p);
+        let o = s.outputs;
+        assert_eq!(o.status, Status::Converged, "M = {m}: {}", o.reason);
+        assert!(!o.reason.contains("attempt"), "M = {m}: {}", o.reason);
+        assert!(o.work_units < 500.0, "M = {m}: {} WU", o.work_units);
+        m * m * o.h_c
+    };
+    let reference = solve(0.1);
+    // 65^2 resolves the rigid constant 35.5 to a few per cent.
+    assert!((reference - 35.5).abs() < 0.05 * 35.5, "{reference}");
+    for m in [0.01, 1e-3, 1e-4] {
+        let c = solve(m);
+        assert!(
+            (c / reference - 1.0).abs() < 1e-4,
+            "M = {m}: {c} vs {reference}"
+        );
+    }
+}
+
 #[test]
 fn doubling_the_domain_leaves_the_far_field_film_unchanged() {
     // L = 0 where the rigid-like pressure spreads far: the truncated domain's film rises by

@@ -345,7 +345,9 @@ impl<C: Contact> Multigrid<C> {
             let mut h0 = self.h0;
             let out = newton_solve(&mut self.levels[0], &self.phys, &mut h0, &np);
             self.work_units += C::newton_cost(self, out.iterations);
-            if (out.converged || (!out.singular && out.residual < 1e-6)) && h0.is_finite() {
+            if (out.converged || (!out.singular && out.residual < 1e-6 * out.unit))
+                && h0.is_finite()
+            {
                 self.h0 = h0;
                 if !*fix_h0 {
                     self.coarse_load_failed = false;

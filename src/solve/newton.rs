@@ -92,6 +92,19 @@ pub struct NewtonOutcome {
     pub residual: f64,
     /// Whether the linear solve ever failed (singular Jacobian).
     pub singular: bool,
+    /// The pressure unit of the absolute tolerances ([`pressure_unit`]): `tol` and a caller's
+    /// acceptance of `residual` hold in this unit.
+    pub unit: f64,
+}
+
+/// The pressure unit of a Newton solve's absolute tolerances: min(1, max P over the unknowns at
+/// its start). The residual norm is a norm of pressure corrections, in Hertz pressures; where
+/// the pressure is far below one (rigid-like contacts: P of 1e-11 at M = 0.01, D = 1), an
+/// absolute tolerance of 1e-10 would pass a solve that has not started. The smallest positive
+/// number where every P is 0.
+pub fn pressure_unit(p: &[f64], unknowns: &[usize]) -> f64 {
+    let max = unknowns.iter().map(|&c| p[c].abs()).fold(0.0, f64::max);
+    max.clamp(f64::MIN_POSITIVE, 1.0)
 }
 
 struct Linearisation {
@@ -274,6 +287,8 @@ pub fn newton_solve<T: NewtonLevel>(
 ) -> NewtonOutcome {
     let unknowns = lv.unknowns();
     let m = unknowns.len();
+    let unit = pressure_unit(lv.pressure(), &unknowns);
+    let tol = np.tol * unit;
     lv.refresh(phys, *h0);
     let mut lin = linearise(lv, phys, &unknowns, np.fix_h0);
     let mut out = NewtonOutcome {
@@ -281,10 +296,11 @@ pub fn newton_solve<T: NewtonLevel>(
         converged: false,
         residual: lin.merit,
         singular: false,
+        unit,
     };
-    let goal = np.tol.max(np.rel_tol * lin.merit);
-    let load_goal = np.tol.max(np.load_rel_tol * lin.merit);
-    let done = |l: &Linearisation| l.merit < np.tol || (l.merit < goal && l.load <= load_goal);
+    let goal = tol.max(np.rel_tol * lin.merit);
+    let load_goal = tol.max(np.load_rel_tol * lin.merit);
+    let done = |l: &Linearisation| l.merit < tol || (l.merit < goal && l.load <= load_goal);
     let mut p_old = vec![0.0; m];
     let mut merits = Vec::with_capacity(np.max_iter);
     for it in 0..np.max_iter {

@@ -387,7 +387,7 @@ impl Contact for PointContact {
         let out = newton_solve(lv, &mg.phys, &mut mg.h0, &np);
         mg.work_units += PointContact::newton_cost(mg, out.iterations);
         // (Not after the deadline: the solve stops at its first cycle anyway.)
-        if !(out.converged || out.residual < 1e-6 || past(mg.params.deadline)) {
+        if !(out.converged || out.residual < 1e-6 * out.unit || past(mg.params.deadline)) {
             mg.levels[0].update_film(&mg.phys, mg.h0);
             for _ in 0..20 * mg.params.coarse_sweeps {
                 mg.relax_level(0);
