@@ -62,22 +62,14 @@ impl NodeFields {
     /// The film of the wedge term: q(H) on rough surfaces, H itself on smooth ones.
     #[inline]
     pub fn wedge_film(&self) -> &[f64] {
-        if self.wfilm.is_empty() {
-            &self.film
-        } else {
-            &self.wfilm
-        }
+        own_or(&self.wfilm, &self.film)
     }
 
     /// The Poiseuille coefficient along y: eps itself unless rough anisotropic surfaces give it
     /// its own flow factor.
     #[inline]
     pub fn eps_y(&self) -> &[f64] {
-        if self.eps_along_y.is_empty() {
-            &self.eps
-        } else {
-            &self.eps_along_y
-        }
+        own_or(&self.eps_along_y, &self.eps)
     }
 
     /// The rough fields (wedge film, eps along y) of every node from H and eps; nothing on
@@ -122,6 +114,17 @@ impl NodeFields {
             &mut self.divisor,
         );
         self.refresh_rough(&law);
+    }
+}
+
+/// A rough field where the surfaces have it (`own` holds values), else the smooth field it
+/// stands for (`base`): the wedge film q(H) or H, eps along y or eps.
+#[inline]
+pub fn own_or<'a>(own: &'a [f64], base: &'a [f64]) -> &'a [f64] {
+    if own.is_empty() {
+        base
+    } else {
+        own
     }
 }
 

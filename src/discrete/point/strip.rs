@@ -11,7 +11,7 @@
 //! (the rough fields are empty on smooth surfaces, and sized by
 //! [`PointLevel::size_rough_fields`] on rough ones before a writable strip is taken).
 
-use crate::discrete::level::rough_at;
+use crate::discrete::level::{own_or, rough_at};
 use crate::discrete::physics::Coefficients;
 use crate::discrete::point::operator::{PointLevel, PointPhysics};
 use crate::discrete::stencil::{flux_difference, upwind, wedge};
@@ -68,22 +68,14 @@ impl<F: Deref<Target = [f64]>> Rows<'_, F> {
     /// The Poiseuille coefficient along y ([`crate::discrete::level::NodeFields::eps_y`]).
     #[inline]
     pub fn eps_y(&self) -> &[f64] {
-        if self.eps_along_y.is_empty() {
-            &self.eps
-        } else {
-            &self.eps_along_y
-        }
+        own_or(&self.eps_along_y, &self.eps)
     }
 
     /// The film of the wedge term
     /// ([`crate::discrete::level::NodeFields::wedge_film`]).
     #[inline]
     pub fn wedge_film(&self) -> &[f64] {
-        if self.wfilm.is_empty() {
-            &self.film
-        } else {
-            &self.wfilm
-        }
+        own_or(&self.wfilm, &self.film)
     }
 
     /// The discrete Reynolds operator L at the level's interior node (i, j) (module docs of
@@ -137,38 +129,22 @@ impl<'a> RowsMut<'a> {
         };
         let (f, f2) = self.f.split_at(k);
         let (frozen, frozen2) = self.frozen.split_at(k);
-        let (p, p2) = cut(self.p);
-        let (film, film2) = cut(self.film);
-        let (eps, eps2) = cut(self.eps);
-        let (rho, rho2) = cut(self.rho);
-        let (divisor, divisor2) = cut(self.divisor);
-        let (eps_along_y, eps_along_y2) = cut(self.eps_along_y);
-        let (wfilm, wfilm2) = cut(self.wfilm);
-        let head = Rows {
-            f,
-            frozen,
-            p,
-            film,
-            eps,
-            rho,
-            divisor,
-            eps_along_y,
-            wfilm,
-            ..self
-        };
-        let tail = Rows {
-            j0: j,
-            f: f2,
-            frozen: frozen2,
-            p: p2,
-            film: film2,
-            eps: eps2,
-            rho: rho2,
-            divisor: divisor2,
-            eps_along_y: eps_along_y2,
-            wfilm: wfilm2,
-            ..head
-        };
+        let (size, spacing) = ((self.nx, self.level_ny), (self.hx, self.hy));
+        let fields = [
+            self.p,
+            self.film,
+            self.eps,
+            self.rho,
+            self.divisor,
+            self.eps_along_y,
+            self.wfilm,
+        ];
+        let (mut heads, mut tails): ([&mut [f64]; 7], [&mut [f64]; 7]) = Default::default();
+        for ((v, h), t) in fields.into_iter().zip(&mut heads).zip(&mut tails) {
+            (*h, *t) = cut(v);
+        }
+        let head = Rows::whole(size, spacing, self.j0, (self.kernel, f, frozen), heads);
+        let tail = Rows::whole(size, spacing, j, (self.kernel, f2, frozen2), tails);
         (head, tail)
     }
 
@@ -180,27 +156,56 @@ impl<'a> RowsMut<'a> {
     }
 }
 
+impl<'a, F> Rows<'a, F> {
+    /// Rows from the level row `j0` of a level of `nx` x `ny` nodes spaced (hx, hy): its kernel,
+    /// f and frozen flags, and its fields P, H, eps, rho, eta lambda, eps along y and wedge
+    /// film, in order.
+    fn whole(
+        (nx, ny): (usize, usize),
+        (hx, hy): (f64, f64),
+        j0: usize,
+        (kernel, f, frozen): (&'a [f64], &'a [f64], &'a [bool]),
+        [p, film, eps, rho, divisor, eps_along_y, wfilm]: [F; 7],
+    ) -> Self {
+        Rows {
+            nx,
+            level_ny: ny,
+            j0,
+            hx,
+            hy,
+            kernel,
+            f,
+            frozen,
+            p,
+            film,
+            eps,
+            rho,
+            divisor,
+            eps_along_y,
+            wfilm,
+        }
+    }
+}
+
 impl PointLevel {
     /// All rows of the level, read-only.
     pub fn rows(&self) -> RowsRef<'_> {
         let n = &self.nodes;
-        Rows {
-            nx: self.nx,
-            level_ny: self.ny,
-            j0: 0,
-            hx: self.hx,
-            hy: self.hy,
-            kernel: &self.kernel,
-            f: &n.f,
-            frozen: &n.frozen,
-            p: &n.p,
-            film: &n.film,
-            eps: &n.eps,
-            rho: &n.rho,
-            divisor: &n.divisor,
-            eps_along_y: &n.eps_along_y,
-            wfilm: &n.wfilm,
-        }
+        Rows::whole(
+            (self.nx, self.ny),
+            (self.hx, self.hy),
+            0,
+            (&self.kernel, &n.f, &n.frozen),
+            [
+                &n.p,
+                &n.film,
+                &n.eps,
+                &n.rho,
+                &n.divisor,
+                &n.eps_along_y,
+                &n.wfilm,
+            ],
+        )
     }
 
     /// All rows of the level, writable (the rough fields sized first where `law` has them,
@@ -208,23 +213,21 @@ impl PointLevel {
     pub fn rows_mut(&mut self, law: &Coefficients) -> RowsMut<'_> {
         self.size_rough_fields(law);
         let n = &mut self.nodes;
-        Rows {
-            nx: self.nx,
-            level_ny: self.ny,
-            j0: 0,
-            hx: self.hx,
-            hy: self.hy,
-            kernel: &self.kernel,
-            f: &n.f,
-            frozen: &n.frozen,
-            p: &mut n.p,
-            film: &mut n.film,
-            eps: &mut n.eps,
-            rho: &mut n.rho,
-            divisor: &mut n.divisor,
-            eps_along_y: &mut n.eps_along_y,
-            wfilm: &mut n.wfilm,
-        }
+        Rows::whole(
+            (self.nx, self.ny),
+            (self.hx, self.hy),
+            0,
+            (&self.kernel, &n.f, &n.frozen),
+            [
+                &mut n.p,
+                &mut n.film,
+                &mut n.eps,
+                &mut n.rho,
+                &mut n.divisor,
+                &mut n.eps_along_y,
+                &mut n.wfilm,
+            ],
+        )
     }
 
     /// Give the rough fields that `law` needs a value per node (zeros where new), so that a
