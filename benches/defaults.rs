@@ -32,6 +32,7 @@ fn report(name: &str, t: f64, o: &Outputs) -> bool {
 }
 
 fn main() {
+    println!("{}", common::machine());
     let params = SolveParams::default();
     let point = |m: f64, l: f64, d: f64| Case::Point(PointCase::new(m, l, d).expect("valid case"));
     let line = |m: f64, l: f64| Case::Line(LineCase::new(m, l).expect("valid case"));

@@ -56,6 +56,7 @@ fn split_line(name: &str, t: &PhaseTimes) -> String {
 }
 
 fn main() {
+    println!("{}", common::machine());
     // `cargo bench` passes --bench; ignore arguments.
     let mut summary: Vec<String> = vec![];
 
