@@ -83,9 +83,9 @@ impl NodeFields {
         }
     }
 
-    /// [`NodeFields::refresh_rough`] at node `c` alone (the rough fields sized first).
-    #[inline]
-    pub fn refresh_rough_at(&mut self, law: &Coefficients, c: usize) {
+    /// Give the rough fields that `law` needs a value per node (zeros where new), so that they
+    /// can be set node by node; nothing on smooth surfaces.
+    pub fn size_rough(&mut self, law: &Coefficients) {
         let Some(r) = &law.rough else { return };
         let n = self.film.len();
         if self.wfilm.len() != n {
@@ -94,6 +94,12 @@ impl NodeFields {
         if !r.isotropic() && self.eps_along_y.len() != n {
             self.eps_along_y.resize(n, 0.0);
         }
+    }
+
+    /// [`NodeFields::refresh_rough`] at node `c` alone (the rough fields sized first).
+    #[inline]
+    pub fn refresh_rough_at(&mut self, law: &Coefficients, c: usize) {
+        self.size_rough(law);
         rough_at(
             law,
             &self.film,

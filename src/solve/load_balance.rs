@@ -8,11 +8,11 @@
 //! level, so on the finest level one or two steps usually suffice. A secant slope from two
 //! evaluations whose P had not settled can be near zero (G hardly changed over a small step of
 //! H0) and would send the next step to the limit: a new slope is kept at least a
-//! [`SLOPE_CHANGE`]-th of the last one in magnitude (a steeper one, which shortens the step, is
+//! [`SLOPE_FLATTENING`]-th of the last one in magnitude (a steeper one, which shortens the step, is
 //! taken as it is: high-L line contacts need it).
 
 /// The largest factor by which one evaluation flattens the slope estimate.
-pub const SLOPE_CHANGE: f64 = 10.0;
+pub const SLOPE_FLATTENING: f64 = 10.0;
 
 /// State of the H0 iteration.
 #[derive(Clone, Debug)]
@@ -75,7 +75,7 @@ impl LoadBalance {
             if dh.abs() > 1e-14 * (1.0 + h0.abs()) {
                 let s = (g - g1) / dh;
                 if s.is_finite() && s < 0.0 {
-                    self.slope = s.min(self.slope / SLOPE_CHANGE);
+                    self.slope = s.min(self.slope / SLOPE_FLATTENING);
                 }
             }
         }
@@ -137,9 +137,12 @@ mod tests {
         let h1 = lb.next(1.0, 0.5, 100.0);
         assert_eq!(h1, 1.5);
         let h2 = lb.next(h1, 0.4999999, 100.0);
-        // The slope flattens by SLOPE_CHANGE at most: the step grows 10 times, no more.
-        assert!((h2 - (h1 + SLOPE_CHANGE * 0.4999999)).abs() < 1e-12, "{h2}");
-        assert!((lb.slope() + 1.0 / SLOPE_CHANGE).abs() < 1e-15);
+        // The slope flattens by SLOPE_FLATTENING at most: the step grows 10 times, no more.
+        assert!(
+            (h2 - (h1 + SLOPE_FLATTENING * 0.4999999)).abs() < 1e-12,
+            "{h2}"
+        );
+        assert!((lb.slope() + 1.0 / SLOPE_FLATTENING).abs() < 1e-15);
         // A steeper secant is taken as it is.
         let h3 = lb.next(h2, -1e6, 100.0);
         let secant = (-1e6 - 0.4999999) / (h2 - h1);

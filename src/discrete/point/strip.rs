@@ -9,7 +9,8 @@
 //! ([`RowsMut::split_at_row`]): the parallel smoother's blocks of rows, each relaxed in place on
 //! its own thread with no copy of the level. Invariant: every field of a strip covers its rows
 //! (the rough fields are empty on smooth surfaces, and sized by
-//! [`PointLevel::size_rough_fields`] on rough ones before a writable strip is taken).
+//! [`crate::discrete::level::NodeFields::size_rough`] on rough ones before a writable strip is
+//! taken).
 
 use crate::discrete::level::{own_or, rough_at};
 use crate::discrete::physics::Coefficients;
@@ -209,9 +210,9 @@ impl PointLevel {
     }
 
     /// All rows of the level, writable (the rough fields sized first where `law` has them,
-    /// [`PointLevel::size_rough_fields`]).
+    /// [`crate::discrete::level::NodeFields::size_rough`]).
     pub fn rows_mut(&mut self, law: &Coefficients) -> RowsMut<'_> {
-        self.size_rough_fields(law);
+        self.nodes.size_rough(law);
         let n = &mut self.nodes;
         Rows::whole(
             (self.nx, self.ny),
@@ -228,20 +229,6 @@ impl PointLevel {
                 &mut n.wfilm,
             ],
         )
-    }
-
-    /// Give the rough fields that `law` needs a value per node (zeros where new), so that a
-    /// strip can set them node by node.
-    pub fn size_rough_fields(&mut self, law: &Coefficients) {
-        let Some(r) = &law.rough else { return };
-        let n = self.len();
-        let nodes = &mut self.nodes;
-        if nodes.wfilm.len() != n {
-            nodes.wfilm.resize(n, 0.0);
-        }
-        if !r.isotropic() && nodes.eps_along_y.len() != n {
-            nodes.eps_along_y.resize(n, 0.0);
-        }
     }
 }
 

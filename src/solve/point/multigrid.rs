@@ -287,8 +287,9 @@ impl Contact for PointContact {
         for_each_row(cl.parallel, &mut f, cl.nx, |j, f| {
             f.fill(0.0);
             if interior(j) {
+                let rows = cl.rows();
                 for (i, v) in f.iter_mut().enumerate().take(cl.nx - 1).skip(1) {
-                    *v = cl.reynolds(phys, i, j) + full_weight(fine, r, i, j);
+                    *v = rows.reynolds(phys, i, j) + full_weight(fine, r, i, j);
                 }
             }
         });

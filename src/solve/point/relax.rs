@@ -194,7 +194,7 @@ fn blocked_sweep(
     }
 }
 
-/// Relax the rows of each block of `set` (in row order, disjoint, more than [`BLOCK_GAP`] rows
+/// Relax the rows of each block of `set` (in row order, disjoint, at least [`BLOCK_GAP`] rows
 /// apart) at once on the rayon pool, each in serial Gauss-Seidel order in place: the strip
 /// `rows` is cut before the row under each block (block b gets rows lo_b - 1 up to the row
 /// under the next block), and the halves are relaxed by `rayon::join`. A block reads its rows
