@@ -95,6 +95,53 @@ fn rigid_isoviscous_contacts_converge_alike_at_any_m() {
     }
 }
 
+/// The same for slender rigid contacts under the default (fast) stopping rule: at D = 0.01 the
+/// scales of the coarsest Newton rows spread with the film cubed (films of 1e10 Hertzian units at
+/// M = 0.01), and without row equilibration its steps went wrong: on 33^2, M = 1 took 90 work
+/// units and M = 0.01 1171 (fourteen cycles whose Newton solves all stalled), M = 0.01 at
+/// D = 0.03 and M = 1e-3 at D = 0.1 ended max-iterations. Now every M takes the cycles and work
+/// of M = 1, and M^2 H_c agrees to the algebraic error.
+#[test]
+fn rigid_slender_contacts_converge_alike_at_any_m() {
+    let rigid = Models {
+        elasticity: Elasticity::Rigid,
+        ..Models::default()
+    };
+    for d in [0.01, 0.1] {
+        let solve = |m: f64| {
+            let case = PointCase::with_models(m, 0.0, d, rigid).unwrap();
+            let mut p = PointSolveParams::default();
+            p.mg.grid = 33;
+            p.fallback = false;
+            let s = solve_point(&case, &p);
+            let o = s.outputs;
+            assert_eq!(
+                o.status,
+                Status::Converged,
+                "M = {m}, D = {d}: {}",
+                o.reason
+            );
+            (
+                m * m * o.h_c,
+                o.work_units,
+                o.algebraic_error.unwrap_or(f64::NAN),
+            )
+        };
+        let (reference, wu, err) = solve(1.0);
+        for m in [0.01, 1e-3] {
+            let (c, w, e) = solve(m);
+            assert!(
+                (c / reference - 1.0).abs() <= 2.0 * (err + e),
+                "D = {d}, M = {m}: {c} vs {reference} (algebraic {e:.1e}, {err:.1e})"
+            );
+            assert!(
+                w <= 1.5 * wu,
+                "D = {d}, M = {m}: {w} WU against {wu} at M = 1"
+            );
+        }
+    }
+}
+
 #[test]
 fn doubling_the_domain_leaves_the_far_field_film_unchanged() {
     // L = 0 where the rigid-like pressure spreads far: the truncated domain's film rises by
