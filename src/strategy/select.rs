@@ -16,8 +16,8 @@
 //! film, status under-resolved) and the candidate is kept only when the measured change of H_c and
 //! H_min is below `CHECK_FRACTION` times the target; the measured effect becomes the neglected
 //! part of the error estimate. Otherwise the full model is solved. Where the full check itself
-//! fails (very small M: at M = 0.01 the elastic solve takes 52 s on 1025 points and does not
-//! converge, the rigid one 2 ms), the screen is trusted with a margin of `SCREEN_MARGIN`. The
+//! fails (the full model does not converge on the check grid), the screen is trusted with a
+//! margin of `SCREEN_MARGIN`. The
 //! closed form is checked through its discrete twin (rigid-isoviscous on the check grid). The
 //! models, cheapest first:
 //! - `closed-form`: rigid and isoviscous line contact with incompressible lubricant: Martin's
