@@ -237,7 +237,9 @@ fn solve_equilibrated(lin: &Linearisation) -> Option<DVector<f64>> {
     let mut rhs = lin.rhs.clone();
     for (r, v) in rhs.iter_mut().enumerate() {
         let big = jac.row(r).amax();
-        if big > 0.0 && big.is_finite() {
+        // Zero, subnormal or non-finite rows are left as they are (a subnormal largest entry
+        // would ask for a factor beyond the largest finite power of two).
+        if big.is_normal() {
             let s = 2f64.powi(-(big.log2().round() as i32));
             jac.row_mut(r).scale_mut(s);
             *v *= s;
@@ -417,6 +419,15 @@ mod tests {
             (x[0] - 1.0).abs() < 1e-12 && (x[1] - 1.0).abs() < 1e-12,
             "{x}"
         );
+        // Rows near the ends of the exponent range scale to finite factors.
+        let lin = Linearisation {
+            jac: DMatrix::<f64>::from_row_slice(2, 2, &[1e-300, 2e-301, 3e300, 1e300]),
+            rhs: DVector::<f64>::from_row_slice(&[1.2e-300, 4e300]),
+            merit: 0.0,
+            load: 0.0,
+        };
+        let x = solve_equilibrated(&lin).expect("regular");
+        assert!(x.iter().all(|v| (v - 1.0).abs() < 1e-12), "{x}");
     }
 
     #[test]
