@@ -17,9 +17,8 @@
 //! H_min is below `CHECK_FRACTION` times the target; the measured effect becomes the neglected
 //! part of the error estimate. Otherwise the full model is solved. Where the full check itself
 //! fails (the full model does not converge on the check grid), the screen is trusted with a
-//! margin of `SCREEN_MARGIN`. The
-//! closed form is checked through its discrete twin (rigid-isoviscous on the check grid). The
-//! models, cheapest first:
+//! margin of `SCREEN_MARGIN`. The closed form is checked through its discrete twin
+//! (rigid-isoviscous on the check grid). The models, cheapest first:
 //! - `closed-form`: rigid and isoviscous line contact with incompressible lubricant: Martin's
 //!   film with the Reynolds exit condition, exactly H_c = H_min = 2.4475/M at X = 0, and the
 //!   flux thickness H(p_max) = 3/M; no solve at all.
