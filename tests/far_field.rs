@@ -41,6 +41,29 @@ fn run_with(
     o
 }
 
+/// The first attempt (no fallback ladder) of an L = 0 case with `elasticity` on `grid` points per
+/// direction, asserted converged; a minute's deadline turns a regression into a failure, not a
+/// hang.
+fn first_attempt(m: f64, d: f64, elasticity: Elasticity, grid: usize) -> ehlmap::Outputs {
+    let models = Models {
+        elasticity,
+        ..Models::default()
+    };
+    let case = PointCase::with_models(m, 0.0, d, models).unwrap();
+    let mut p = PointSolveParams::default();
+    p.mg.grid = grid;
+    p.fallback = false;
+    p.mg.deadline = Some(std::time::Instant::now() + std::time::Duration::from_secs(60));
+    let o = solve_point(&case, &p).outputs;
+    assert_eq!(
+        o.status,
+        Status::Converged,
+        "M = {m}, D = {d}: {}",
+        o.reason
+    );
+    o
+}
+
 #[test]
 fn rigid_circular_contact_meets_the_published_constants_in_one_solve() {
     let rigid = Models {
@@ -103,24 +126,9 @@ fn rigid_isoviscous_contacts_converge_alike_at_any_m() {
 /// of M = 1, and M^2 H_c agrees to the algebraic error.
 #[test]
 fn rigid_slender_contacts_converge_alike_at_any_m() {
-    let rigid = Models {
-        elasticity: Elasticity::Rigid,
-        ..Models::default()
-    };
     for d in [0.01, 0.1] {
         let solve = |m: f64| {
-            let case = PointCase::with_models(m, 0.0, d, rigid).unwrap();
-            let mut p = PointSolveParams::default();
-            p.mg.grid = 33;
-            p.fallback = false;
-            let s = solve_point(&case, &p);
-            let o = s.outputs;
-            assert_eq!(
-                o.status,
-                Status::Converged,
-                "M = {m}, D = {d}: {}",
-                o.reason
-            );
+            let o = first_attempt(m, d, Elasticity::Rigid, 33);
             (
                 m * m * o.h_c,
                 o.work_units,
@@ -150,25 +158,7 @@ fn rigid_slender_contacts_converge_alike_at_any_m() {
 #[test]
 fn elastic_contacts_at_tiny_m_solve_as_rigid_ones() {
     for (m, d) in [(1e-3, 0.1), (1e-4, 1.0)] {
-        let solve = |elasticity| {
-            let models = Models {
-                elasticity,
-                ..Models::default()
-            };
-            let case = PointCase::with_models(m, 0.0, d, models).unwrap();
-            let mut p = PointSolveParams::default();
-            p.mg.grid = 65;
-            p.fallback = false;
-            p.mg.deadline = Some(std::time::Instant::now() + std::time::Duration::from_secs(60));
-            let o = solve_point(&case, &p).outputs;
-            assert_eq!(
-                o.status,
-                Status::Converged,
-                "M = {m}, D = {d}: {}",
-                o.reason
-            );
-            o
-        };
+        let solve = |elasticity| first_attempt(m, d, elasticity, 65);
         let (elastic, rigid) = (solve(Elasticity::Elastic), solve(Elasticity::Rigid));
         assert!(
             (elastic.h_c / rigid.h_c - 1.0).abs() < 1e-5,
