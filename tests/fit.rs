@@ -295,8 +295,10 @@ fn a_film_with_a_large_error_estimate_is_left_out_of_its_fit_only() {
 
 /// The report states where a film's fit meets the 2 % target. On the committed smoke data every
 /// line film meets it over the whole M range (the blend alone did not: H_c 2.37 % at M = 5). On
-/// the committed point data H_min does not (3.00 % max): the range it gives is checked against
-/// the fitted formula itself, every case inside within 2 % and the report saying "not met".
+/// the committed point data H_pm does not (2.98 % max; H_min did, 3.00 %, before the point fits
+/// took the solver's rigid D factor, and now meets it at 1.92 %): the range it gives is checked
+/// against the fitted formula itself, every case inside within 2 % and the report saying "not
+/// met".
 #[test]
 fn the_report_gives_the_m_range_where_each_fit_meets_its_target() {
     let input = load_fit_input(&[data()]).unwrap();
@@ -321,14 +323,20 @@ fn the_report_gives_the_m_range_where_each_fit_meets_its_target() {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/point-257");
     let input = load_fit_input(&[dir]).unwrap();
     let report = fit_report(&input, false).unwrap();
-    let h_min = report.point.h_min.as_ref().unwrap();
-    assert!(h_min.overall.max.abs() > 0.02, "{:?}", h_min.overall);
-    let err = |p: &FitPoint| h_min.model.eval(p.m, p.l, p.d.unwrap()) / p.h_min - 1.0;
-    if let Some(range) = &h_min.within_target {
+    let h_pm = report.point.h_pm.as_ref().unwrap();
+    assert!(h_pm.overall.max.abs() > 0.02, "{:?}", h_pm.overall);
+    let err = |p: &FitPoint| {
+        h_pm.model.eval(p.m, p.l, p.d.unwrap()) / p.film(Film::PressureMax).unwrap() - 1.0
+    };
+    // Measured: M in [138.9, 1000], 19 of 43 cases.
+    assert!(h_pm.within_target.is_some());
+    if let Some(range) = &h_pm.within_target {
         let inside: Vec<_> = input
             .point
             .iter()
-            .filter(|p| p.m >= range.m_lo && p.m <= range.m_hi && p.film(Film::Minimum).is_some())
+            .filter(|p| {
+                p.m >= range.m_lo && p.m <= range.m_hi && p.film(Film::PressureMax).is_some()
+            })
             .collect();
         assert_eq!(inside.len(), range.n);
         assert!(inside.iter().all(|p| err(p).abs() <= 0.02));
@@ -336,8 +344,8 @@ fn the_report_gives_the_m_range_where_each_fit_meets_its_target() {
     let md = to_markdown(&report);
     assert!(
         md.contains(&format!(
-            "- H_min: max error {:.2} % (target 2 %: not met)",
-            100.0 * h_min.overall.max.abs()
+            "- H_pm: max error {:.2} % (target 2 %: not met)",
+            100.0 * h_pm.overall.max.abs()
         )),
         "{md}"
     );

@@ -1,10 +1,10 @@
 //! The point-contact (elliptic) film model fitted to point sweeps: the Nijenbanning-Venner-Moes
 //! (1994) blend of four asymptotes, with NVM's D dependence times a free power-law correction.
 //!
-//! With D = Rx/Ry and each NVM D factor normalised to 1 at D = 1
+//! With D = Rx/Ry and each D factor normalised to 1 at D = 1
 //! (c(D) = 1 + 0.006 ln D + 0.63 D^(4/7)):
 //!
-//! H_RI = c_RI  f_RI(D) D^e_RI M^-2,            f_RI = [(1 + 0.796 D^(14/15))/1.796]^(-15/7) / D
+//! H_RI = c_RI  f_RI(D) D^e_RI M^-2,            f_RI = [(1 + a D^p)/(1 + a)]^q / D
 //! H_EI = a M^alpha f_EI(D) D^e_EI,             f_EI = [c(D)/c(1)]^(-14/25) D^(-1/15)
 //! H_RP = b L^beta  f_RP(D) D^e_RP,             f_RP = [(1 + 0.691 D)/1.691]^(-2/3)
 //! H_EP = d M^gamma L^delta f_EP(D) D^e_EP,     f_EP = [c(D)/c(1)]^(-7/20) D^(-1/24)
@@ -13,19 +13,21 @@
 //! s = s0 (1 + exp(-s1 H_EI/H_RI));
 //!
 //! at L = 0 the piezoviscous bracket is dropped. Parameters: the vector of
-//! [`POINT_PARAM_NAMES`] (constants as logarithms). [`PointModel::nvm`] (all e_i = 0,
-//! c_00 = 1.8, r = 3/2 and NVM's constants) reproduces NVM 1994 exactly (docs/physics.md
-//! section 4); the fit frees c_00 and r with the other blend parameters once the data are many
-//! (as the line model frees its blending powers).
+//! [`POINT_PARAM_NAMES`] (constants as logarithms) and the three constants (a, p, q) of f_RI,
+//! which are not fitted. [`PointModel::nvm`] (all e_i = 0, NVM's f_RI: a = 0.796, p = 14/15,
+//! q = -15/7, c_00 = 1.8, r = 3/2 and NVM's constants) reproduces NVM 1994 exactly
+//! (docs/physics.md section 4); the fit frees c_00 and r with the other blend parameters once
+//! the data are many (as the line model frees its blending powers).
 //!
 //! Why this D form: NVM's D factors carry the Hertzian geometry (the contact ellipse and the load
 //! per unit length at y = 0), which is what makes the elliptic EI and EP asymptotes tend to the
 //! line ones as D -> 0; the free exponent e_i only corrects the residual D trend over the swept D
 //! range. The M^-2 of H_RI is exact for a rigid isoviscous point contact (the pressure scales with
 //! 1/H^2 at fixed load); the fits hold its constant at the solver's own domain-extrapolated value
-//! ([`crate::limits::rigid_point`]) with NVM's D factor (e_RI = 0), since the fitted rows barely
-//! see the rigid-isoviscous regime. (Fit figures behind these choices: docs/validation.md, "Fit:
-//! the nightly sweeps".)
+//! ([`crate::limits::rigid_point`]) and its D factor at the solver's own, exact in the slender
+//! limit ([`crate::limits::rigid_d_factor`]; e_RI = 0), since the fitted rows barely see the
+//! rigid-isoviscous regime. (Fit figures behind these choices: docs/validation.md, "Fit: the
+//! nightly sweeps".)
 
 use crate::fit::model::FilmModel;
 use serde::{Deserialize, Serialize};
@@ -42,6 +44,19 @@ pub struct PointModel {
     /// The parameters of [`POINT_PARAM_NAMES`], in that order (constants c_RI, a, b, d, c_00 as
     /// logarithms).
     pub x: [f64; 16],
+    /// The constants (a, p, q) of f_RI (not fitted; NVM's when absent from a stored model).
+    #[serde(default = "nvm_ri_shape")]
+    pub ri_shape: [f64; 3],
+}
+
+/// NVM's (a, p, q) of f_RI.
+pub fn nvm_ri_shape() -> [f64; 3] {
+    [0.796, 14.0 / 15.0, -15.0 / 7.0]
+}
+
+/// f_RI(D) = [(1 + a D^p)/(1 + a)]^q / D for the constants (a, p, q): 1 at D = 1.
+pub fn ri_d_factor([a, p, q]: [f64; 3], d: f64) -> f64 {
+    ((1.0 + a * d.powf(p)) / (1.0 + a)).powf(q) / d
 }
 
 fn c_nvm(d: f64) -> f64 {
@@ -52,7 +67,7 @@ fn c_nvm(d: f64) -> f64 {
 pub fn nvm_d_factors(d: f64) -> [f64; 4] {
     let c = c_nvm(d) / 1.63;
     [
-        ((1.0 + 0.796 * d.powf(14.0 / 15.0)) / 1.796).powf(-15.0 / 7.0) / d,
+        ri_d_factor(nvm_ri_shape(), d),
         c.powf(-14.0 / 25.0) * d.powf(-1.0 / 15.0),
         ((1.0 + 0.691 * d) / 1.691).powf(-2.0 / 3.0),
         c.powf(-7.0 / 20.0) * d.powf(-1.0 / 24.0),
@@ -62,7 +77,8 @@ pub fn nvm_d_factors(d: f64) -> [f64; 4] {
 impl PointModel {
     /// The fitted asymptote parameters: constants, exponents and D corrections of H_EI .. H_EP.
     /// H_RI is held: c_RI at the solver's domain-extrapolated rigid value
-    /// ([`crate::limits::rigid_point`]) and its D correction e_RI at 0 (NVM's D factor).
+    /// ([`crate::limits::rigid_point`]), its D factor at the solver's
+    /// ([`crate::limits::rigid_d_factor`]) and its D correction e_RI at 0.
     pub const ASYMPTOTES: [usize; 10] = [2, 3, 4, 5, 6, 7, 8, 9, 10, 11];
     /// Indices of the D-correction exponents (held at 0 when the data have a single D).
     pub const D_EXPONENTS: [usize; 4] = [1, 4, 7, 11];
@@ -90,13 +106,15 @@ impl PointModel {
                 1.8f64.ln(),
                 1.5,
             ],
+            ri_shape: nvm_ri_shape(),
         }
     }
 
     /// The four asymptotes [H_RI, H_EI, H_RP, H_EP] at (M, L, D).
     pub fn asymptotes(&self, m: f64, l: f64, d: f64) -> [f64; 4] {
         let x = &self.x;
-        let f = nvm_d_factors(d);
+        let mut f = nvm_d_factors(d);
+        f[0] = ri_d_factor(self.ri_shape, d);
         [
             x[0].exp() * f[0] * d.powf(x[1]) / (m * m),
             x[2].exp() * m.powf(x[3]) * f[1] * d.powf(x[4]),

@@ -6,6 +6,9 @@
 //!   is exact for any M, so one solve at M = 1 gives the constant. A point solve's domain
 //!   truncation biases it low by about 30 %, so the point row compares the extrapolation of solves
 //!   on domains enlarged 1, 2, 4 times ([`crate::limits::rigid_point`]), its trend the ratio on each.
+//!   When the point data go below the check's D, a second RI row checks the D factor: far-field
+//!   rigid solves ([`crate::limits::rigid_d_factor`]) at the data's smallest D and a tenth of it,
+//!   its trend the ratio at each D.
 //! * EI: elastic, L = 0, at the largest M of the data; EP: elastic at the largest M and L. Both
 //!   are also solved at 1/10 and 1/sqrt(10) of that M: the ratio's trend shows how far the data's
 //!   extreme still is from the limit.
@@ -23,12 +26,14 @@ use crate::fit::dataset::MAX_ERROR_ESTIMATE;
 use crate::fit::model::LineModel;
 use crate::fit::point_model::PointModel;
 use crate::fit::stats::null_as_nan;
+use crate::limits::rigid_d_factor::{FarFieldRigid, CHECK_GRIDS};
 use crate::limits::rigid_point::{extrapolate, RigidPointSolves, DOMAIN_SCALES};
 use crate::limits::solves::{
     line_solve, point_alpha_bar_1, point_solve, LimitSolves, Solve, POINT_CHECK_GRID,
 };
 use crate::model::case::Elasticity;
 use crate::solve::film::Film;
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 /// One asymptote compared with a limit solve of the solver.
@@ -69,11 +74,11 @@ pub struct AsymptoteCheck {
     /// How the solver value was obtained (which solves, or why it is biased).
     pub note: String,
     /// (M, solver / fitted asymptote) as M grows to the largest M of the data (elastic rows), or
-    /// (domain scale, ratio) as the domain grows (point rigid row): how the ratio approaches its
-    /// limit.
+    /// (domain scale, ratio) as the domain grows (point rigid row), or (D, ratio) as D falls
+    /// (the D factor's rigid row): how the ratio approaches its limit.
     #[serde(default)]
     pub trend: Vec<(f64, f64)>,
-    /// What the trend's first entry is: "M" or "domain scale".
+    /// What the trend's first entry is: "M", "domain scale" or "D".
     #[serde(default = "m_name")]
     pub trend_over: String,
     /// Elastic-piezoviscous row: (L, solver / fitted law) at the largest M and twice the largest
@@ -212,7 +217,8 @@ pub fn line_checks(fits: &[(Film, LineModel)], pts: &[FitPoint]) -> Vec<Asymptot
 /// The point checks of each fitted film, at D = 1 (else the largest D of the data): seven
 /// elastic solves at 257 x 257 points, or the data's finer grid, and the rigid solves on
 /// enlarged domains (about 110 s of work at 257^2, 60 s on two cores; on the 513^2 nightly
-/// data 10 min, most of it elastic L = 20 solves that run the whole fallback ladder and fail).
+/// data 10 min, most of it elastic L = 20 solves that run the whole fallback ladder and fail);
+/// and the D factor's four far-field rigid solves (a few seconds) when the data have D < 1.
 pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<AsymptoteCheck> {
     // At D = 1 when the data have it (else their largest D), up to that D's largest M and L.
     let ds = pts.iter().filter_map(|p| p.d);
@@ -228,14 +234,32 @@ pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<Asympt
         .fold(POINT_CHECK_GRID, usize::max);
     // The enlarged-domain rigid solves (about 60 s for the 1025^2 one) beside the elastic ones;
     // their default-domain solve is the plain rigid solve of the rigid-piezoviscous row.
-    let (mut s, domains) = rayon::join(
+    // The D factor of H_RI: far-field rigid solves at the data's smallest D and a tenth of it
+    // (when the data go below the check's D).
+    let d_min = pts.iter().filter_map(|p| p.d).fold(d, f64::min);
+    let slender = if d_min < d {
+        vec![d_min, d_min / 10.0]
+    } else {
+        vec![]
+    };
+    let ((mut s, domains), far) = rayon::join(
         || {
-            let cases: Vec<(f64, f64)> = at_d.iter().map(|p| (p.m, p.l)).collect();
-            LimitSolves::new(&cases, None, |m, l, el| {
-                point_solve(m, l, d, el, grid, MAX_ERROR_ESTIMATE)
-            })
+            rayon::join(
+                || {
+                    let cases: Vec<(f64, f64)> = at_d.iter().map(|p| (p.m, p.l)).collect();
+                    LimitSolves::new(&cases, None, |m, l, el| {
+                        point_solve(m, l, d, el, grid, MAX_ERROR_ESTIMATE)
+                    })
+                },
+                || RigidPointSolves::run(d),
+            )
         },
-        || RigidPointSolves::run(d),
+        || {
+            slender
+                .par_iter()
+                .filter_map(|&d| FarFieldRigid::run(d))
+                .collect::<Vec<_>>()
+        },
     );
     let ab1 = point_alpha_bar_1(1.0, d, Elasticity::Rigid);
     s.rigid = domains
@@ -279,10 +303,54 @@ pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<Asympt
             }
             None => rows[0].note = RIGID_POINT_FAILED.to_string(),
         }
+        if let Some(row) = d_factor_row(fit, *film, &far) {
+            rows.insert(1, row);
+        }
         out.extend(rows);
     }
     out
 }
+
+/// The rigid-isoviscous row of the D factor: at the last of the far-field solves `far` (a tenth
+/// of the data's smallest D, beyond the data), its trend the ratio at each D; None without
+/// solves. A failed solve gives a row without a solver value.
+fn d_factor_row(fit: &PointModel, film: Film, far: &[FarFieldRigid]) -> Option<AsymptoteCheck> {
+    let last = far.last()?;
+    let ratio = |r: &FarFieldRigid| {
+        r.converged()
+            .then(|| r.constant(film) / fit.asymptotes(1.0, 0.0, r.d)[0])
+    };
+    let fitted = fit.asymptotes(1.0, 0.0, last.d)[0];
+    let [a, p, q] = fit.ri_shape;
+    Some(AsymptoteCheck {
+        quantity: film.name().to_string(),
+        asymptote: "rigid-isoviscous".to_string(),
+        law: format!(
+            "{:.3} [(1 + {a:.5} D^{p:.5})/(1 + {a:.5})]^({q:.5}) D^{:.3} / D M^-2",
+            fit.x[0].exp(),
+            fit.x[1]
+        ),
+        m: 1.0,
+        l: 0.0,
+        d: Some(last.d),
+        elasticity: "rigid".to_string(),
+        grid: last.converged().then_some(CHECK_GRIDS[1]),
+        solver: last.converged().then(|| last.constant(film)),
+        fitted,
+        ratio: ratio(last),
+        note: D_FACTOR_NOTE.to_string(),
+        trend: far
+            .iter()
+            .filter_map(|r| ratio(r).map(|x| (r.d, x)))
+            .collect(),
+        trend_over: "D".to_string(),
+        beyond: None,
+    })
+}
+
+const D_FACTOR_NOTE: &str = "the D factor: rigid solves, L = 0, with the far field on 257^2 \
+     and 513^2 (tight, Richardson in the grid; src/limits/rigid_d_factor.rs) at the data's \
+     smallest D and a tenth of it, beyond the data";
 
 const RIGID_POINT_NOTE: &str = "rigid solves, L = 0 (H M^2 is exact for any M) on the default \
      domain enlarged 1, 2, 4 times, extrapolated to an unbounded one (the pressure decays like \

@@ -77,8 +77,10 @@ def _nvm_d_factors(D):
     ]
 
 
-def _point_asymptotes(x, M, L, D):
+def _point_asymptotes(x, ri_shape, M, L, D):
     f = _nvm_d_factors(D)
+    a, p, q = ri_shape
+    f[0] = _pow((1.0 + a * _pow(D, p)) / (1.0 + a), q) / D
     return [
         _exp(x[0]) * f[0] * _pow(D, x[1]) / (M * M),
         _exp(x[2]) * _pow(M, x[3]) * f[1] * _pow(D, x[4]),
@@ -87,8 +89,8 @@ def _point_asymptotes(x, M, L, D):
     ]
 
 
-def _point_blend(x, M, L, D):
-    h_ri, h_ei, h_rp, h_ep = _point_asymptotes(x, M, L, D)
+def _point_blend(x, ri_shape, M, L, D):
+    h_ri, h_ei, h_rp, h_ep = _point_asymptotes(x, ri_shape, M, L, D)
     h_00 = _exp(x[14]) / D
     s = x[12] * (1.0 + _exp(-x[13] * h_ei / h_ri))
     r = x[15]
@@ -197,8 +199,13 @@ fn entry(m: &FittedModel) -> String {
             terms(&m.correction)
         ),
         Blend::Point(x) => format!(
-            "{{\"x\": [{}], \"terms\": {}}}",
+            "{{\"x\": [{}], \"ri_shape\": [{}], \"terms\": {}}}",
             x.x.iter().map(|v| f(*v)).collect::<Vec<_>>().join(", "),
+            x.ri_shape
+                .iter()
+                .map(|v| f(*v))
+                .collect::<Vec<_>>()
+                .join(", "),
             terms(&m.correction)
         ),
     }
@@ -226,8 +233,8 @@ def H(M, L, D=None, film="H_c"):
     if film not in POINT:
         raise ValueError(f"no point formula for {film} (fitted: {sorted(POINT)})")
     e = POINT[film]
-    asym = _point_asymptotes(e["x"], M, L, D)
-    return _point_blend(e["x"], M, L, D) * _exp(_correction(e["terms"], asym, D))
+    asym = _point_asymptotes(e["x"], e["ri_shape"], M, L, D)
+    return _point_blend(e["x"], e["ri_shape"], M, L, D) * _exp(_correction(e["terms"], asym, D))
 "#;
 
 /// The text of `formula.py` for the report's fitted formulas (a contact not fitted gives an

@@ -3,6 +3,7 @@
 //! published formulas on the same cases, asymptote checks), or the reason it was skipped.
 
 use crate::fit::correction::{Term, Transition, LATTICE};
+use crate::fit::fitted::Blend;
 use crate::fit::heldout::{worst_and_rms, SizeScore};
 use crate::fit::stats::{ErrStats, RegionStats};
 use crate::report::{ContactReport, FitReport, QuantityFit, ASYMPTOTE_TARGET, MAX_ERROR_TARGET};
@@ -59,10 +60,13 @@ const POINT_FORM: &str = "Formula (Moes point units, NVM 1994 form): H = H_blend
 H_blend = { [H_RI^r + (H_EI^-4 + H_00^-4)^(-r/4)]^(s/r) + (H_RP^-8 + H_EP^-8)^(-s/8) }^(1/s), \
 s = s0 (1 + exp(-s1 H_EI/H_RI)); H_RI = c_RI f_RI(D) D^e_RI M^-2, H_EI = a f_EI(D) D^e_EI \
 M^alpha, H_RP = b f_RP(D) D^e_RP L^beta, H_EP = d f_EP(D) D^e_EP M^gamma L^delta, \
-H_00 = c_00/D, with f_* NVM's D factors normalised to 1 at D = 1 and e_* free corrections (0 = \
-NVM; held at 0 when the data have one D). H_RI is held: c_RI at the solver's rigid constant, its \
-rigid solves extrapolated to an unbounded domain (35.5 for H_c and H_min, 45.0 for H_pm; NVM \
-41.3), e_RI = 0. The other asymptotes are fitted with alpha_EI and the whole H_EP law first held \
+H_00 = c_00/D, with f_EI, f_RP, f_EP NVM's D factors normalised to 1 at D = 1 and e_* free \
+corrections (0 = NVM; held at 0 when the data have one D). H_RI is held: c_RI at the solver's \
+rigid constant, its rigid solves extrapolated to an unbounded domain (35.5 for H_c and H_min, \
+45.0 for H_pm; NVM 41.3), e_RI = 0, and f_RI = [(1 + a D^p)/(1 + a)]^q / D the solver's own \
+(NVM: a = 0.796, p = 14/15, q = -15/7): a and p fitted to far-field rigid solves over D in \
+[0.005, 1], q set by the exact slender limit D M^2 H_c -> 2 (2.4475 pi)^2 (times 3/2.4475 for \
+H_pm). The other asymptotes are fitted with alpha_EI and the whole H_EP law first held \
 at NVM's, then all of them and the blend (s0, s1, c_00, r: NVM's 1.5, 1.2, 1.8, 3/2) too (kept \
 only if physical, identified and better) with 40 or more converged cases. C = sum c_k phi_k is \
 the interior correction (as for line contacts, with ln D factors), its size chosen by 5-fold \
@@ -199,6 +203,13 @@ fn quantity(md: &mut String, q: &QuantityFit) {
         let _ = writeln!(md, "| {} | {} | {:.1e} |", p.name, sig5(p.value), p.sigma);
     }
     md.push('\n');
+    if let Blend::Point(m) = &q.model.blend {
+        let [a, p, e] = m.ri_shape.map(sig5);
+        let _ = writeln!(
+            md,
+            "f_RI(D) = [(1 + {a} D^{p})/(1 + {a})]^({e}) / D (held).\n"
+        );
+    }
     heldout(md, q);
     table(md, &q.overall, &q.regions);
     if !q.per_d.is_empty() {
@@ -373,7 +384,7 @@ fn contact(md: &mut String, c: &ContactReport) {
         );
         let _ = writeln!(
             md,
-            "| film | asymptote | fitted law | at | solver | asymptote | ratio | ratio toward the limit (M or domain scale: ratio) | note |\n|---|---|---|---|---|---|---|---|---|"
+            "| film | asymptote | fitted law | at | solver | asymptote | ratio | ratio toward the limit (M, domain scale or D: ratio) | note |\n|---|---|---|---|---|---|---|---|---|"
         );
         for a in &c.asymptotes {
             let d = a.d.map_or(String::new(), |d| format!(", D = {d}"));

@@ -12,7 +12,7 @@ use crate::fit::fitted::Blend;
 use crate::fit::heldout::{lattice, nested, Basis};
 use crate::fit::model::{LineModel, PARAM_NAMES};
 use crate::fit::point_model::{PointModel, POINT_PARAM_NAMES};
-use crate::limits::rigid_point;
+use crate::limits::{rigid_d_factor, rigid_point};
 use crate::solve::film::Film;
 use crate::strategy::closed_form::MARTIN_FLUX;
 
@@ -138,12 +138,13 @@ fn point_free(pts: &[FitPoint]) -> Vec<usize> {
         .collect()
 }
 
-/// The start of a point fit of `film`: NVM 1994 with the solver's rigid constant c_RI (held),
-/// its elastic laws scaled by 0.6 for H_min.
+/// The start of a point fit of `film`: NVM 1994 with the solver's rigid constant c_RI and D
+/// factor (held), its elastic laws scaled by 0.6 for H_min.
 fn point_start(film: Film) -> PointModel {
     let scale: f64 = if film == Film::Minimum { 0.6 } else { 1.0 };
     let mut start = PointModel::nvm();
     start.x[0] = rigid_point::c_ri(film).ln();
+    start.ri_shape = rigid_d_factor::ri_shape(film);
     for k in [2, 8] {
         start.x[k] += scale.ln();
     }
