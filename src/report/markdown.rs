@@ -85,6 +85,16 @@ pub fn sig5(v: f64) -> String {
     format!("{v:.*}", (4 - e).max(0) as usize)
 }
 
+/// `v/W - k` with the sign of k folded in ("a/W + 9", "a/W", "a/W - 2").
+fn shifted(v: &str, k: impl Into<f64>) -> String {
+    let k: f64 = k.into();
+    match k {
+        k if k > 0.0 => format!("{v}/W - {k}"),
+        k if k < 0.0 => format!("{v}/W + {}", -k),
+        _ => format!("{v}/W"),
+    }
+}
+
 fn term_name(t: &Term) -> String {
     let [i, j] = t.at;
     let bump = match t.transition {
@@ -92,8 +102,8 @@ fn term_name(t: &Term) -> String {
         Transition::Piezoviscous => "g(b) w".to_string(),
         Transition::Outer => "g(c)".to_string(),
         Transition::Tail => "t(a)(1-w)".to_string(),
-        Transition::Shifted => format!("g(a/W - {i})(1-w)"),
-        Transition::Cell => format!("g(a/W - {i}) g(c/W - {j})"),
+        Transition::Shifted => format!("g({})(1-w)", shifted("a", i)),
+        Transition::Cell => format!("g({}) g({})", shifted("a", i), shifted("c", j)),
     };
     let vars = ["a", "b", "c", "ln D", "w"];
     let mono: Vec<String> = vars
@@ -440,4 +450,16 @@ pub fn to_markdown(r: &FitReport) -> String {
     contact(&mut md, &r.line);
     contact(&mut md, &r.point);
     md
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lattice_shifts_read_with_their_sign() {
+        assert_eq!(shifted("a", -9i8), "a/W + 9");
+        assert_eq!(shifted("c", 0i8), "c/W");
+        assert_eq!(shifted("a", 2i8), "a/W - 2");
+    }
 }
