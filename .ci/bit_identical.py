@@ -4,7 +4,9 @@ line M = 20, L = 10 on 2049 points and point M = 20, L = 10, D = 1 on 129^2 (`eh
 --json`, every field but the wall time), and the H_c column of the smoke sweep. The reference
 values live in .ci/bit_identical.json, written by `--record` from the commit before the
 refactoring, and recorded again only with a deliberate numerical change whose commit says so
-and bounds the moves (efc37d6: the row-scaled Newton LU, at most 8e-9 relative); JSON floats are
+and bounds the moves (efc37d6: the row-scaled Newton LU, at most 8e-9 relative; the far film
+with the load's deformation, 2026-11-29: the 24 point rows of the smoke H_c by at most 0.28 %,
+the solves unchanged); JSON floats are
 printed shortest-round-trip, so equal text is equal bits.
 
     python3 .ci/bit_identical.py target/release/ehlmap outputs/smoke            # check

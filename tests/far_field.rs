@@ -229,8 +229,9 @@ fn doubling_the_domain_leaves_the_far_field_film_unchanged() {
         eprintln!("M {m} D {d}: far field doubling H_c {dc:+.2e} H_min {dm:+.2e}");
         assert!(dc.abs() < 3e-3 && dm.abs() < 3e-3, "M {m} D {d}: {dc} {dm}");
         if m == 5.0 {
-            // The largest first change (measured 0.19 % and 0.27 %): the second doubling moves
-            // the film by a tenth of it.
+            // The largest first change before the far film took the load's deformation
+            // (measured 0.19 % and 0.27 %; since then -0.001 % and -0.019 %): the second
+            // doubling moves the film by a tenth of it.
             let c = tight(513, 4.0);
             let (dc2, dm2) = (c.h_c / b.h_c - 1.0, c.h_min / b.h_min - 1.0);
             eprintln!("M {m} D {d}: second doubling H_c {dc2:+.2e} H_min {dm2:+.2e}");
@@ -245,6 +246,23 @@ fn doubling_the_domain_leaves_the_far_field_film_unchanged() {
         // The far-field film lies above the truncated one by more than the first doubling
         // raises the latter: the bias that the later doublings would still add.
         assert!(a.h_c > tb.h_c, "M {m} D {d}: {} vs {}", a.h_c, tb.h_c);
+    }
+}
+
+/// Elastic isoviscous contacts between the rigid-like and the Hertzian regime: the far film
+/// carries the load's deformation coef W/R (src/discrete/point/far_field.rs). Without it their
+/// films rose by 0.34 % / 0.63 % (H_c / H_min at (7.2, 0, 1)) and 0.35 % / 0.63 % (at
+/// (20, 0, 0.25)) when the domain doubled at equal spacing (129^2 -> 257^2), above the 0.3 %
+/// that the far field's truncation estimate assumes (src/discrete/point/domain.rs).
+#[test]
+fn the_far_film_carries_the_load_deformation() {
+    for (m, d) in [(7.2, 1.0), (20.0, 0.25)] {
+        let case = PointCase::new(m, 0.0, d).unwrap();
+        let tight = |grid, scale| run_with(&case, grid, true, scale, Converge::Tight);
+        let (a, b) = (tight(129, 1.0), tight(257, 2.0));
+        let (dc, dm) = (b.h_c / a.h_c - 1.0, b.h_min / a.h_min - 1.0);
+        eprintln!("M {m} D {d}: far field doubling H_c {dc:+.2e} H_min {dm:+.2e}");
+        assert!(dc.abs() < 2e-3 && dm.abs() < 2e-3, "M {m} D {d}: {dc} {dm}");
     }
 }
 
@@ -305,8 +323,10 @@ fn the_fast_rule_stops_near_the_tight_solution_with_the_far_field() {
     // algebraic estimate is low by up to 2.5x here (measured 2026-11-26: (1, 0, 0.5) 9.4e-5
     // against 5.1e-5, (7.2, 20, 1) 6.9e-4 against 2.8e-4; the load carried by the far field
     // settles at about 0.7 per cycle while H_c hardly moves, docs/known-limits.md), so this
-    // bound is 3x the estimate where the truncated domain's is 1x; both stay below 1e-3, a
-    // tenth of the 1 % target.
+    // bound is 4x the estimate where the truncated domain's is 1x; both stay below 1e-3, a
+    // tenth of the 1 % target. (Loosened from 3x on 2026-11-29, when the far film took the
+    // load's deformation: (7.2, 20, 1) then stops 7.8e-4 from the tight solution against an
+    // estimate of 2.2e-4, 3.5x; (1, 0, 0.5) 9.7e-5 against 9.3e-5.)
     for (m, l, d) in [(1.0, 0.0, 0.5), (7.2, 20.0, 1.0)] {
         let case = PointCase::new(m, l, d).unwrap();
         let fast = run(&case, 257, true, 1.0);
@@ -315,7 +335,7 @@ fn the_fast_rule_stops_near_the_tight_solution_with_the_far_field() {
         for (f, t) in [(fast.h_c, tight.h_c), (fast.h_min, tight.h_min)] {
             let e = (f / t - 1.0).abs();
             eprintln!("({m}, {l}, {d}): fast {f} tight {t}: {e:.1e}, estimate {alg:.1e}");
-            assert!(e < 1e-3 && e <= 3.0 * alg, "{e} vs {alg}");
+            assert!(e < 1e-3 && e <= 4.0 * alg, "{e} vs {alg}");
         }
     }
 }

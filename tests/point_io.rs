@@ -404,13 +404,17 @@ fn point_sweep_writes_one_row_per_case() {
     let o = ehlmap(&args);
     assert_eq!(o.status.code(), Some(0));
     assert!(stderr(&o).contains("4 already stored"), "{}", stderr(&o));
-    // --fit on 4 point cases on 33^2 nodes (error estimates above the fit's 2 % cut): nothing
-    // to fit, a clear error (exit 2).
+    // --fit on 4 point cases on 33^2 nodes (three with error estimates above the fit's 2 %
+    // cut): too few to fit, a clear error (exit 2) naming the count.
     let mut fit = args.to_vec();
     fit.push("--fit");
     let o = ehlmap(&fit);
     assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("4 excluded"), "{}", stderr(&o));
-    assert!(stderr(&o).contains("nothing to fit"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("too few converged cases to fit")
+            && stderr(&o).contains("point skipped: 1 cases, need at least 10"),
+        "{}",
+        stderr(&o)
+    );
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -52,9 +52,10 @@ use crate::model::formulas::{nvm_point_asymptotes, nvm_point_hc};
 pub const DOMAIN_BIAS_PER_W: f64 = 0.25;
 
 /// The largest [`PointDomain::bias`] with the asymptotic far field on the boundary
-/// ([`PointDomainParams::far_field`]): doubling the domain at equal spacing changed H_c and
-/// H_min by 0.08 % at (M, D) = (1, 1) and (3, 0.25), 0.06 % at (10, 0.25) and 0.19 % and 0.27 %
-/// at (5, 1) (L = 0, tight convergence; tests/far_field.rs); 0.3 % bounds them.
+/// ([`PointDomainParams::far_field`]): doubling the domain changed H_c and H_min by at most
+/// 0.09 % on rigid-like contacts and at most 0.20 % between them and the Hertzian regime (L = 0,
+/// M 5-100, D 1-0.03, tight convergence, grid-extrapolated; docs/validation.md, "Far field";
+/// tests/far_field.rs); 0.3 % bounds them.
 pub const FAR_FIELD_BIAS: f64 = 0.003;
 
 /// [`TRUNCATION_OVER_BIAS`] with the far field: the second doubling at (5, 1) moved the film

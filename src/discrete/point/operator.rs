@@ -188,9 +188,10 @@ impl PointLevel {
     }
 
     /// Use the asymptotic far field on this level ([`FarField`]) for the ellipticity `d`, with
-    /// the coarsest grid's spacing `coarse` = (hx, hy).
-    pub fn with_far_field(mut self, d: f64, coarse: (f64, f64)) -> Self {
-        self.far = Some(FarField::new(&self.x, &self.y, d, coarse));
+    /// the coarsest grid's spacing `coarse` = (hx, hy) and the far deformation `deform`/R
+    /// (`deform` = coef W; 0 for rigid surfaces).
+    pub fn with_far_field(mut self, d: f64, coarse: (f64, f64), deform: f64) -> Self {
+        self.far = Some(FarField::new(&self.x, &self.y, d, coarse, deform));
         self
     }
 

@@ -131,7 +131,9 @@ impl Multigrid<PointContact> {
             let extent = (domain.x_in, domain.x_out, domain.y_half);
             let mut lv = PointLevel::new_on(&phys, extent, n, n, parallel);
             if let Some(coarse) = far_spacing {
-                lv = lv.with_far_field(phys.d, coarse);
+                // The load's deformation far from the contact: coef W / R (none when rigid).
+                let deform = if rigid { 0.0 } else { phys.coef * phys.load };
+                lv = lv.with_far_field(phys.d, coarse, deform);
             }
             lv.direct_deformation = params.direct_deformation;
             levels.push(lv);
