@@ -26,8 +26,7 @@
 //! [`FarFieldRigid::run`] is the check solve: the rigid contact at M = 1, L = 0 with the far
 //! field on [`CHECK_GRIDS`] (tight convergence), extrapolated in the grid (second order).
 
-use crate::limits::rigid_point::{C_RI_CENTRE, C_RI_PMAX};
-use crate::model::case::{Elasticity, Models, PointCase};
+use crate::limits::rigid_point::{rigid_case, C_RI_CENTRE, C_RI_PMAX};
 use crate::solve::film::Film;
 use crate::solve::params::Converge;
 use crate::solve::point::{solve_point, PointSolveParams};
@@ -69,11 +68,7 @@ pub struct FarFieldRigid {
 impl FarFieldRigid {
     /// Both solves (on the rayon pool), converged or not; None only for an invalid `d`.
     pub fn run(d: f64) -> Option<Self> {
-        let models = Models {
-            elasticity: Elasticity::Rigid,
-            ..Models::default()
-        };
-        let case = PointCase::with_models(1.0, 0.0, d, models).ok()?;
+        let case = rigid_case(d)?;
         let solve = |grid: usize| {
             let mut p = PointSolveParams::default();
             p.mg.grid = grid;

@@ -64,14 +64,19 @@ pub struct RigidPointSolves {
     pub solves: Vec<(f64, Outputs)>,
 }
 
+/// The rigid isoviscous point case at M = 1, L = 0 and ellipticity `d` (None for an invalid `d`).
+pub fn rigid_case(d: f64) -> Option<PointCase> {
+    let models = Models {
+        elasticity: Elasticity::Rigid,
+        ..Models::default()
+    };
+    PointCase::with_models(1.0, 0.0, d, models).ok()
+}
+
 impl RigidPointSolves {
     /// All three solves at ellipticity `d`, converged or not; None only for an invalid `d`.
     pub fn run(d: f64) -> Option<Self> {
-        let models = Models {
-            elasticity: Elasticity::Rigid,
-            ..Models::default()
-        };
-        let case = PointCase::with_models(1.0, 0.0, d, models).ok()?;
+        let case = rigid_case(d)?;
         // Independent deterministic solves: the same outputs on any number of threads.
         let solves: Vec<(f64, Outputs)> = DOMAIN_SCALES
             .into_par_iter()
