@@ -45,6 +45,20 @@ fn run_with(
     o
 }
 
+/// Tight far-field solves of `case` on the default domain (129^2) and on the domain doubled at
+/// equal spacing (257^2; tight convergence: no algebraic error in the comparison), and the
+/// relative changes of H_c and H_min between them (printed).
+fn far_doubling(case: &PointCase) -> (ehlmap::Outputs, ehlmap::Outputs, f64, f64) {
+    let a = run_with(case, 129, true, 1.0, Converge::Tight);
+    let b = run_with(case, 257, true, 2.0, Converge::Tight);
+    let (dc, dm) = (b.h_c / a.h_c - 1.0, b.h_min / a.h_min - 1.0);
+    eprintln!(
+        "M {} D {}: far field doubling H_c {dc:+.2e} H_min {dm:+.2e}",
+        case.m, case.d
+    );
+    (a, b, dc, dm)
+}
+
 /// The first attempt (no fallback ladder) of an L = 0 case with `elasticity` on `grid` points per
 /// direction, asserted converged; a minute's deadline turns a regression into a failure, not a
 /// hang.
@@ -222,11 +236,8 @@ fn doubling_the_domain_leaves_the_far_field_film_unchanged() {
     // they double exactly).
     for (m, d) in [(1.0, 1.0), (3.0, 0.25), (5.0, 1.0), (10.0, 0.25)] {
         let case = PointCase::new(m, 0.0, d).unwrap();
-        // Tight convergence: no algebraic error in the comparison.
         let tight = |grid, scale| run_with(&case, grid, true, scale, Converge::Tight);
-        let (a, b) = (tight(129, 1.0), tight(257, 2.0));
-        let (dc, dm) = (b.h_c / a.h_c - 1.0, b.h_min / a.h_min - 1.0);
-        eprintln!("M {m} D {d}: far field doubling H_c {dc:+.2e} H_min {dm:+.2e}");
+        let (a, b, dc, dm) = far_doubling(&case);
         assert!(dc.abs() < 3e-3 && dm.abs() < 3e-3, "M {m} D {d}: {dc} {dm}");
         if m == 5.0 {
             // The largest first change before the far film took the load's deformation
@@ -257,11 +268,7 @@ fn doubling_the_domain_leaves_the_far_field_film_unchanged() {
 #[test]
 fn the_far_film_carries_the_load_deformation() {
     for (m, d) in [(7.2, 1.0), (20.0, 0.25)] {
-        let case = PointCase::new(m, 0.0, d).unwrap();
-        let tight = |grid, scale| run_with(&case, grid, true, scale, Converge::Tight);
-        let (a, b) = (tight(129, 1.0), tight(257, 2.0));
-        let (dc, dm) = (b.h_c / a.h_c - 1.0, b.h_min / a.h_min - 1.0);
-        eprintln!("M {m} D {d}: far field doubling H_c {dc:+.2e} H_min {dm:+.2e}");
+        let (_, _, dc, dm) = far_doubling(&PointCase::new(m, 0.0, d).unwrap());
         assert!(dc.abs() < 2e-3 && dm.abs() < 2e-3, "M {m} D {d}: {dc} {dm}");
     }
 }

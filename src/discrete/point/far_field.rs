@@ -176,7 +176,12 @@ impl FarField {
     /// The far films at q and at the node.
     fn films(n: &FarNode, gap: &[f64], h0: f64) -> (f64, f64) {
         let hq: f64 = n.corners.iter().map(|&(c, w)| w * (h0 + gap[c])).sum();
-        (hq + n.u_q, h0 + gap[n.node] + n.u_b)
+        (hq + n.u_q, Self::film_b(n, gap, h0))
+    }
+
+    /// The far film at the node.
+    fn film_b(n: &FarNode, gap: &[f64], h0: f64) -> f64 {
+        h0 + gap[n.node] + n.u_b
     }
 
     /// P_b/P(q) for node `n` with the films `hq` at q and `hb` at the node.
@@ -216,8 +221,7 @@ impl FarField {
         self.nodes
             .iter()
             .map(|n| {
-                let hb = h0 + gap[n.node] + n.u_b;
-                (n.trapezoid_extra + self.tail_weight(n, hb)) * p[n.node]
+                (n.trapezoid_extra + self.tail_weight(n, Self::film_b(n, gap, h0))) * p[n.node]
             })
             .sum()
     }
