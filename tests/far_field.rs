@@ -330,10 +330,12 @@ fn the_fast_rule_stops_near_the_tight_solution_with_the_far_field() {
     // algebraic estimate is low by up to 2.5x here (measured 2026-11-26: (1, 0, 0.5) 9.4e-5
     // against 5.1e-5, (7.2, 20, 1) 6.9e-4 against 2.8e-4; the load carried by the far field
     // settles at about 0.7 per cycle while H_c hardly moves, docs/known-limits.md), so this
-    // bound is 4x the estimate where the truncated domain's is 1x; both stay below 1e-3, a
+    // bound is 6x the estimate where the truncated domain's is 1x; both stay below 1e-3, a
     // tenth of the 1 % target. (Loosened from 3x on 2026-11-29, when the far film took the
     // load's deformation: (7.2, 20, 1) then stops 7.8e-4 from the tight solution against an
-    // estimate of 2.2e-4, 3.5x; (1, 0, 0.5) 9.7e-5 against 9.3e-5.)
+    // estimate of 2.2e-4, 3.5x; (1, 0, 0.5) 9.7e-5 against 9.3e-5. Loosened from 4x to 6x on
+    // 2026-12-01, when a first attempt below L = 25 stopped freezing the band: (7.2, 20, 1)
+    // then stops 7.4e-4 from the tight solution against an estimate of 1.4e-4, 5.3x.)
     for (m, l, d) in [(1.0, 0.0, 0.5), (7.2, 20.0, 1.0)] {
         let case = PointCase::new(m, l, d).unwrap();
         let fast = run(&case, 257, true, 1.0);
@@ -342,7 +344,7 @@ fn the_fast_rule_stops_near_the_tight_solution_with_the_far_field() {
         for (f, t) in [(fast.h_c, tight.h_c), (fast.h_min, tight.h_min)] {
             let e = (f / t - 1.0).abs();
             eprintln!("({m}, {l}, {d}): fast {f} tight {t}: {e:.1e}, estimate {alg:.1e}");
-            assert!(e < 1e-3 && e <= 4.0 * alg, "{e} vs {alg}");
+            assert!(e < 1e-3 && e <= 6.0 * alg, "{e} vs {alg}");
         }
     }
 }
@@ -351,8 +353,8 @@ fn the_fast_rule_stops_near_the_tight_solution_with_the_far_field() {
 fn a_spike_case_that_the_frozen_band_loses_converges_without_it() {
     // The nightly point sweep's M = 19.3, L = 20, D = 1 on 513^2: with the far field the
     // V cycles' residual grows from 2.4e-3 to 0.28 on the finest level (diverged) while the
-    // coarse grids freeze the band along the cavitation boundary; the ladder's second rung,
-    // the same cycles without the band (the fast rule kept), converges. Checks: the same
+    // coarse grids freeze the band along the cavitation boundary; the same cycles without the
+    // band (the fast rule kept), the first attempt below L = 25, converge. Checks: the same
     // iteration run on for its whole cycle budget (algebraic error cap 1e-5) stays within the
     // answer's algebraic error estimate (measured: H_c 7.439478 against 7.439432, 6e-6,
     // estimate 6.1e-5), and H_c agrees with the truncated domain's (7.356) to within the far
@@ -364,12 +366,7 @@ fn a_spike_case_that_the_frozen_band_loses_converges_without_it() {
     p.mg.grid = 513;
     let o = solve_point(&case, &p);
     assert_eq!(o.outputs.status, Status::Converged, "{}", o.outputs.reason);
-    assert_eq!(o.attempt, 2, "{}", o.outputs.reason);
-    assert!(
-        o.outputs.reason.contains("no frozen band"),
-        "{}",
-        o.outputs.reason
-    );
+    assert_eq!(o.attempt, 1, "{}", o.outputs.reason);
     assert!(
         (o.outputs.h_c / 7.437 - 1.0).abs() < 2e-3,
         "{}",
@@ -377,7 +374,7 @@ fn a_spike_case_that_the_frozen_band_loses_converges_without_it() {
     );
     let mut on = p;
     on.mg.max_algebraic = 1e-5;
-    on.mg.freeze_band = false;
+    on.mg.freeze_band = Some(false);
     on.fallback = false;
     let r = solve_point(&case, &on).outputs;
     let alg = o.outputs.algebraic_error.expect("an estimate");
@@ -430,7 +427,8 @@ fn isoviscous_cases_converge_in_few_cycles_with_an_honest_algebraic_error() {
 /// error estimate above the true distance to the tightly converged answer. Without it (c = 0)
 /// circular M = 1, L = 20 on 257^2 stopped after 12.7 work units claiming 1.6e-5 with H_c
 /// 5.1e-4 off, and M = 3, L = 10 after 13.1 claiming 8.5e-5 with 5.8e-4 off: this test checks
-/// both rules.
+/// both rules with the band frozen (`freeze_band` Some(true); a first attempt freezes it from
+/// L = 25 on), and the default first attempt without the band, which takes the bound too.
 #[test]
 fn slow_modes_at_the_cavitation_boundary_stay_inside_the_algebraic_estimate() {
     for (m, l) in [(1.0, 20.0), (3.0, 10.0)] {
@@ -445,19 +443,22 @@ fn slow_modes_at_the_cavitation_boundary_stay_inside_the_algebraic_estimate() {
         let mut p = PointSolveParams::default();
         p.mg.grid = 257;
         p.fallback = false;
-        let fast = solve_point(&case, &p);
-        assert_eq!(
-            fast.outputs.status,
-            Status::Converged,
-            "{}",
-            fast.outputs.reason
-        );
-        let e_a = fast.info.algebraic_error.expect("the fast rule's estimate");
-        assert!(
-            dev(&fast) <= e_a,
-            "M = {m}, L = {l}: {:.1e} from the tight answer, estimate {e_a:.1e}",
-            dev(&fast)
-        );
+        for band in [None, Some(true)] {
+            p.mg.freeze_band = band;
+            let fast = solve_point(&case, &p);
+            assert_eq!(
+                fast.outputs.status,
+                Status::Converged,
+                "{}",
+                fast.outputs.reason
+            );
+            let e_a = fast.info.algebraic_error.expect("the fast rule's estimate");
+            assert!(
+                dev(&fast) <= e_a,
+                "M = {m}, L = {l}, band {band:?}: {:.1e} from the tight answer, estimate {e_a:.1e}",
+                dev(&fast)
+            );
+        }
         p.mg.residual_bound = 0.0;
         let unbounded = solve_point(&case, &p);
         let e_0 = unbounded.info.algebraic_error.unwrap();

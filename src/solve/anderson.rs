@@ -69,7 +69,11 @@ impl Anderson {
         *h0 -= gamma * (*h0 - prev_h0);
         for (q, gp) in p.iter_mut().zip(self.g_prev.iter_mut()) {
             let g = *q;
-            *q = (g - gamma * (g - *gp)).max(0.0);
+            // A node the cycle left cavitated stays so: the step would revive it with a
+            // fraction of its previous pressure, cycle after cycle.
+            if g > 0.0 {
+                *q = (g - gamma * (g - *gp)).max(0.0);
+            }
             *gp = g;
         }
         true

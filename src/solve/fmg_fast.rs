@@ -14,8 +14,9 @@
 //!   contraction over the cycle (clamped to [0.1, 0.9], 0.5 after the first cycle), as the
 //!   geometric tail 2 delta_k rho / (1 - rho) with a safety factor of 2 (rho is observed over
 //!   two cycles only); on a finest level started from a coarser one (not a warm or resumed
-//!   start), and where the contact freezes a band along the cavitation boundary
-//!   ([`crate::solve::multilevel::Contact::frozen_band`]), not below the residual bound
+//!   start), and where the contact has a pressure spike next to its cavitation boundary
+//!   ([`crate::solve::multilevel::Contact::spiked_boundary`]: line contacts, point contacts
+//!   from alpha_bar = 5 on, with or without a frozen band), not below the residual bound
 //!   c 3 e_d r_k / r_0 (r_0 and r_k the residuals after the level's first and latest cycle,
 //!   e_d below; c = `residual_bound`, [`RESIDUAL_BOUND`]): the FMG start carries an
 //!   algebraic error of about the difference of the two grids' answers, 3 e_d, which falls

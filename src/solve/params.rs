@@ -191,9 +191,12 @@ pub struct MgParams<D> {
     /// Point contacts take [`crate::solve::point::multigrid::POINT_COARSE_LOAD_REL_TOL`].
     pub coarse_load_rel_tol: f64,
     /// Point contacts: whether the coarse grids freeze the band along the cavitation boundary
-    /// from alpha_bar = [`crate::solve::point::multigrid::FREEZE_ALPHA_BAR`] on (default; off on
-    /// the [`Rung::Unfrozen`] rung). Line contacts always freeze it.
-    pub freeze_band: bool,
+    /// where the physics have one (alpha_bar >=
+    /// [`crate::solve::point::multigrid::FREEZE_ALPHA_BAR`]): `None` (default) as the case
+    /// says, from L = [`crate::solve::point::multigrid::FREEZE_MIN_L`] on
+    /// ([`crate::solve::point::multigrid::first_freezes`]); `Some(b)` b (the [`Rung::Unfrozen`]
+    /// and [`Rung::Frozen`] rungs). Line contacts always freeze it.
+    pub freeze_band: Option<bool>,
     /// The contact's domain rule.
     pub domain: D,
     /// Line contacts: override the coarsest grid's interval count (a power of two >= 8).
@@ -243,7 +246,7 @@ impl<D> MgParams<D> {
             anderson: false,
             coarse_rel_tol: 0.0,
             coarse_load_rel_tol: f64::INFINITY,
-            freeze_band: true,
+            freeze_band: None,
             domain,
             coarse_intervals: None,
             second_order: true,
@@ -315,6 +318,9 @@ pub enum Rung {
     /// Point contacts: no band frozen along the cavitation boundary on the coarse grids
     /// ([`MgParams::freeze_band`]), keeping the stopping rule as given.
     Unfrozen,
+    /// Point contacts: the band frozen along the cavitation boundary on the coarse grids (where
+    /// the physics have one), keeping the stopping rule as given.
+    Frozen,
 }
 
 impl Rung {
@@ -332,17 +338,23 @@ impl Rung {
             Rung::Tight => "default smoother, tight convergence",
             Rung::WideBand => "default smoother, twice the kernel band",
             Rung::Unfrozen => "default smoother, no frozen band",
+            Rung::Frozen => "default smoother, frozen band",
         }
     }
 
     /// `p` changed as this rung says; every rung but the first, [`Rung::WCycles`],
-    /// [`Rung::LightDamping`], [`Rung::WideBand`] and [`Rung::Unfrozen`] converges tightly (the
-    /// conservative load balance).
+    /// [`Rung::LightDamping`], [`Rung::WideBand`], [`Rung::Unfrozen`] and [`Rung::Frozen`]
+    /// converges tightly (the conservative load balance).
     pub fn apply<D: Copy + FinerCoarsest>(self, p: &MgParams<D>) -> MgParams<D> {
         let mut q = *p;
         if !matches!(
             self,
-            Rung::Default | Rung::WCycles | Rung::WideBand | Rung::LightDamping | Rung::Unfrozen
+            Rung::Default
+                | Rung::WCycles
+                | Rung::WideBand
+                | Rung::LightDamping
+                | Rung::Unfrozen
+                | Rung::Frozen
         ) {
             q.converge = Converge::Tight;
         }
@@ -357,7 +369,8 @@ impl Rung {
             }
             Rung::Damped => q.relax.omega_line = (0.6 * p.relax.omega_line).min(0.3),
             Rung::LightDamping => q.relax.omega_line = LIGHT_DAMPING,
-            Rung::Unfrozen => q.freeze_band = false,
+            Rung::Unfrozen => q.freeze_band = Some(false),
+            Rung::Frozen => q.freeze_band = Some(true),
             Rung::Distributive => q.relax.xi_threshold = f64::INFINITY,
             Rung::DistributiveW | Rung::DistributiveWFiner => {
                 q.relax.xi_threshold = f64::INFINITY;
@@ -436,17 +449,21 @@ mod tests {
     }
 
     #[test]
-    fn the_unfrozen_rung_unfreezes_the_band_and_changes_nothing_else() {
+    fn the_band_rungs_set_the_band_and_change_nothing_else() {
         let p = MgParams::<crate::discrete::point::domain::PointDomainParams>::default();
-        assert!(p.freeze_band);
-        let q = Rung::Unfrozen.apply(&p);
-        assert!(!q.freeze_band);
-        assert_eq!(
-            MgParams {
-                freeze_band: true,
-                ..q
-            },
-            p
-        );
+        assert_eq!(p.freeze_band, None);
+        for (rung, band) in [(Rung::Unfrozen, false), (Rung::Frozen, true)] {
+            let q = rung.apply(&p);
+            assert_eq!(q.freeze_band, Some(band));
+            assert_eq!(q.converge, p.converge);
+            assert_eq!(
+                MgParams {
+                    freeze_band: None,
+                    ..q
+                },
+                p
+            );
+        }
+        assert_ne!(Rung::Frozen.name(), Rung::Unfrozen.name());
     }
 }

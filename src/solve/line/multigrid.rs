@@ -348,6 +348,7 @@ impl Contact for LineContact {
     }
 
     const COARSE_BUDGET_GROWTH: usize = 1;
+    const KEEP_CAVITATED: bool = false;
 
     fn seed_matches(mg: &LineMultigrid, l: usize, seed: &Seed) -> bool {
         seed.matches(&mg.levels[l].x, &[])

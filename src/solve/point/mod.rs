@@ -6,9 +6,10 @@
 //! line; `H0`; `f` the rolling traction integral (H/2) dP/dX dX dY over the load integral P dX dY
 //! (Hertzian units); `load_error` against 2 pi k/3; plus `D` and `k`.
 //!
-//! With `fallback` on (the default) a solve that does not converge is retried, where the coarse
-//! grids freeze a band along the cavitation boundary ([`multigrid::freezes`]), without that band;
-//! then with the line relaxation less damped ([`crate::solve::params::LIGHT_DAMPING`] instead of
+//! With `fallback` on (the default) a solve that does not converge is retried, where the physics
+//! have a band along the cavitation boundary ([`multigrid::freezes`]), with the other choice of
+//! it (the first attempt freezes it from L = [`multigrid::FREEZE_MIN_L`] on,
+//! [`multigrid::first_freezes`]); then with the line relaxation less damped ([`crate::solve::params::LIGHT_DAMPING`] instead of
 //! 0.5), then with W cycles (the three with the stopping rule as given), then the line solver's
 //! ladder: tight convergence, line under-relaxation 0.3, then distributive relaxation
 //! everywhere, then that with W cycles. The reason names the attempt kept; the best failed
@@ -150,9 +151,10 @@ fn package(
 }
 
 /// The fallback ladder (module doc).
-const LADDER: [Rung; 8] = [
+const LADDER: [Rung; 9] = [
     Rung::Default,
     Rung::Unfrozen,
+    Rung::Frozen,
     Rung::LightDamping,
     Rung::WCycles,
     Rung::Tight,
@@ -195,11 +197,17 @@ pub fn solve_point_seeded(
         }
     }
     let mut seed = seed;
-    // Where the physics freeze no band (alpha_bar < 5), the settings say so: the unfrozen rung
-    // then changes nothing, and `run_rungs` skips it as it skips any such rung.
+    // Where the physics have no band (alpha_bar < 5) the ladder has no band rungs; where they
+    // have one, the first attempt freezes it from L = FREEZE_MIN_L on, and of the rungs
+    // `Unfrozen` and `Frozen` the one that repeats the first attempt is skipped by `run_rungs`.
     let mut mg = params.mg;
-    mg.freeze_band &= multigrid::freezes(&PointPhysics::from_case(case));
-    run_rungs(&LADDER, &mg, params.fallback, |p| {
+    let band = multigrid::freezes(&PointPhysics::from_case(case));
+    mg.freeze_band = Some(band && mg.freeze_band.unwrap_or(multigrid::first_freezes(case)));
+    let rungs: Vec<Rung> = LADDER
+        .into_iter()
+        .filter(|r| band || !matches!(r, Rung::Unfrozen | Rung::Frozen))
+        .collect();
+    run_rungs(&rungs, &mg, params.fallback, |p| {
         run(case, p, params.keep_fields, seed.take())
     })
 }

@@ -145,6 +145,7 @@ impl Multigrid<PointContact> {
         let extra = PointExtra {
             fine_cells: (n * n) as f64,
             scratch: PointScratch::default(),
+            first_freezes: case.l >= FREEZE_MIN_L,
         };
         Multigrid::from_levels(phys, domain, levels, params, extra)
     }
@@ -188,21 +189,40 @@ pub struct PointExtra {
     fine_cells: f64,
     /// The smoother's work buffers, shared by all levels.
     scratch: PointScratch,
+    /// Whether the band is frozen where the parameters leave it to the case (L >=
+    /// [`FREEZE_MIN_L`]; [`crate::solve::params::MgParams::freeze_band`] None).
+    first_freezes: bool,
 }
 
-/// The dimensionless pressure-viscosity coefficient alpha p_h from which coarse nodes next to the
-/// cavitated set are frozen (module docs). Below it the consistent restriction alone converges
-/// faster (M = 20, L = 0, D = 1: 11 instead of 48 work units on 513^2, 23 instead of 52 on
-/// 1025^2); from it on the spike cases need the frozen band (without it M = 19.3, L = 20, D = 1
-/// and M = 200, L = 20, D = 0.5 no longer converge at their usual attempt). Measured:
-/// docs/performance.md, "The free boundary on the point coarse grids".
+/// The dimensionless pressure-viscosity coefficient alpha p_h from which a pressure spike sits
+/// next to the cavitation boundary: coarse nodes next to the cavitated set may be frozen there
+/// (module docs), and the fast rule's algebraic error estimate takes the residual bound
+/// ([`crate::solve::multilevel::Contact::spiked_boundary`]). Below it the consistent
+/// restriction alone converges faster (M = 20, L = 0, D = 1: 11 instead of 48 work units on
+/// 513^2, 23 instead of 52 on 1025^2) and the cycles' changes measure the algebraic error.
+/// Measured: docs/performance.md, "The free boundary on the point coarse grids".
 pub const FREEZE_ALPHA_BAR: f64 = 5.0;
 
-/// Whether the coarse grids of a solve of these physics freeze the band along the cavitation
-/// boundary (alpha_bar from [`FREEZE_ALPHA_BAR`] on) unless its parameters say otherwise
-/// ([`crate::solve::params::MgParams::freeze_band`]).
+/// The Moes L from which a first attempt freezes the band (where alpha_bar >= [`FREEZE_ALPHA_BAR`]);
+/// below it the first attempt corrects up to the cavitation boundary and the fallback ladder's
+/// second rung freezes the band ([`crate::solve::params::Rung::Frozen`]), from it on the other
+/// way round. Between the measured L = 20 (60 first attempts, M 19.3-5720, D 1 and 0.215, 257^2
+/// and 513^2: 58 converge without the band, 55 with it, for 11 % fewer work units) and L = 30
+/// (4 of 10 on 513^2 converge only with the band, 1 only without): docs/robustness.md, "The
+/// band by L".
+pub const FREEZE_MIN_L: f64 = 25.0;
+
+/// Whether these physics have a spike next to the cavitation boundary (alpha_bar from
+/// [`FREEZE_ALPHA_BAR`] on): the coarse grids may freeze the band along it, as the parameters
+/// say ([`crate::solve::params::MgParams::freeze_band`]).
 pub fn freezes(phys: &PointPhysics) -> bool {
     phys.fluid.alpha_bar >= FREEZE_ALPHA_BAR
+}
+
+/// Whether the first attempt at `case` freezes the band: alpha_bar >= [`FREEZE_ALPHA_BAR`] and
+/// L >= [`FREEZE_MIN_L`].
+pub fn first_freezes(case: &PointCase) -> bool {
+    case.l >= FREEZE_MIN_L && freezes(&PointPhysics::from_case(case))
 }
 
 /// 9-point full weighting of the fine residual `r` at the interior coarse node (i, j), over the
@@ -416,7 +436,10 @@ impl Contact for PointContact {
         seed.matches(&mg.levels[l].x, &mg.levels[l].y)
     }
     fn frozen_band(mg: &PointMultigrid) -> bool {
-        mg.params.freeze_band && freezes(&mg.phys)
+        freezes(&mg.phys) && mg.params.freeze_band.unwrap_or(mg.extra.first_freezes)
+    }
+    fn spiked_boundary(mg: &PointMultigrid) -> bool {
+        freezes(&mg.phys)
     }
     fn fmg_interpolate(mg: &mut PointMultigrid, l: usize) {
         let (lo, hi) = mg.levels.split_at_mut(l);
@@ -459,4 +482,5 @@ impl Contact for PointContact {
     }
 
     const COARSE_BUDGET_GROWTH: usize = 2;
+    const KEEP_CAVITATED: bool = true;
 }
