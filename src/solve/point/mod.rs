@@ -9,8 +9,8 @@
 //! With `fallback` on (the default) a solve that does not converge is retried, where the physics
 //! have a band along the cavitation boundary ([`multigrid::freezes`]), with the other choice of
 //! it (the first attempt freezes it from L = [`multigrid::FREEZE_MIN_L`] on,
-//! [`multigrid::first_freezes`]); then with the line relaxation less damped ([`crate::solve::params::LIGHT_DAMPING`] instead of
-//! 0.5), then with W cycles (the three with the stopping rule as given), then the line solver's
+//! [`multigrid::first_freezes`]); then with the line relaxation less damped
+//! ([`crate::solve::params::LIGHT_DAMPING`] instead of 0.5), then with W cycles (the three with the stopping rule as given), then the line solver's
 //! ladder: tight convergence, line under-relaxation 0.3, then distributive relaxation
 //! everywhere, then that with W cycles. The reason names the attempt kept; the best failed
 //! attempt is returned with its status if none converges. A thin isoviscous film without a seed

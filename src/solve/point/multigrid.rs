@@ -145,7 +145,7 @@ impl Multigrid<PointContact> {
         let extra = PointExtra {
             fine_cells: (n * n) as f64,
             scratch: PointScratch::default(),
-            first_freezes: case.l >= FREEZE_MIN_L,
+            first_freezes: first_freezes(case),
         };
         Multigrid::from_levels(phys, domain, levels, params, extra)
     }
@@ -189,8 +189,8 @@ pub struct PointExtra {
     fine_cells: f64,
     /// The smoother's work buffers, shared by all levels.
     scratch: PointScratch,
-    /// Whether the band is frozen where the parameters leave it to the case (L >=
-    /// [`FREEZE_MIN_L`]; [`crate::solve::params::MgParams::freeze_band`] None).
+    /// Whether the band is frozen where the parameters leave it to the case
+    /// ([`first_freezes`]; [`crate::solve::params::MgParams::freeze_band`] None).
     first_freezes: bool,
 }
 
