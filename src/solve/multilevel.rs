@@ -98,6 +98,18 @@ macro_rules! grid_level {
 }
 pub(crate) use grid_level;
 
+/// Which coarse nodes a restriction holds fixed ([`Contact::restrict`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Freeze {
+    /// The band along the cavitation boundary ([`Contact::frozen_band`]): coarse nodes whose
+    /// fine neighbourhood touches the cavitated set.
+    pub band: bool,
+    /// Line contacts: also coarse nodes whose fine neighbourhood holds a pressurised node with
+    /// |r| above this factor times the mean |r| of the pressurised nodes (the outlet spike,
+    /// [`crate::solve::params::MgParams::spike_freeze`]).
+    pub spike: Option<f64>,
+}
+
 /// What a contact supplies to [`Multigrid`]: the types of its levels, physics and domain, and
 /// the steps that differ between line and point contacts.
 pub trait Contact: Sized {
@@ -124,15 +136,15 @@ pub trait Contact: Sized {
     /// The cost in work units of `iterations` Newton iterations on the coarsest level.
     fn newton_cost(mg: &Multigrid<Self>, iterations: usize) -> f64;
     /// Inject P from `fine` into `coarse`, refresh the coarse film at `h0`, and set the coarse
-    /// Reynolds right-hand side from the restricted residual `r` (frozen nodes marked where
-    /// `freeze`, [`Contact::frozen_band`]).
+    /// Reynolds right-hand side from the restricted residual `r` (frozen nodes marked as
+    /// `freeze` says).
     fn restrict(
         coarse: &mut Self::Level,
         fine: &Self::Level,
         r: &[f64],
         phys: &Phys<Self>,
         h0: f64,
-        freeze: bool,
+        freeze: Freeze,
     );
     /// Add the interpolated correction `coarse.p - p_hat` to `fine.p`, project on P >= 0 and
     /// refresh the fine film at `h0`.
@@ -379,7 +391,10 @@ impl<C: Contact> Multigrid<C> {
 
     /// The coarse problem of level `l`: residual, injection, right-hand sides.
     fn restrict(&mut self, l: usize) {
-        let freeze = C::frozen_band(self);
+        let freeze = Freeze {
+            band: C::frozen_band(self),
+            spike: self.params.spike_freeze,
+        };
         // The full residual, cavitated nodes included: there it is the complementarity margin
         // (L - f < 0), which keeps the coarse problem strictly cavitated where the fine one is;
         // zeroing it would make P = 0 a degenerate coarse solution.

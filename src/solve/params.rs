@@ -4,7 +4,7 @@
 //! conservative settings a failed attempt is retried with.
 
 use crate::solve::fmg::FmgControl;
-use crate::solve::relax::RelaxParams;
+use crate::solve::relax::{RelaxParams, SpikeNewton};
 use serde::{Deserialize, Serialize};
 
 /// V or W cycles.
@@ -197,6 +197,10 @@ pub struct MgParams<D> {
     /// ([`crate::solve::point::multigrid::first_freezes`]); `Some(b)` b (the [`Rung::Unfrozen`]
     /// and [`Rung::Frozen`] rungs). Line contacts always freeze it.
     pub freeze_band: Option<bool>,
+    /// Line contacts: the coarse grids also hold fixed the nodes next to a pressurised fine node
+    /// whose |r| exceeds this factor times the mean |r| (the outlet spike steeper than the grid,
+    /// [`crate::solve::multilevel::Freeze::spike`]); `None` (default): no such nodes.
+    pub spike_freeze: Option<f64>,
     /// The contact's domain rule.
     pub domain: D,
     /// Line contacts: override the coarsest grid's interval count (a power of two >= 8).
@@ -247,6 +251,7 @@ impl<D> MgParams<D> {
             coarse_rel_tol: 0.0,
             coarse_load_rel_tol: f64::INFINITY,
             freeze_band: None,
+            spike_freeze: None,
             domain,
             coarse_intervals: None,
             second_order: true,
@@ -321,7 +326,35 @@ pub enum Rung {
     /// Point contacts: the band frozen along the cavitation boundary on the coarse grids (where
     /// the physics have one), keeping the stopping rule as given.
     Frozen,
+    /// Line contacts: Newton windows at the outlet spike after each sweep on levels of 4097
+    /// points or more ([`SPIKE_NEWTON`]), keeping the stopping rule as given.
+    SpikeNewton,
+    /// Line contacts: the coarse grids hold fixed the nodes next to the outlet spike
+    /// ([`MgParams::spike_freeze`] = [`SPIKE_FREEZE`]), keeping the stopping rule as given.
+    SpikeFrozen,
+    /// Line contacts: Newton windows at a lower threshold on every level
+    /// ([`SPIKE_NEWTON_ALL`]), keeping the stopping rule as given.
+    SpikeNewtonAll,
 }
+
+/// The Newton windows of [`Rung::SpikeNewton`]: nodes with |r| above 10 times the mean, up to 8
+/// steps, on levels of 4097 points or more.
+pub const SPIKE_NEWTON: SpikeNewton = SpikeNewton {
+    factor: 10.0,
+    iterations: 8,
+    min_points: 4097,
+};
+
+/// The Newton windows of [`Rung::SpikeNewtonAll`]: nodes with |r| above 5 times the mean, up to
+/// 8 steps, on every level.
+pub const SPIKE_NEWTON_ALL: SpikeNewton = SpikeNewton {
+    factor: 5.0,
+    iterations: 8,
+    min_points: 0,
+};
+
+/// The factor of [`Rung::SpikeFrozen`] ([`MgParams::spike_freeze`]).
+pub const SPIKE_FREEZE: f64 = 10.0;
 
 impl Rung {
     /// The name a solve's reason carries when this rung answered.
@@ -339,12 +372,15 @@ impl Rung {
             Rung::WideBand => "default smoother, twice the kernel band",
             Rung::Unfrozen => "default smoother, no frozen band",
             Rung::Frozen => "default smoother, frozen band",
+            Rung::SpikeNewton => "default smoother, Newton windows at the spike",
+            Rung::SpikeFrozen => "default smoother, spike frozen on the coarse grids",
+            Rung::SpikeNewtonAll => "default smoother, Newton windows on every level",
         }
     }
 
     /// `p` changed as this rung says; every rung but the first, [`Rung::WCycles`],
-    /// [`Rung::LightDamping`], [`Rung::WideBand`], [`Rung::Unfrozen`] and [`Rung::Frozen`]
-    /// converges tightly (the conservative load balance).
+    /// [`Rung::LightDamping`], [`Rung::WideBand`], [`Rung::Unfrozen`], [`Rung::Frozen`] and the
+    /// three spike rungs converges tightly (the conservative load balance).
     pub fn apply<D: Copy + FinerCoarsest>(self, p: &MgParams<D>) -> MgParams<D> {
         let mut q = *p;
         if !matches!(
@@ -355,6 +391,9 @@ impl Rung {
                 | Rung::LightDamping
                 | Rung::Unfrozen
                 | Rung::Frozen
+                | Rung::SpikeNewton
+                | Rung::SpikeFrozen
+                | Rung::SpikeNewtonAll
         ) {
             q.converge = Converge::Tight;
         }
@@ -371,6 +410,9 @@ impl Rung {
             Rung::LightDamping => q.relax.omega_line = LIGHT_DAMPING,
             Rung::Unfrozen => q.freeze_band = Some(false),
             Rung::Frozen => q.freeze_band = Some(true),
+            Rung::SpikeNewton => q.relax.spike_newton = Some(SPIKE_NEWTON),
+            Rung::SpikeFrozen => q.spike_freeze = Some(SPIKE_FREEZE),
+            Rung::SpikeNewtonAll => q.relax.spike_newton = Some(SPIKE_NEWTON_ALL),
             Rung::Distributive => q.relax.xi_threshold = f64::INFINITY,
             Rung::DistributiveW | Rung::DistributiveWFiner => {
                 q.relax.xi_threshold = f64::INFINITY;
@@ -465,5 +507,25 @@ mod tests {
             );
         }
         assert_ne!(Rung::Frozen.name(), Rung::Unfrozen.name());
+    }
+
+    #[test]
+    fn the_spike_rungs_set_their_spike_setting_and_change_nothing_else() {
+        let p = MgParams::<crate::discrete::line::domain::DomainParams>::default();
+        assert_eq!((p.relax.spike_newton, p.spike_freeze), (None, None));
+        for rung in [Rung::SpikeNewton, Rung::SpikeFrozen, Rung::SpikeNewtonAll] {
+            let q = rung.apply(&p);
+            assert_eq!(q.converge, p.converge, "{rung:?}");
+            let want = match rung {
+                Rung::SpikeNewton => (Some(SPIKE_NEWTON), None),
+                Rung::SpikeFrozen => (None, Some(SPIKE_FREEZE)),
+                _ => (Some(SPIKE_NEWTON_ALL), None),
+            };
+            assert_eq!((q.relax.spike_newton, q.spike_freeze), want, "{rung:?}");
+            let mut back = q;
+            back.relax.spike_newton = None;
+            back.spike_freeze = None;
+            assert_eq!(back, p, "{rung:?}");
+        }
     }
 }

@@ -41,6 +41,22 @@ pub struct RelaxParams {
     /// so in a few sweeps instead of by 2/alpha_bar per sweep. The point contact keeps 0: at
     /// L = 20 on 513^2 the larger steps make its cycles diverge.
     pub relative_step: f64,
+    /// Line contacts: Newton windows at the outlet spike after each sweep
+    /// ([`crate::solve::line::spike`]); `None` (the default) runs none.
+    pub spike_newton: Option<SpikeNewton>,
+}
+
+/// Settings of the line smoother's Newton windows at the outlet spike
+/// ([`crate::solve::line::spike::spike_newton`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpikeNewton {
+    /// A node opens a window where its |r| exceeds this factor times the mean |r| over the
+    /// pressurised nodes.
+    pub factor: f64,
+    /// Newton steps per window and sweep, at most.
+    pub iterations: usize,
+    /// Levels with fewer points are left alone.
+    pub min_points: usize,
 }
 
 impl Default for RelaxParams {
@@ -54,6 +70,7 @@ impl Default for RelaxParams {
             band: 4,
             picard: false,
             relative_step: 0.0,
+            spike_newton: None,
         }
     }
 }

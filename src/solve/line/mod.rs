@@ -18,32 +18,49 @@
 //!    band width in no regular way, and this rung rescues some cases that every rung above fails
 //!    (M = 100, L = 12; M = 200, L = 16; M = 2000, L = 25; docs/known-limits.md).
 //!
-//! Rungs 2 to 6 use the tight stopping rule.
+//! Where the physics have a piezoviscous spike (alpha_bar >= [`SPIKE_ALPHA_BAR`]) three rungs
+//! come between the first and the second, each keeping the stopping rule as given: Newton
+//! windows at the outlet spike on levels of 4097 points or more ([`spike`],
+//! [`Rung::SpikeNewton`]; the first of them only on such grids), the coarse grids holding the
+//! spike's nodes fixed ([`Rung::SpikeFrozen`]), and Newton windows on every level at a lower
+//! threshold ([`Rung::SpikeNewtonAll`]). At L >= 22 on 16385 points the outlet pressure falls
+//! from its spike to nearly zero within a cell and the cycles stall there; which of these
+//! settles it varies from case to case, and none changes a converged answer beyond its
+//! algebraic error (docs/robustness.md, "Newton windows at the line spike").
+//!
+//! Rungs 2 to 6 of the list above use the tight stopping rule.
 //!
 //! The best failed attempt (lowest final residual) is returned with its status if none converges.
 
 pub mod jacobian;
 pub mod multigrid;
 pub mod relax;
+pub mod spike;
 
 use crate::discrete::line::domain::DomainParams;
-use crate::model::case::LineCase;
+use crate::model::case::{Elasticity, LineCase};
 use crate::model::formulas::moes_line_hc;
 use crate::solve::ladder::run_rungs;
 use crate::solve::line::multigrid::{LineMgParams, LineMultigrid, WarmGuess};
 use crate::solve::mixed::{set_mixed_outputs, solve_mixed, MixedState};
 use crate::solve::multilevel::Seed;
-use crate::solve::params::{ContactParams, Method, Rung};
+use crate::solve::params::{ContactParams, Method, Rung, SPIKE_NEWTON};
 use crate::solve::single_grid::solve_relax;
 use crate::solve::solution::{line_outputs, Profile, Solution};
 use crate::solve::SolveInfo;
 
+/// The alpha_bar from which a line solve's ladder has the spike rungs (module doc).
+pub const SPIKE_ALPHA_BAR: f64 = 5.0;
+
 /// Parameters of a line solve.
 pub type LineSolveParams = ContactParams<DomainParams>;
 
-/// The fallback ladder (module doc).
-const LADDER: [Rung; 7] = [
+/// The fallback ladder (module doc); the spike rungs are dropped where the case has no spike.
+const LADDER: [Rung; 10] = [
     Rung::Default,
+    Rung::SpikeNewton,
+    Rung::SpikeFrozen,
+    Rung::SpikeNewtonAll,
     Rung::Tight,
     Rung::Smooth44,
     Rung::Damped,
@@ -169,7 +186,17 @@ fn solve_line_with(
         }
     }
     let mut seed = seed;
-    run_rungs(&LADDER, &params.mg, params.fallback, |p| {
+    let spiked =
+        case.venner().alpha_bar >= SPIKE_ALPHA_BAR && case.models.elasticity == Elasticity::Elastic;
+    let rungs: Vec<Rung> = LADDER
+        .into_iter()
+        .filter(|r| match r {
+            Rung::SpikeNewton => spiked && params.mg.grid >= SPIKE_NEWTON.min_points,
+            Rung::SpikeFrozen | Rung::SpikeNewtonAll => spiked,
+            _ => true,
+        })
+        .collect();
+    run_rungs(&rungs, &params.mg, params.fallback, |p| {
         run(case, p, params.keep_fields, guess, seed.take())
     })
 }

@@ -21,6 +21,7 @@ use crate::discrete::line::operator::{LineLevel, LinePhysics};
 use crate::discrete::stencil::upwind;
 use crate::solve::banded::solve_banded;
 use crate::solve::line::jacobian::JacRow;
+use crate::solve::line::spike::spike_newton;
 use crate::solve::relax::{
     distributed, distributed_row, mirror_kernel, node_kind, pinned_row, relaxed, undistributed,
     viscosity_step_limit, xi, Kind, RelaxParams, Smoother,
@@ -150,6 +151,11 @@ pub fn line_sweep(
         );
     }
     lv.update_film(phys, h0);
+    if let Some(sn) = &rp.spike_newton {
+        if spike_newton(lv, phys, sn) > 0 {
+            lv.update_film(phys, h0);
+        }
+    }
 }
 
 /// d(wedge_i)/d(unknown) for a change whose film response at node k is -(1/pi) kd(k - i) per unit.

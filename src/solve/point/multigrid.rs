@@ -25,7 +25,7 @@ use crate::discrete::point::operator::{PointLevel, PointPhysics};
 use crate::discrete::rows::for_each_row;
 use crate::model::case::{Elasticity, PointCase};
 use crate::solve::deadline::past;
-use crate::solve::multilevel::{grid_level, Contact, DomainRule, Multigrid, Seed};
+use crate::solve::multilevel::{grid_level, Contact, DomainRule, Freeze, Multigrid, Seed};
 use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
 use crate::solve::params::{Converge, FinerCoarsest, MgParams};
 use crate::solve::point::relax::{point_line_sweep, PointScratch};
@@ -278,8 +278,9 @@ impl Contact for PointContact {
         r: &[f64],
         phys: &PointPhysics,
         h0: f64,
-        freeze: bool,
+        freeze: Freeze,
     ) {
+        let freeze = freeze.band;
         for j in 0..coarse.ny {
             for i in 0..coarse.nx {
                 let cc = coarse.at(i, j);
