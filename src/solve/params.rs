@@ -335,6 +335,10 @@ pub enum Rung {
     /// Line contacts: Newton windows at a lower threshold on every level
     /// ([`SPIKE_NEWTON_ALL`]), keeping the stopping rule as given.
     SpikeNewtonAll,
+    /// Line contacts: [`Rung::SpikeFrozen`] with V(4, 4) cycles.
+    SpikeFrozenSmooth44,
+    /// Line contacts: [`Rung::SpikeNewton`] with V(4, 4) cycles.
+    SpikeNewtonSmooth44,
 }
 
 /// The Newton windows of [`Rung::SpikeNewton`]: nodes with |r| above 10 times the mean, up to 8
@@ -375,12 +379,14 @@ impl Rung {
             Rung::SpikeNewton => "default smoother, Newton windows at the spike",
             Rung::SpikeFrozen => "default smoother, spike frozen on the coarse grids",
             Rung::SpikeNewtonAll => "default smoother, Newton windows on every level",
+            Rung::SpikeFrozenSmooth44 => "spike frozen on the coarse grids, V(4, 4) cycles",
+            Rung::SpikeNewtonSmooth44 => "Newton windows at the spike, V(4, 4) cycles",
         }
     }
 
     /// `p` changed as this rung says; every rung but the first, [`Rung::WCycles`],
     /// [`Rung::LightDamping`], [`Rung::WideBand`], [`Rung::Unfrozen`], [`Rung::Frozen`] and the
-    /// three spike rungs converges tightly (the conservative load balance).
+    /// five spike rungs converges tightly (the conservative load balance).
     pub fn apply<D: Copy + FinerCoarsest>(self, p: &MgParams<D>) -> MgParams<D> {
         let mut q = *p;
         if !matches!(
@@ -394,6 +400,8 @@ impl Rung {
                 | Rung::SpikeNewton
                 | Rung::SpikeFrozen
                 | Rung::SpikeNewtonAll
+                | Rung::SpikeFrozenSmooth44
+                | Rung::SpikeNewtonSmooth44
         ) {
             q.converge = Converge::Tight;
         }
@@ -405,6 +413,15 @@ impl Rung {
             Rung::Smooth44 => {
                 q.pre = p.pre.max(4);
                 q.post = p.post.max(4);
+            }
+            Rung::SpikeFrozenSmooth44 | Rung::SpikeNewtonSmooth44 => {
+                q.pre = p.pre.max(4);
+                q.post = p.post.max(4);
+                if self == Rung::SpikeFrozenSmooth44 {
+                    q.spike_freeze = Some(SPIKE_FREEZE);
+                } else {
+                    q.relax.spike_newton = Some(SPIKE_NEWTON);
+                }
             }
             Rung::Damped => q.relax.omega_line = (0.6 * p.relax.omega_line).min(0.3),
             Rung::LightDamping => q.relax.omega_line = LIGHT_DAMPING,
@@ -513,18 +530,30 @@ mod tests {
     fn the_spike_rungs_set_their_spike_setting_and_change_nothing_else() {
         let p = MgParams::<crate::discrete::line::domain::DomainParams>::default();
         assert_eq!((p.relax.spike_newton, p.spike_freeze), (None, None));
-        for rung in [Rung::SpikeNewton, Rung::SpikeFrozen, Rung::SpikeNewtonAll] {
+        for rung in [
+            Rung::SpikeNewton,
+            Rung::SpikeFrozen,
+            Rung::SpikeNewtonAll,
+            Rung::SpikeFrozenSmooth44,
+            Rung::SpikeNewtonSmooth44,
+        ] {
             let q = rung.apply(&p);
             assert_eq!(q.converge, p.converge, "{rung:?}");
             let want = match rung {
-                Rung::SpikeNewton => (Some(SPIKE_NEWTON), None),
-                Rung::SpikeFrozen => (None, Some(SPIKE_FREEZE)),
+                Rung::SpikeNewton | Rung::SpikeNewtonSmooth44 => (Some(SPIKE_NEWTON), None),
+                Rung::SpikeFrozen | Rung::SpikeFrozenSmooth44 => (None, Some(SPIKE_FREEZE)),
                 _ => (Some(SPIKE_NEWTON_ALL), None),
             };
             assert_eq!((q.relax.spike_newton, q.spike_freeze), want, "{rung:?}");
+            let smooth = matches!(rung, Rung::SpikeFrozenSmooth44 | Rung::SpikeNewtonSmooth44);
+            assert_eq!(
+                (q.pre, q.post),
+                if smooth { (4, 4) } else { (p.pre, p.post) }
+            );
             let mut back = q;
             back.relax.spike_newton = None;
             back.spike_freeze = None;
+            (back.pre, back.post) = (p.pre, p.post);
             assert_eq!(back, p, "{rung:?}");
         }
     }

@@ -18,12 +18,14 @@
 //!    band width in no regular way, and this rung rescues some cases that every rung above fails
 //!    (M = 100, L = 12; M = 200, L = 16; M = 2000, L = 25; docs/known-limits.md).
 //!
-//! Where the physics have a piezoviscous spike (alpha_bar >= [`SPIKE_ALPHA_BAR`]) three rungs
+//! Where the physics have a piezoviscous spike (alpha_bar >= [`SPIKE_ALPHA_BAR`]) five rungs
 //! come between the first and the second, each keeping the stopping rule as given: Newton
 //! windows at the outlet spike on levels of 4097 points or more ([`spike`],
-//! [`Rung::SpikeNewton`]; the first of them only on such grids), the coarse grids holding the
-//! spike's nodes fixed ([`Rung::SpikeFrozen`]), and Newton windows on every level at a lower
-//! threshold ([`Rung::SpikeNewtonAll`]). At L >= 22 on 16385 points the outlet pressure falls
+//! [`Rung::SpikeNewton`]; only on such grids), the coarse grids holding the spike's nodes fixed
+//! ([`Rung::SpikeFrozen`]), Newton windows on every level at a lower threshold
+//! ([`Rung::SpikeNewtonAll`]), and the frozen spike and the windows again with V(4, 4) cycles
+//! ([`Rung::SpikeFrozenSmooth44`], [`Rung::SpikeNewtonSmooth44`], the latter only on grids of
+//! 4097 points or more). At L >= 22 on 16385 points the outlet pressure falls
 //! from its spike to nearly zero within a cell and the cycles stall there; which of these
 //! settles it varies from case to case, and none changes a converged answer beyond its
 //! algebraic error (docs/robustness.md, "Newton windows at the line spike").
@@ -56,11 +58,13 @@ pub const SPIKE_ALPHA_BAR: f64 = 5.0;
 pub type LineSolveParams = ContactParams<DomainParams>;
 
 /// The fallback ladder (module doc); the spike rungs are dropped where the case has no spike.
-const LADDER: [Rung; 10] = [
+const LADDER: [Rung; 12] = [
     Rung::Default,
     Rung::SpikeNewton,
     Rung::SpikeFrozen,
     Rung::SpikeNewtonAll,
+    Rung::SpikeFrozenSmooth44,
+    Rung::SpikeNewtonSmooth44,
     Rung::Tight,
     Rung::Smooth44,
     Rung::Damped,
@@ -191,8 +195,10 @@ fn solve_line_with(
     let rungs: Vec<Rung> = LADDER
         .into_iter()
         .filter(|r| match r {
-            Rung::SpikeNewton => spiked && params.mg.grid >= SPIKE_NEWTON.min_points,
-            Rung::SpikeFrozen | Rung::SpikeNewtonAll => spiked,
+            Rung::SpikeNewton | Rung::SpikeNewtonSmooth44 => {
+                spiked && params.mg.grid >= SPIKE_NEWTON.min_points
+            }
+            Rung::SpikeFrozen | Rung::SpikeNewtonAll | Rung::SpikeFrozenSmooth44 => spiked,
             _ => true,
         })
         .collect();
