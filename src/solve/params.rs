@@ -410,25 +410,16 @@ impl Rung {
             Rung::WCycles => q.cycle = CycleType::W,
             Rung::Tight => {}
             Rung::WideBand => q.relax.band = (2 * p.relax.band).max(8),
-            Rung::Smooth44 => {
-                q.pre = p.pre.max(4);
-                q.post = p.post.max(4);
-            }
-            Rung::SpikeFrozenSmooth44 | Rung::SpikeNewtonSmooth44 => {
-                q.pre = p.pre.max(4);
-                q.post = p.post.max(4);
-                if self == Rung::SpikeFrozenSmooth44 {
-                    q.spike_freeze = Some(SPIKE_FREEZE);
-                } else {
-                    q.relax.spike_newton = Some(SPIKE_NEWTON);
-                }
-            }
+            // V(4, 4): below, with the spike rungs that take it too.
+            Rung::Smooth44 => {}
             Rung::Damped => q.relax.omega_line = (0.6 * p.relax.omega_line).min(0.3),
             Rung::LightDamping => q.relax.omega_line = LIGHT_DAMPING,
             Rung::Unfrozen => q.freeze_band = Some(false),
             Rung::Frozen => q.freeze_band = Some(true),
-            Rung::SpikeNewton => q.relax.spike_newton = Some(SPIKE_NEWTON),
-            Rung::SpikeFrozen => q.spike_freeze = Some(SPIKE_FREEZE),
+            Rung::SpikeNewton | Rung::SpikeNewtonSmooth44 => {
+                q.relax.spike_newton = Some(SPIKE_NEWTON)
+            }
+            Rung::SpikeFrozen | Rung::SpikeFrozenSmooth44 => q.spike_freeze = Some(SPIKE_FREEZE),
             Rung::SpikeNewtonAll => q.relax.spike_newton = Some(SPIKE_NEWTON_ALL),
             Rung::Distributive => q.relax.xi_threshold = f64::INFINITY,
             Rung::DistributiveW | Rung::DistributiveWFiner => {
@@ -438,6 +429,13 @@ impl Rung {
                     q.domain.finer_coarsest();
                 }
             }
+        }
+        if matches!(
+            self,
+            Rung::Smooth44 | Rung::SpikeFrozenSmooth44 | Rung::SpikeNewtonSmooth44
+        ) {
+            q.pre = p.pre.max(4);
+            q.post = p.post.max(4);
         }
         q
     }

@@ -20,6 +20,7 @@ use crate::discrete::line::operator::{LineLevel, LinePhysics};
 use crate::model::case::LineCase;
 use crate::solve::deadline::past;
 use crate::solve::line::relax::{relax, LineScratch};
+use crate::solve::line::spike::residual_limit;
 use crate::solve::multilevel::{grid_level, Contact, DomainRule, Freeze, Multigrid, Seed};
 use crate::solve::newton::{load_slope, newton_solve, NewtonOutcome, NewtonParams};
 use crate::solve::params::{FinerCoarsest, MgParams};
@@ -198,7 +199,11 @@ impl Contact for LineContact {
         coarse.update_film(phys, h0);
         coarse.f[0] = 0.0;
         coarse.f[nc - 1] = 0.0;
-        let spike = spike_limit(fine, r, freeze.spike);
+        // A pressurised fine node with |r| above this (the outlet spike) freezes its coarse
+        // neighbours too.
+        let spike = freeze
+            .spike
+            .map_or(f64::INFINITY, |f| residual_limit(&fine.p, r, f));
         for i in 1..nc - 1 {
             coarse.frozen[i] = freeze.band
                 && (2 * i - 1..=2 * i + 1)
@@ -354,43 +359,5 @@ impl Contact for LineContact {
 
     fn seed_matches(mg: &LineMultigrid, l: usize, seed: &Seed) -> bool {
         seed.matches(&mg.levels[l].x, &[])
-    }
-}
-
-/// The |r| above which a pressurised fine node freezes its coarse neighbours: `factor` times the
-/// mean |r| over the pressurised nodes (infinite without a factor;
-/// [`crate::solve::params::MgParams::spike_freeze`]).
-fn spike_limit(fine: &LineLevel, r: &[f64], factor: Option<f64>) -> f64 {
-    let Some(factor) = factor else {
-        return f64::INFINITY;
-    };
-    let (sum, count) = fine
-        .p
-        .iter()
-        .zip(r)
-        .filter(|(&p, _)| p > 0.0)
-        .fold((0.0, 0usize), |(s, c), (_, &v)| (s + v.abs(), c + 1));
-    if count == 0 {
-        f64::INFINITY
-    } else {
-        factor * sum / count as f64
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_spike_limit_is_a_factor_of_the_mean_over_pressurised_nodes() {
-        let mut fine = LineLevel::new(-1.0, 1.0, 8);
-        fine.p
-            .copy_from_slice(&[0.0, 1.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0]);
-        // Pressurised |r|: 1, 3, 1, 3 (mean 2); cavitated nodes do not count.
-        let r = [9.0, 1.0, -3.0, 1.0, 3.0, 100.0, 0.0, 0.0, 0.0];
-        assert_eq!(spike_limit(&fine, &r, None), f64::INFINITY);
-        assert_eq!(spike_limit(&fine, &r, Some(10.0)), 20.0);
-        fine.p.fill(0.0);
-        assert_eq!(spike_limit(&fine, &r, Some(10.0)), f64::INFINITY);
     }
 }

@@ -6,7 +6,7 @@
 //! changes by many orders of magnitude between neighbours. The line sweep's linearised step then
 //! overshoots at those few nodes and the cycles stall with a residual of order 1e4 there while
 //! the film has settled. [`spike_newton`] picks the nodes whose |r| exceeds `factor` times the mean
-//! |r| over the pressurised nodes, widens each by 3 nodes on both sides, merges overlapping
+//! |r| over the pressurised nodes ([`residual_limit`]), widens each by 3 nodes on both sides, merges overlapping
 //! windows and runs up to `iterations` Newton steps on each window's equations L_i = f_i with the
 //! exact Jacobian entries ([`crate::solve::line::jacobian::JacRow`], kernel terms within the
 //! window) and a backtracking line search on the window's sum of r^2 (a step is taken only if it
@@ -30,24 +30,33 @@ const HALF_WIDTH: usize = 3;
 /// Backtracking halvings of a Newton step before the window gives up.
 const MAX_HALVINGS: usize = 12;
 
+/// `factor` times the mean |r| over the pressurised nodes (P > 0) of a level with pressure `p`
+/// and residual `r`; infinite where no node is pressurised. The threshold of the Newton windows
+/// and of the coarse grids' frozen spike ([`crate::solve::params::MgParams::spike_freeze`]).
+pub fn residual_limit(p: &[f64], r: &[f64], factor: f64) -> f64 {
+    let (sum, count) = p
+        .iter()
+        .zip(r)
+        .filter(|(&p, _)| p > 0.0)
+        .fold((0.0, 0usize), |(s, c), (_, &v)| (s + v.abs(), c + 1));
+    if count == 0 {
+        f64::INFINITY
+    } else {
+        factor * sum / count as f64
+    }
+}
+
 /// The windows of `lv` (closed node ranges, merged where they overlap or touch) around the
-/// pressurised, unfrozen nodes with |r| > factor x the mean |r| over the pressurised nodes.
-pub fn windows(lv: &LineLevel, phys: &LinePhysics, factor: f64) -> Vec<(usize, usize)> {
+/// pressurised, unfrozen nodes with |r| above [`residual_limit`] at `factor`. The residual is
+/// computed in the level's work buffer `delta`, whose contents no caller keeps across a sweep.
+pub fn windows(lv: &mut LineLevel, phys: &LinePhysics, factor: f64) -> Vec<(usize, usize)> {
     let n = lv.len();
-    let (mut sum, mut active) = (0.0, 0usize);
-    for i in 1..n - 1 {
-        if lv.p[i] > 0.0 {
-            sum += (lv.f[i] - lv.reynolds(phys, i)).abs();
-            active += 1;
-        }
-    }
+    let mut r = std::mem::take(&mut lv.nodes.delta);
+    lv.residual(phys, false, &mut r);
+    let limit = residual_limit(&lv.p, &r, factor);
     let mut out: Vec<(usize, usize)> = vec![];
-    if active == 0 {
-        return out;
-    }
-    let limit = factor * sum / active as f64;
     for i in 1..n - 1 {
-        if lv.p[i] > 0.0 && !lv.frozen[i] && (lv.f[i] - lv.reynolds(phys, i)).abs() > limit {
+        if lv.p[i] > 0.0 && !lv.frozen[i] && r[i].abs() > limit {
             let a = i.saturating_sub(HALF_WIDTH).max(1);
             let b = (i + HALF_WIDTH).min(n - 2);
             match out.last_mut() {
@@ -56,6 +65,7 @@ pub fn windows(lv: &LineLevel, phys: &LinePhysics, factor: f64) -> Vec<(usize, u
             }
         }
     }
+    lv.nodes.delta = r;
     out
 }
 
@@ -145,5 +155,20 @@ fn set_window(
         lv.nodes.rho[k] = rho;
         lv.nodes.eps[k] = eps;
         lv.nodes.divisor[k] = divisor;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_residual_limit_is_a_factor_of_the_mean_over_pressurised_nodes() {
+        let mut p = [0.0, 1.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0];
+        // Pressurised |r|: 1, 3, 1, 3 (mean 2); cavitated nodes do not count.
+        let r = [9.0, 1.0, -3.0, 1.0, 3.0, 100.0, 0.0, 0.0, 0.0];
+        assert_eq!(residual_limit(&p, &r, 10.0), 20.0);
+        p.fill(0.0);
+        assert_eq!(residual_limit(&p, &r, 10.0), f64::INFINITY);
     }
 }
