@@ -17,6 +17,7 @@ pub mod mixed;
 pub mod output;
 pub mod solve;
 pub mod solve_args;
+pub mod solve_progress;
 pub mod summary;
 pub mod sweep;
 

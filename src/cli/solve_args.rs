@@ -18,6 +18,14 @@ use ehlmap::solve::{CycleEvent, Observer};
 use ehlmap::strategy::solve_case::{SolveParams, DEFAULT_ACCURACY};
 use std::path::PathBuf;
 
+/// `ehlmap solve --progress` ([`crate::cli::solve_progress`]).
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum SolveProgressArg {
+    Auto,
+    Log,
+    None,
+}
+
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
 pub enum ContactArg {
     Line,
@@ -195,6 +203,11 @@ pub struct SolveArgs {
     /// stderr; --method multigrid only.
     #[arg(long)]
     pub trace: bool,
+    /// Progress on stderr: auto, a line every 10 s once the solve has run for 5 s (quick
+    /// solves print nothing); log, the same from the first cycle; none. --trace prints every
+    /// cycle instead.
+    #[arg(long, value_enum, default_value_t = SolveProgressArg::Auto)]
+    pub progress: SolveProgressArg,
     /// Print one JSON object instead of the summary.
     #[arg(long)]
     pub json: bool,
@@ -574,7 +587,13 @@ pub(crate) fn params_arg(a: &SolveArgs, case: &Case) -> Result<SolveParams, CliE
         full_model: a.full_model,
         keep_fields: a.profile.is_some() || a.fields.is_some() || a.plot.is_some(),
         parallel: point && a.threads.is_some(),
-        observer: a.trace.then_some(Observer(print_cycle)),
+        observer: if a.trace {
+            Some(Observer(print_cycle))
+        } else if a.progress == SolveProgressArg::None {
+            None
+        } else {
+            Some(Observer(crate::cli::solve_progress::print))
+        },
         point_domain: PointDomainParams {
             far_field: !a.truncated_domain,
             ..PointDomainParams::default()

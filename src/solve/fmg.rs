@@ -317,6 +317,8 @@ pub(crate) fn cycle_once<S: Fas>(s: &mut S, l: usize, k: usize) -> CycleRecord {
             cycle: k,
             record: rec,
             h0: s.h0(),
+            points: s.points(l),
+            finest_points: s.points(s.top()),
         });
     }
     rec

@@ -108,8 +108,8 @@ pub struct SolveInfo {
 }
 
 /// One multigrid cycle as an observer sees it: the FMG level (0 the coarsest), the cycle's index
-/// on that level, its record and the film constant after it. Its `Display` is one line of
-/// `ehlmap solve --trace`.
+/// on that level, its record, the film constant after it and the grid sizes. Its `Display` is
+/// one line of `ehlmap solve --trace`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CycleEvent {
     /// The FMG level (0 the coarsest).
@@ -120,6 +120,10 @@ pub struct CycleEvent {
     pub record: CycleRecord,
     /// The film constant H0 after the cycle (Hertzian units).
     pub h0: f64,
+    /// Points per direction of the cycle's level.
+    pub points: usize,
+    /// Points per direction of the solve's finest level (its grid).
+    pub finest_points: usize,
 }
 
 impl fmt::Display for CycleEvent {
