@@ -9,17 +9,12 @@ use crate::cli::error::{io, CliError};
 use crate::cli::limits::{check_memory, estimate, Solver};
 use crate::cli::output::{check_file, note, out, outln, prepare_dir};
 use crate::cli::solve_args::{
-    case_arg, check_flags, params_arg, MethodArg, SolveArgs, SolveProgressArg, LINE_GRID,
-    POINT_GRID,
+    case_arg, check_flags, params_arg, MethodArg, SolveArgs, LINE_GRID, POINT_GRID,
 };
 use ehlmap::model::case::{Case, Contact};
 use ehlmap::model::error::num;
 use ehlmap::solve::solution::{Outputs, Solution};
 use ehlmap::strategy::solve_case::{default_max_grid, solve, SolveParams};
-use std::time::Duration;
-
-/// How long a solve runs before `--progress auto` prints its first line.
-const FIRST_PROGRESS: Duration = Duration::from_secs(5);
 
 /// The solve's estimated memory against the memory there is (exit 2 naming the grid).
 fn check_solve_memory(a: &SolveArgs, case: &Case, p: &SolveParams) -> Result<(), CliError> {
@@ -152,10 +147,7 @@ pub fn run_solve(a: &SolveArgs) -> Result<(), CliError> {
     let params = params_arg(a, &case)?;
     check_solve_memory(a, &case, &params)?;
     check_outputs(a)?;
-    crate::cli::solve_progress::start(match a.progress {
-        SolveProgressArg::Log => Duration::ZERO,
-        _ => FIRST_PROGRESS,
-    });
+    crate::cli::solve_progress::start(a.progress);
     let s = solve_arg(a, &case, &params)?;
     if a.trace {
         trace_phases(&s.info.phases);

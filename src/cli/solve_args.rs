@@ -5,6 +5,7 @@
 use crate::cli::error::{input, CliError};
 use crate::cli::formula_arg::formula_arg;
 use crate::cli::output::note;
+use crate::cli::solve_progress::{self, SolveProgressArg};
 use clap::ValueEnum;
 use ehlmap::discrete::point::domain::PointDomainParams;
 use ehlmap::model::asperity::AsperityParams;
@@ -17,14 +18,6 @@ use ehlmap::solve::params::{Converge, CycleType};
 use ehlmap::solve::{CycleEvent, Observer};
 use ehlmap::strategy::solve_case::{SolveParams, DEFAULT_ACCURACY};
 use std::path::PathBuf;
-
-/// `ehlmap solve --progress` ([`crate::cli::solve_progress`]).
-#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
-pub enum SolveProgressArg {
-    Auto,
-    Log,
-    None,
-}
 
 #[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
 pub enum ContactArg {
@@ -589,10 +582,8 @@ pub(crate) fn params_arg(a: &SolveArgs, case: &Case) -> Result<SolveParams, CliE
         parallel: point && a.threads.is_some(),
         observer: if a.trace {
             Some(Observer(print_cycle))
-        } else if a.progress == SolveProgressArg::None {
-            None
         } else {
-            Some(Observer(crate::cli::solve_progress::print))
+            solve_progress::observer(a.progress)
         },
         point_domain: PointDomainParams {
             far_field: !a.truncated_domain,

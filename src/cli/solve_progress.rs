@@ -1,5 +1,5 @@
 //! Progress of one `ehlmap solve` on stderr: a line per multigrid cycle at most every
-//! [`EVERY`], the first after the solve has run for `first` ([`start`]), so that quick solves
+//! [`EVERY`], the first after the solve has run for [`FIRST`] ([`start`]), so that quick solves
 //! print nothing and long ones (fine grids, the accuracy ladder, the fallback ladder) show
 //! that they are alive and where they are:
 //! `ehlmap solve: 12 s, grid 1025, level 513 cycle 4: residual 3.1e-3, load error 2.0e-5, H_c 4.85512`.
@@ -7,18 +7,42 @@
 //! the state is one process-wide clock); observers never change a solve.
 
 use crate::cli::output::note;
-use ehlmap::solve::CycleEvent;
+use clap::ValueEnum;
+use ehlmap::solve::{CycleEvent, Observer};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
+
+/// `ehlmap solve --progress`.
+#[derive(Clone, Copy, Debug, ValueEnum, PartialEq, Eq)]
+pub enum SolveProgressArg {
+    /// The first line once the solve has run for [`FIRST`].
+    Auto,
+    /// The first line at the first cycle.
+    Log,
+    None,
+}
 
 /// The least time between two progress lines.
 pub const EVERY: Duration = Duration::from_secs(10);
 
+/// How long a solve runs before `--progress auto` prints its first line.
+pub const FIRST: Duration = Duration::from_secs(5);
+
+/// The observer that reports `progress` (None for `none`).
+pub fn observer(progress: SolveProgressArg) -> Option<Observer> {
+    (progress != SolveProgressArg::None).then_some(Observer(print))
+}
+
 /// When the solve started and when the next line may be printed.
 static CLOCK: Mutex<Option<(Instant, Duration)>> = Mutex::new(None);
 
-/// Start the clock: the first line may come once the solve has run for `first`.
-pub fn start(first: Duration) {
+/// Start the clock for `progress`: the first line may come once the solve has run for
+/// [`FIRST`] (`auto`) or at once (`log`).
+pub fn start(progress: SolveProgressArg) {
+    let first = match progress {
+        SolveProgressArg::Log => Duration::ZERO,
+        _ => FIRST,
+    };
     *CLOCK.lock().unwrap_or_else(|e| e.into_inner()) = Some((Instant::now(), first));
 }
 

@@ -99,13 +99,14 @@ pub fn merit(lv: &LineLevel, phys: &LinePhysics, a: usize, b: usize) -> f64 {
 fn newton_step(lv: &mut LineLevel, phys: &LinePhysics, a: usize, b: usize) -> bool {
     let n = lv.len();
     let m = b - a + 1;
-    let m0 = merit(lv, phys, a, b);
+    let rhs = DVector::from_fn(m, |r, _| lv.f[a + r] - lv.reynolds(phys, a + r));
+    // The window's merit (as [`merit`] sums it) from the residual just computed.
+    let m0: f64 = rhs.iter().map(|v| v.powi(2)).sum();
     if m0 == 0.0 {
         return false;
     }
     let rows: Vec<JacRow> = (a..=b).map(|i| JacRow::new(lv, phys, i)).collect();
     let jac = DMatrix::from_fn(m, m, |r, c| rows[r].entry(&lv.kernel, a + c));
-    let rhs = DVector::from_fn(m, |r, _| lv.f[a + r] - lv.reynolds(phys, a + r));
     let Some(step) = jac.lu().solve(&rhs) else {
         return false;
     };
