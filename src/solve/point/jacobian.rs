@@ -45,6 +45,7 @@ impl PointJacRow {
     /// i - 2..=i + 1) and without the local terms of the rows j - 1 and j + 1 (left 0): for
     /// [`PointJacRow::row_entries`] and [`PointJacRow::diagonal`], which read row j only and
     /// then give the values of a row from `new` to the bit.
+    #[inline]
     pub fn in_row(
         lv: &RowsRef,
         phys: &PointPhysics,
