@@ -520,3 +520,36 @@ fn spike_windows_lower_their_residual_and_never_raise_it() {
     }
     assert!(lv.p.iter().all(|&v| v >= 0.0));
 }
+
+/// An isoviscous line contact whose first attempt diverges on fine grids (M = 20, L = 0 on 4097
+/// points and more: the first finest cycle moves H_c by 7 % and the next one explodes) is
+/// answered by the distributive rung, second in the ladder of a case without a spike (it was
+/// fifth, after three rungs that fail here and cost 150-200 work units more), and its answers
+/// converge at second order: the H_c differences of successive grids fall four times.
+#[test]
+fn unspiked_first_attempt_failures_go_to_the_distributive_rung_next() {
+    let mut h_c = vec![];
+    for grid in [2049, 4097, 8193, 16385] {
+        let s = solve(20.0, 0.0, Models::default(), grid);
+        let o = &s.outputs;
+        assert_eq!(o.status, Status::Converged, "{grid}: {}", o.reason);
+        if grid == 2049 {
+            assert_eq!(s.attempt, 1, "{}", o.reason);
+        } else {
+            assert_eq!(s.attempt, 2, "{grid}: {}", o.reason);
+            assert!(
+                o.reason.contains("distributive line relaxation everywhere"),
+                "{}",
+                o.reason
+            );
+            // Both attempts together (measured 59-94 work units; 243-270 before).
+            assert!(o.work_units < 120.0, "{grid}: {} WU", o.work_units);
+        }
+        h_c.push(o.h_c);
+    }
+    let d: Vec<f64> = h_c.windows(2).map(|w| w[1] - w[0]).collect();
+    for w in d.windows(2) {
+        let ratio = w[0] / w[1];
+        assert!((3.5..4.5).contains(&ratio), "H_c {h_c:?}: ratio {ratio}");
+    }
+}

@@ -30,6 +30,12 @@
 //! settles it varies from case to case, and none changes a converged answer beyond its
 //! algebraic error (docs/robustness.md, "Newton windows at the line spike").
 //!
+//! Where the case has no spike (alpha_bar < [`SPIKE_ALPHA_BAR`]) rung 5 comes second, before
+//! rungs 2 to 4: the isoviscous and mildly piezoviscous cases whose first attempt diverges on
+//! fine grids (M of about 5 to 200 at L <= 4 on 4097 points) fail rungs 2 to 4 and converge on
+//! it, with the same result to the bit as when it came fifth (docs/method.md, "Fallback
+//! ladder").
+//!
 //! Rungs 2 to 6 of the list above use the tight stopping rule.
 //!
 //! The best failed attempt (lowest final residual) is returned with its status if none converges.
@@ -69,6 +75,18 @@ const LADDER: [Rung; 12] = [
     Rung::Smooth44,
     Rung::Damped,
     Rung::Distributive,
+    Rung::DistributiveWFiner,
+    Rung::WideBand,
+];
+
+/// The ladder where the case has no spike (alpha_bar < [`SPIKE_ALPHA_BAR`]): the spike rungs
+/// dropped and the distributive rung moved up to second (module doc).
+const UNSPIKED_LADDER: [Rung; 7] = [
+    Rung::Default,
+    Rung::Distributive,
+    Rung::Tight,
+    Rung::Smooth44,
+    Rung::Damped,
     Rung::DistributiveWFiner,
     Rung::WideBand,
 ];
@@ -192,8 +210,10 @@ fn solve_line_with(
     let mut seed = seed;
     let spiked =
         case.venner().alpha_bar >= SPIKE_ALPHA_BAR && case.models.elasticity == Elasticity::Elastic;
-    let rungs: Vec<Rung> = LADDER
-        .into_iter()
+    let ladder: &[Rung] = if spiked { &LADDER } else { &UNSPIKED_LADDER };
+    let rungs: Vec<Rung> = ladder
+        .iter()
+        .copied()
         .filter(|r| match r {
             Rung::SpikeNewton | Rung::SpikeNewtonSmooth44 => {
                 spiked && params.mg.grid >= SPIKE_NEWTON.min_points
