@@ -1,7 +1,7 @@
 //! Damped Newton-Raphson for a discrete contact problem on one level (line or point, through
 //! [`NewtonLevel`], implemented next to each contact's Jacobian rows in
-//! [`crate::solve::line::jacobian`] and [`crate::solve::point::jacobian`]) (dense Jacobian, LU from
-//! nalgebra), with the cavitation condition as a semi-smooth active set.
+//! [`crate::solve::line::jacobian`] and [`crate::solve::point::jacobian`]) (dense Jacobian, LU with
+//! partial pivoting from faer), with the cavitation condition as a semi-smooth active set.
 //!
 //! Unknowns: P_1..P_{n-2} and H0. Equations: L_i(P, H0) = f_i on the pressurised set, P_i = 0 on the
 //! cavitated set, h sum P = g. The Jacobian is exact: with q = rho H and eps = rho H^3/(eta lambda),
@@ -232,20 +232,33 @@ pub fn load_slope<T: NewtonLevel>(
 /// load row is in other units; where those scales spread over many orders (rigid-like point
 /// contacts at M <= 0.01, whose films are 1e9-1e10 Hertzian units), unscaled pivoting returned
 /// steps whose H0 part was off by orders of magnitude.
-fn solve_equilibrated(lin: &Linearisation) -> Option<DVector<f64>> {
-    let mut jac = lin.jac.clone();
-    let mut rhs = lin.rhs.clone();
-    for (r, v) in rhs.iter_mut().enumerate() {
-        let big = jac.row(r).amax();
-        // Zero, subnormal or non-finite rows are left as they are (a subnormal largest entry
-        // would ask for a factor beyond the largest finite power of two).
-        if big.is_normal() {
-            let s = 2f64.powi(-(big.log2().round() as i32));
-            jac.row_mut(r).scale_mut(s);
-            *v *= s;
+fn solve_equilibrated(lin: &Linearisation) -> DVector<f64> {
+    use faer::linalg::solvers::Solve;
+    let (jac, n) = (&lin.jac, lin.rhs.len());
+    // Each row's largest magnitude, column by column (the matrix is column-major).
+    let mut big = vec![0.0f64; n];
+    for c in 0..n {
+        for (b, v) in big.iter_mut().zip(jac.column(c).iter()) {
+            *b = b.max(v.abs());
         }
     }
-    jac.lu().solve(&rhs)
+    // Zero, subnormal or non-finite rows are left as they are (a subnormal largest entry would
+    // ask for a factor beyond the largest finite power of two).
+    let scale: Vec<f64> = big
+        .iter()
+        .map(|&b| {
+            if b.is_normal() {
+                2f64.powi(-(b.log2().round() as i32))
+            } else {
+                1.0
+            }
+        })
+        .collect();
+    let a = faer::Mat::<f64>::from_fn(n, n, |r, c| jac[(r, c)] * scale[r]);
+    let b = faer::Col::<f64>::from_fn(n, |r| lin.rhs[r] * scale[r]);
+    // A zero pivot shows as a non-finite step, which the caller reports as singular.
+    let x = a.partial_piv_lu().solve(b);
+    DVector::from_fn(n, |r, _| x[r])
 }
 
 /// Build the semi-smooth Newton system at the current state (film must be up to date).
@@ -341,10 +354,7 @@ pub fn newton_solve<T: NewtonLevel>(
             break;
         }
         out.iterations = it + 1;
-        let Some(step) = solve_equilibrated(&lin) else {
-            out.singular = true;
-            break;
-        };
+        let step = solve_equilibrated(&lin);
         if step.iter().any(|v| !v.is_finite()) {
             out.singular = true;
             break;
@@ -414,7 +424,7 @@ mod tests {
             merit: 0.0,
             load: 0.0,
         };
-        let x = solve_equilibrated(&lin).expect("regular");
+        let x = solve_equilibrated(&lin);
         assert!(
             (x[0] - 1.0).abs() < 1e-12 && (x[1] - 1.0).abs() < 1e-12,
             "{x}"
@@ -426,7 +436,7 @@ mod tests {
             merit: 0.0,
             load: 0.0,
         };
-        let x = solve_equilibrated(&lin).expect("regular");
+        let x = solve_equilibrated(&lin);
         assert!(x.iter().all(|v| (v - 1.0).abs() < 1e-12), "{x}");
     }
 
