@@ -6,14 +6,8 @@
 //! h_min = 1.66 g_v^(2/3) U R/W' = 0.364 um (the book's 0.24 um follows from its g_h = 339.2,
 //! which matches neither g_v: a second slip).
 
-use std::process::Command;
-
-fn ehlmap(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_ehlmap"))
-        .args(args)
-        .output()
-        .unwrap()
-}
+mod common;
+use common::ehlmap;
 
 #[test]
 fn textbook_example_7_1() {

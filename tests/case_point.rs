@@ -8,15 +8,7 @@
 //! from the radii by hand (1/Rx = 1/3.969 + 1/15.53 mm, 1/Ry = 1/3.969 - 1/4.128 mm).
 
 mod common;
-
-use std::process::Command;
-
-fn ehlmap(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_ehlmap"))
-        .args(args)
-        .output()
-        .unwrap()
-}
+use common::ehlmap;
 
 const BALL_ON_FLAT: &str = r#"contact = "point"
 load = 20.0

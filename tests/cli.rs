@@ -1,14 +1,8 @@
 //! The `ehlmap solve` command line: JSON field names, exit codes on bad input, and the Parquet
 //! profile read back with the arrow-rs reader.
 
-use std::process::Command;
-
-fn ehlmap(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_ehlmap"))
-        .args(args)
-        .output()
-        .expect("run ehlmap")
-}
+mod common;
+use common::ehlmap;
 
 #[test]
 fn json_has_exactly_the_documented_fields() {

@@ -6,6 +6,7 @@
 //! `ehlmap sweep`. (CI re-saves a part with pyarrow itself: .ci/foreign_parquet.py.)
 
 mod common;
+use common::ehlmap;
 
 use arrow_array::{Array, ArrayRef, Float64Array, Int64Array, LargeStringArray, RecordBatch};
 use arrow_array::{StringArray, UInt32Array};
@@ -17,7 +18,6 @@ use parquet::basic::{Compression, GzipLevel};
 use parquet::file::properties::WriterProperties;
 use std::fs::File;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 use std::sync::Arc;
 
 /// The committed line dataset (schema 1) and point dataset (schema 2).
@@ -59,13 +59,6 @@ fn only_part(name: &str) -> PathBuf {
     let parts = part_files(&committed(name)).unwrap();
     assert_eq!(parts.len(), 1);
     parts[0].clone()
-}
-
-fn ehlmap(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_ehlmap"))
-        .args(args)
-        .output()
-        .unwrap()
 }
 
 #[test]

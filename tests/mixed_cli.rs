@@ -1,14 +1,8 @@
 //! `ehlmap solve --sigma`: the mixed-lubrication fields of the JSON and the summary, bad rough
 //! input with exit code 2 naming it, and a sweep with a roughness axis through `ehlmap mixed`.
 
-use std::process::Command;
-
-fn ehlmap(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_ehlmap"))
-        .args(args)
-        .output()
-        .expect("run ehlmap")
-}
+mod common;
+use common::ehlmap;
 
 #[test]
 fn a_rough_solve_reports_lambda_the_asperity_share_and_the_smooth_film() {

@@ -2,8 +2,10 @@
 //! finest level's), changes nothing in the answer, and `ehlmap solve --trace` prints it.
 
 use ehlmap::{solve, Case, CycleEvent, LineCase, Observer, PointCase, SolveParams, Status};
-use std::process::Command;
 use std::sync::atomic::{AtomicUsize, Ordering};
+
+mod common;
+use common::ehlmap;
 
 static LINE_CYCLES: AtomicUsize = AtomicUsize::new(0);
 static POINT_CYCLES: AtomicUsize = AtomicUsize::new(0);
@@ -71,12 +73,9 @@ fn observer_sees_every_cycle_and_changes_nothing() {
 
 #[test]
 fn solve_trace_prints_the_cycles() {
-    let out = Command::new(env!("CARGO_BIN_EXE_ehlmap"))
-        .args([
-            "solve", "--M", "20", "--L", "10", "--grid", "513", "--trace", "--json",
-        ])
-        .output()
-        .unwrap();
+    let out = ehlmap(&[
+        "solve", "--M", "20", "--L", "10", "--grid", "513", "--trace", "--json",
+    ]);
     assert!(out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
     let lines: Vec<&str> = err.lines().filter(|l| l.starts_with("level ")).collect();
@@ -85,10 +84,7 @@ fn solve_trace_prints_the_cycles() {
         .iter()
         .all(|l| l.contains(" res ") && l.contains(" hc ")));
     // Without --trace the solver prints nothing.
-    let quiet = Command::new(env!("CARGO_BIN_EXE_ehlmap"))
-        .args(["solve", "--M", "20", "--L", "10", "--grid", "513", "--json"])
-        .output()
-        .unwrap();
+    let quiet = ehlmap(&["solve", "--M", "20", "--L", "10", "--grid", "513", "--json"]);
     assert!(
         quiet.stderr.is_empty(),
         "{}",
@@ -99,21 +95,18 @@ fn solve_trace_prints_the_cycles() {
 #[test]
 fn solve_progress_says_where_a_long_solve_is_and_changes_nothing() {
     let run = |progress: &str| {
-        let out = Command::new(env!("CARGO_BIN_EXE_ehlmap"))
-            .args([
-                "solve",
-                "--M",
-                "20",
-                "--L",
-                "10",
-                "--grid",
-                "513",
-                "--json",
-                "--progress",
-                progress,
-            ])
-            .output()
-            .unwrap();
+        let out = ehlmap(&[
+            "solve",
+            "--M",
+            "20",
+            "--L",
+            "10",
+            "--grid",
+            "513",
+            "--json",
+            "--progress",
+            progress,
+        ]);
         assert!(out.status.success());
         let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
         (

@@ -3,14 +3,9 @@
 //! `pictures::contour`).
 
 use std::path::Path;
-use std::process::Command;
 
-fn ehlmap(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_ehlmap"))
-        .args(args)
-        .output()
-        .unwrap()
-}
+mod common;
+use common::ehlmap;
 
 fn check_png_svg(dir: &Path, stem: &str) {
     let png = std::fs::read(dir.join(format!("{stem}.png"))).unwrap();

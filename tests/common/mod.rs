@@ -6,6 +6,15 @@ use ehlmap::solve::Status;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+/// Run the `ehlmap` binary with `args` and collect its output.
+#[allow(dead_code)]
+pub fn ehlmap(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_ehlmap"))
+        .args(args)
+        .output()
+        .expect("run ehlmap")
+}
+
 /// The Slurm variables a sweep reads (cleared by tests that run sweeps, so a test run inside a
 /// Slurm job does not become one shard of it).
 #[allow(dead_code)]
