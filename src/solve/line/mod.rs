@@ -64,7 +64,7 @@ pub const SPIKE_ALPHA_BAR: f64 = 5.0;
 /// Parameters of a line solve.
 pub type LineSolveParams = ContactParams<DomainParams>;
 
-/// The fallback ladder (module doc); the spike rungs are dropped where the case has no spike.
+/// The fallback ladder of a case with a spike (module doc).
 const LADDER: [Rung; 12] = [
     Rung::Default,
     Rung::SpikeNewton,
@@ -212,15 +212,13 @@ fn solve_line_with(
     let spiked =
         case.venner().alpha_bar >= SPIKE_ALPHA_BAR && case.models.elasticity == Elasticity::Elastic;
     let ladder: &[Rung] = if spiked { &LADDER } else { &UNSPIKED_LADDER };
+    // The Newton windows need a grid of their size.
     let rungs: Vec<Rung> = ladder
         .iter()
         .copied()
-        .filter(|r| match r {
-            Rung::SpikeNewton | Rung::SpikeNewtonSmooth44 => {
-                spiked && params.mg.grid >= SPIKE_NEWTON.min_points
-            }
-            Rung::SpikeFrozen | Rung::SpikeNewtonAll | Rung::SpikeFrozenSmooth44 => spiked,
-            _ => true,
+        .filter(|r| {
+            !matches!(r, Rung::SpikeNewton | Rung::SpikeNewtonSmooth44)
+                || params.mg.grid >= SPIKE_NEWTON.min_points
         })
         .collect();
     run_rungs(&rungs, &params.mg, params.fallback, |p| {
