@@ -129,7 +129,6 @@ fn plot_arg(dir: &std::path::Path, case: &Case, s: &Solution) -> Result<(), CliE
     crate::cli::output::report_plot(dir, files)
 }
 
-/// Run `ehlmap solve`.
 /// The time split of the answering solve and its cost per work unit (`--trace`, stderr).
 fn trace_phases(t: &ehlmap::solve::phases::PhaseTimes) {
     let per = t.per_work_unit();
@@ -141,6 +140,7 @@ fn trace_phases(t: &ehlmap::solve::phases::PhaseTimes) {
     );
 }
 
+/// Run `ehlmap solve`.
 pub fn run_solve(a: &SolveArgs) -> Result<(), CliError> {
     check_flags(a)?;
     let case = case_arg(a)?;

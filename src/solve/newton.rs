@@ -13,7 +13,8 @@
 //!
 //! Used as the exact coarsest-grid solver of the multigrid and as the Newton baseline.
 
-use nalgebra::{DMatrix, DVector};
+use nalgebra::DVector;
+use std::ops::{Index, IndexMut};
 
 /// The [`NewtonParams::stall_window`] of a multigrid's coarsest-level solves.
 pub const MULTIGRID_STALL_WINDOW: usize = 8;
@@ -107,40 +108,112 @@ pub fn pressure_unit(p: &[f64], unknowns: &[usize]) -> f64 {
     max.clamp(f64::MIN_POSITIVE, 1.0)
 }
 
+/// The Newton system J x = rhs at the current state.
 struct Linearisation {
-    jac: DMatrix<f64>,
+    jac: RowMatrix,
     rhs: DVector<f64>,
+}
+
+/// The semi-smooth residual at the current state (film up to date), without the Jacobian: each
+/// unknown's residual f - L and Jacobian diagonal, which decide its row of the system
+/// ([`system`]), and the norms that the stopping rule and the line search compare.
+struct Evaluation {
+    res: Vec<f64>,
+    diag: Vec<f64>,
     merit: f64,
     /// The load equation's part of `merit` (0 at fixed H0).
     load: f64,
 }
 
+/// A dense square matrix stored row after row: the Newton Jacobian, whose rows are assembled
+/// independently of each other.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RowMatrix {
+    n: usize,
+    data: Vec<f64>,
+}
+
+impl RowMatrix {
+    /// The n x n zero matrix.
+    pub fn zeros(n: usize) -> Self {
+        Self {
+            n,
+            data: vec![0.0; n * n],
+        }
+    }
+
+    /// The n x n matrix with these entries, row after row.
+    pub fn from_rows(n: usize, entries: &[f64]) -> Self {
+        assert_eq!(entries.len(), n * n, "an n x n matrix needs n^2 entries");
+        Self {
+            n,
+            data: entries.to_vec(),
+        }
+    }
+
+    /// Rows (and columns).
+    pub fn n(&self) -> usize {
+        self.n
+    }
+
+    /// Row r.
+    pub fn row(&self, r: usize) -> &[f64] {
+        &self.data[r * self.n..][..self.n]
+    }
+
+    /// Row r, to change.
+    pub fn row_mut(&mut self, r: usize) -> &mut [f64] {
+        &mut self.data[r * self.n..][..self.n]
+    }
+}
+
+impl Index<(usize, usize)> for RowMatrix {
+    type Output = f64;
+    fn index(&self, (r, c): (usize, usize)) -> &f64 {
+        &self.data[r * self.n + c]
+    }
+}
+
+impl IndexMut<(usize, usize)> for RowMatrix {
+    fn index_mut(&mut self, (r, c): (usize, usize)) -> &mut f64 {
+        &mut self.data[r * self.n + c]
+    }
+}
+
+/// Unknowns from which [`dense_jacobian`] assembles its rows on the rayon pool (where it has
+/// more than one thread). Each row is computed alone, so the matrix is the same to the bit
+/// either way.
+pub const PARALLEL_JACOBIAN_ROWS: usize = 128;
+
 /// The dense Jacobian of (L at the unknowns, the load sum) with respect to (the unknowns, H0), H0
 /// last, for either contact: `row(c)` is the Jacobian row of L at storage index c,
 /// `fill(row, out)` writes its derivatives with respect to P at every unknown (in the order of
 /// `unknowns`), `d_h0(row)` its derivative with respect to H0, and `cell` the load sum's weight of
-/// each pressure (h, or hx hy).
+/// each pressure (h, or hx hy). Rows are assembled on the rayon pool from
+/// [`PARALLEL_JACOBIAN_ROWS`] unknowns on.
 pub fn dense_jacobian<R>(
     unknowns: &[usize],
     cell: f64,
-    row: impl Fn(usize) -> R,
-    fill: impl Fn(&R, &mut [f64]),
-    d_h0: impl Fn(&R) -> f64,
-) -> DMatrix<f64> {
+    row: impl Fn(usize) -> R + Sync,
+    fill: impl Fn(&R, &mut [f64]) + Sync,
+    d_h0: impl Fn(&R) -> f64 + Sync,
+) -> RowMatrix {
+    use rayon::prelude::*;
     let m = unknowns.len();
-    let mut jac = DMatrix::<f64>::zeros(m + 1, m + 1);
-    let mut buf = vec![0.0; m];
-    for (r, &c) in unknowns.iter().enumerate() {
-        let row = row(c);
-        fill(&row, &mut buf);
-        for (q, &v) in buf.iter().enumerate() {
-            jac[(r, q)] = v;
-        }
-        jac[(r, m)] = d_h0(&row);
+    let n = m + 1;
+    let mut jac = RowMatrix::zeros(n);
+    let (body, load) = jac.data.split_at_mut(m * n);
+    let one = |(r, out): (usize, &mut [f64])| {
+        let row = row(unknowns[r]);
+        fill(&row, &mut out[..m]);
+        out[m] = d_h0(&row);
+    };
+    if m >= PARALLEL_JACOBIAN_ROWS && rayon::current_num_threads() > 1 {
+        body.par_chunks_mut(n).enumerate().for_each(one);
+    } else {
+        body.chunks_mut(n).enumerate().for_each(one);
     }
-    for q in 0..m {
-        jac[(m, q)] = cell;
-    }
+    load[..m].fill(cell);
     jac
 }
 
@@ -153,7 +226,10 @@ pub trait NewtonLevel {
     fn unknowns(&self) -> Vec<usize>;
     /// The exact Jacobian of (L at the unknowns, the load sum) with respect to (the unknowns, H0),
     /// H0 last (film must be up to date).
-    fn dense_jacobian(&self, phys: &Self::Phys, unknowns: &[usize]) -> DMatrix<f64>;
+    fn dense_jacobian(&self, phys: &Self::Phys, unknowns: &[usize]) -> RowMatrix;
+    /// The diagonal of [`NewtonLevel::dense_jacobian`] at the unknowns, the same values to the
+    /// bit, without the rest of the matrix (film must be up to date).
+    fn jacobian_diagonal(&self, phys: &Self::Phys, unknowns: &[usize]) -> Vec<f64>;
     /// f - L at storage index c.
     fn residual_at(&self, phys: &Self::Phys, c: usize) -> f64;
     /// Whether the node at storage index c is held fixed (frozen).
@@ -235,18 +311,11 @@ pub fn load_slope<T: NewtonLevel>(
 fn solve_equilibrated(lin: &Linearisation) -> DVector<f64> {
     use faer::linalg::solvers::Solve;
     let (jac, n) = (&lin.jac, lin.rhs.len());
-    // Each row's largest magnitude, column by column (the matrix is column-major).
-    let mut big = vec![0.0f64; n];
-    for c in 0..n {
-        for (b, v) in big.iter_mut().zip(jac.column(c).iter()) {
-            *b = b.max(v.abs());
-        }
-    }
     // Zero, subnormal or non-finite rows are left as they are (a subnormal largest entry would
     // ask for a factor beyond the largest finite power of two).
-    let scale: Vec<f64> = big
-        .iter()
-        .map(|&b| {
+    let scale: Vec<f64> = (0..n)
+        .map(|r| {
+            let b = jac.row(r).iter().fold(0.0f64, |b, v| b.max(v.abs()));
             if b.is_normal() {
                 2f64.powi(-(b.log2().round() as i32))
             } else {
@@ -261,22 +330,64 @@ fn solve_equilibrated(lin: &Linearisation) -> DVector<f64> {
     DVector::from_fn(n, |r, _| x[r])
 }
 
-/// Build the semi-smooth Newton system at the current state (film must be up to date).
-fn linearise<T: NewtonLevel>(
+/// Evaluate the semi-smooth residual at the current state (film must be up to date). Node c is
+/// pressurised when its Newton point value t = P + r/J_cc is positive (J_cc < 0); its part of
+/// the merit is then the scaled residual r/J_cc, else the pressure itself.
+fn evaluate<T: NewtonLevel>(
     lv: &mut T,
     phys: &T::Phys,
     unknowns: &[usize],
     fix_h0: bool,
+) -> Evaluation {
+    let diag = lv.jacobian_diagonal(phys, unknowns);
+    let mut res = Vec::with_capacity(unknowns.len());
+    let mut merit = 0.0;
+    let mut load = 0.0;
+    for (&c, &d) in unknowns.iter().zip(&diag) {
+        let r = lv.residual_at(phys, c);
+        res.push(r);
+        let p = lv.pressure()[c];
+        let t = if d < 0.0 { p + r / d } else { p };
+        if lv.frozen_at(c) {
+            continue;
+        }
+        if t > 0.0 {
+            let s = if d != 0.0 { r / d } else { r };
+            merit += s * s;
+        } else {
+            merit += p * p;
+        }
+    }
+    if !fix_h0 {
+        let g = lv.load_rhs();
+        let lr = g - lv.load_sum();
+        merit += (lr / g) * (lr / g);
+        load = (lr / g).abs();
+    }
+    Evaluation {
+        res,
+        diag,
+        merit: merit.sqrt(),
+        load,
+    }
+}
+
+/// Build the semi-smooth Newton system at the state of `ev` (the film unchanged since): the
+/// pressurised rows of the Jacobian with rhs r, a frozen row P_c fixed, a cavitated row
+/// P_c + dP_c = 0; the load row (or H0 fixed).
+fn system<T: NewtonLevel>(
+    lv: &mut T,
+    phys: &T::Phys,
+    unknowns: &[usize],
+    fix_h0: bool,
+    ev: &Evaluation,
 ) -> Linearisation {
     let m = unknowns.len();
     let hcol = m;
     let mut jac = lv.dense_jacobian(phys, unknowns);
     let mut rhs = DVector::<f64>::zeros(m + 1);
-    let mut merit = 0.0;
-    let mut load = 0.0;
     for (row, &c) in unknowns.iter().enumerate() {
-        let r = lv.residual_at(phys, c);
-        let d = jac[(row, row)];
+        let (r, d) = (ev.res[row], ev.diag[row]);
         let p = lv.pressure()[c];
         let t = if d < 0.0 { p + r / d } else { p };
         if lv.frozen_at(c) {
@@ -285,13 +396,10 @@ fn linearise<T: NewtonLevel>(
             rhs[row] = 0.0;
         } else if t > 0.0 {
             rhs[row] = r;
-            let s = if d != 0.0 { r / d } else { r };
-            merit += s * s;
         } else {
             jac.row_mut(row).fill(0.0);
             jac[(row, row)] = 1.0;
             rhs[row] = -p;
-            merit += p * p;
         }
     }
     if fix_h0 {
@@ -299,18 +407,9 @@ fn linearise<T: NewtonLevel>(
         jac[(hcol, hcol)] = 1.0;
         rhs[hcol] = 0.0;
     } else {
-        let g = lv.load_rhs();
-        let lr = g - lv.load_sum();
-        rhs[hcol] = lr;
-        merit += (lr / g) * (lr / g);
-        load = (lr / g).abs();
+        rhs[hcol] = lv.load_rhs() - lv.load_sum();
     }
-    Linearisation {
-        jac,
-        rhs,
-        merit: merit.sqrt(),
-        load,
-    }
+    Linearisation { jac, rhs }
 }
 
 /// Newton-solve the level's discrete problem (with its right-hand sides f, g) for P and H0.
@@ -325,36 +424,38 @@ pub fn newton_solve<T: NewtonLevel>(
     let unit = pressure_unit(lv.pressure(), &unknowns);
     let tol = np.tol * unit;
     lv.refresh(phys, *h0);
-    let mut lin = linearise(lv, phys, &unknowns, np.fix_h0);
+    let mut ev = evaluate(lv, phys, &unknowns, np.fix_h0);
     let mut out = NewtonOutcome {
         iterations: 0,
         converged: false,
-        residual: lin.merit,
+        residual: ev.merit,
         singular: false,
         unit,
     };
-    let goal = tol.max(np.rel_tol * lin.merit);
-    let load_goal = tol.max(np.load_rel_tol * lin.merit);
-    let done = |l: &Linearisation| l.merit < tol || (l.merit < goal && l.load <= load_goal);
+    let goal = tol.max(np.rel_tol * ev.merit);
+    let load_goal = tol.max(np.load_rel_tol * ev.merit);
+    let done = |e: &Evaluation| e.merit < tol || (e.merit < goal && e.load <= load_goal);
     let mut p_old = vec![0.0; m];
     let mut merits = Vec::with_capacity(np.max_iter);
     for it in 0..np.max_iter {
-        if done(&lin) {
+        if done(&ev) {
             out.converged = true;
             break;
         }
-        merits.push(lin.merit);
+        merits.push(ev.merit);
         if crate::solve::deadline::past(np.deadline) {
             break;
         }
         if np.stall_window > 0
             && it >= np.stall_window
-            && lin.merit > 0.5 * merits[it - np.stall_window]
+            && ev.merit > 0.5 * merits[it - np.stall_window]
         {
             break;
         }
         out.iterations = it + 1;
-        let step = solve_equilibrated(&lin);
+        // The Jacobian only where a step is taken: the evaluations of the stopping rule and
+        // the line search need its diagonal only.
+        let step = solve_equilibrated(&system(lv, phys, &unknowns, np.fix_h0, &ev));
         if step.iter().any(|v| !v.is_finite()) {
             out.singular = true;
             break;
@@ -372,9 +473,9 @@ pub fn newton_solve<T: NewtonLevel>(
             }
             *h0 = h0_old + alpha * step[m];
             lv.refresh(phys, *h0);
-            let trial = linearise(lv, phys, &unknowns, np.fix_h0);
-            if trial.merit.is_finite() && trial.merit < lin.merit * (1.0 - 1e-4 * alpha) {
-                lin = trial;
+            let trial = evaluate(lv, phys, &unknowns, np.fix_h0);
+            if trial.merit.is_finite() && trial.merit < ev.merit * (1.0 - 1e-4 * alpha) {
+                ev = trial;
                 accepted = true;
                 break;
             }
@@ -382,14 +483,14 @@ pub fn newton_solve<T: NewtonLevel>(
         }
         if !accepted {
             // Keep the smallest step anyway: the active set may have to change to make progress.
-            lin = linearise(lv, phys, &unknowns, np.fix_h0);
+            ev = evaluate(lv, phys, &unknowns, np.fix_h0);
         }
-        out.residual = lin.merit;
+        out.residual = ev.merit;
     }
-    if done(&lin) {
+    if done(&ev) {
         out.converged = true;
     }
-    out.residual = lin.merit;
+    out.residual = ev.merit;
     out
 }
 
@@ -414,15 +515,16 @@ mod tests {
         // A large row that partial pivoting picks for its first column, whose second entry then
         // swamps the other row: x1 comes out 0 without scaling. The solution is (1, 1) to
         // within 1e-20.
-        let jac = DMatrix::<f64>::from_row_slice(2, 2, &[2.0, 2e20, 1.0, 1.0]);
+        let rows = [2.0, 2e20, 1.0, 1.0];
         let rhs = DVector::<f64>::from_row_slice(&[2e20 + 2.0, 2.0]);
-        let plain = jac.clone().lu().solve(&rhs).expect("regular");
+        let plain = nalgebra::DMatrix::<f64>::from_row_slice(2, 2, &rows)
+            .lu()
+            .solve(&rhs)
+            .expect("regular");
         assert!((plain[0] - 1.0).abs() > 0.5, "{plain}");
         let lin = Linearisation {
-            jac,
+            jac: RowMatrix::from_rows(2, &rows),
             rhs,
-            merit: 0.0,
-            load: 0.0,
         };
         let x = solve_equilibrated(&lin);
         assert!(
@@ -431,10 +533,8 @@ mod tests {
         );
         // Rows near the ends of the exponent range scale to finite factors.
         let lin = Linearisation {
-            jac: DMatrix::<f64>::from_row_slice(2, 2, &[1e-300, 2e-301, 3e300, 1e300]),
+            jac: RowMatrix::from_rows(2, &[1e-300, 2e-301, 3e300, 1e300]),
             rhs: DVector::<f64>::from_row_slice(&[1.2e-300, 4e300]),
-            merit: 0.0,
-            load: 0.0,
         };
         let x = solve_equilibrated(&lin);
         assert!(x.iter().all(|v| (v - 1.0).abs() < 1e-12), "{x}");

@@ -11,15 +11,14 @@
 //! dL/dH0 = sum of all film weights, since dH/dH0 = 1. Any entry costs O(1). The x-direction terms
 //! are those of the line contact, computed by the same functions ([`crate::discrete::stencil`]).
 
-use crate::discrete::point::far_field::{FarField, Slave};
+use crate::discrete::point::far_field::Slave;
 use crate::discrete::point::operator::{PointLevel, PointPhysics};
 use crate::discrete::point::strip::RowsRef;
 use crate::discrete::stencil::{
     deps_dh, deps_dp, drho, face, jacobian_x_with, upwind, Fields, NodeDerivatives,
 };
-use crate::solve::newton::{dense_jacobian, newton_level_common, NewtonLevel};
+use crate::solve::newton::{dense_jacobian, newton_level_common, NewtonLevel, RowMatrix};
 use crate::solve::relax::mirror_kernel;
-use nalgebra::DMatrix;
 
 /// Row (i, j) of the Jacobian of L with respect to (P, H0).
 pub struct PointJacRow {
@@ -360,18 +359,59 @@ impl NewtonLevel for PointLevel {
         }
         u
     }
-    fn dense_jacobian(&self, phys: &PointPhysics, unknowns: &[usize]) -> DMatrix<f64> {
+    fn dense_jacobian(&self, phys: &PointPhysics, unknowns: &[usize]) -> RowMatrix {
         let (nx, ny) = (self.nx, self.ny);
         // dense_row covers every interior node in order: the unknowns of this level.
         debug_assert_eq!(unknowns.len(), (nx - 2) * (ny - 2));
         let rows = self.rows();
+        let slaves = self.far_slaves();
         let row = |c| PointJacRow::new(&rows, phys, c % nx, c / nx);
-        let fill = |r: &PointJacRow, out: &mut [f64]| r.dense_row(&self.kernel, nx, ny, out);
+        let fill = |r: &PointJacRow, out: &mut [f64]| {
+            r.dense_row(&self.kernel, nx, ny, out);
+            self.fold_far_row(r, &slaves, |q, v| out[q] += v);
+        };
         let mut jac = dense_jacobian(unknowns, self.hx * self.hy, row, fill, PointJacRow::d_h0);
-        if let Some(far) = &self.far {
-            self.fold_far_field(far, phys, unknowns, &mut jac);
+        // The load row: the boundary nodes' load weights, and their films' dependence on H0.
+        let (m, cell) = (unknowns.len(), self.hx * self.hy);
+        let mut d_h0 = 0.0;
+        for s in &slaves {
+            for &(q, a) in &s.links {
+                jac[(m, self.unknown_column(q))] += (cell + s.load_extra) * a;
+            }
+            d_h0 += s.d_load_extra_dh * self.p[s.node];
         }
+        jac[(m, m)] += d_h0;
         jac
+    }
+    fn jacobian_diagonal(&self, phys: &PointPhysics, unknowns: &[usize]) -> Vec<f64> {
+        let nx = self.nx;
+        let rows = self.rows();
+        let slaves = self.far_slaves();
+        unknowns
+            .iter()
+            .enumerate()
+            .map(|(col, &c)| {
+                let row = PointJacRow::new(&rows, phys, c % nx, c / nx);
+                // entry() is dense_row's value to the bit; the far field's terms for this
+                // column follow in the order of fold_far_row.
+                let mut d = row.entry(&self.kernel, nx, c % nx, c / nx);
+                // Only the boundary nodes that depend on this node add to it.
+                for s in &slaves {
+                    if !s.links.iter().any(|&(q, _)| self.unknown_column(q) == col) {
+                        continue;
+                    }
+                    let v = row.entry(&self.kernel, nx, s.node % nx, s.node / nx);
+                    if v != 0.0 {
+                        for &(q, a) in &s.links {
+                            if self.unknown_column(q) == col {
+                                d += v * a;
+                            }
+                        }
+                    }
+                }
+                d
+            })
+            .collect()
     }
     fn residual_at(&self, phys: &PointPhysics, c: usize) -> f64 {
         self.f[c] - self.reynolds(phys, c % self.nx, c / self.nx)
@@ -380,40 +420,33 @@ impl NewtonLevel for PointLevel {
 }
 
 impl PointLevel {
-    /// Add the far field's boundary values (functions of interior pressures) to the Jacobian
-    /// by the chain rule, and its load weights to the load row.
-    fn fold_far_field(
-        &self,
-        far: &FarField,
-        phys: &PointPhysics,
-        unknowns: &[usize],
-        jac: &mut DMatrix<f64>,
-    ) {
+    /// The far field's boundary nodes with their dependence on interior pressures at the
+    /// current film (none without a far field).
+    fn far_slaves(&self) -> Vec<Slave> {
+        match &self.far {
+            Some(far) => far.slaves(&self.gap, self.h0).collect(),
+            None => Vec::new(),
+        }
+    }
+
+    /// The Jacobian column of the interior node at storage index c.
+    fn unknown_column(&self, c: usize) -> usize {
+        (c / self.nx - 1) * (self.nx - 2) + (c % self.nx - 1)
+    }
+
+    /// The far field's part of Jacobian row `row`: the boundary values are functions of
+    /// interior pressures, so their columns fold into those of the interior nodes by the chain
+    /// rule; `add(column, value)` for each term, in slave order.
+    fn fold_far_row(&self, row: &PointJacRow, slaves: &[Slave], mut add: impl FnMut(usize, f64)) {
         let nx = self.nx;
-        let m = unknowns.len();
-        let col = |c: usize| (c / nx - 1) * (nx - 2) + (c % nx - 1);
-        let slaves: Vec<Slave> = far.slaves(&self.gap, self.h0).collect();
-        let rows = self.rows();
-        for (r, &c) in unknowns.iter().enumerate() {
-            let row = PointJacRow::new(&rows, phys, c % nx, c / nx);
-            for s in &slaves {
-                let v = row.entry(&self.kernel, nx, s.node % nx, s.node / nx);
-                if v != 0.0 {
-                    for &(q, a) in &s.links {
-                        jac[(r, col(q))] += v * a;
-                    }
+        for s in slaves {
+            let v = row.entry(&self.kernel, nx, s.node % nx, s.node / nx);
+            if v != 0.0 {
+                for &(q, a) in &s.links {
+                    add(self.unknown_column(q), v * a);
                 }
             }
         }
-        let cell = self.hx * self.hy;
-        let mut d_h0 = 0.0;
-        for s in &slaves {
-            for &(q, a) in &s.links {
-                jac[(m, col(q))] += (cell + s.load_extra) * a;
-            }
-            d_h0 += s.d_load_extra_dh * self.p[s.node];
-        }
-        jac[(m, m)] += d_h0;
     }
 }
 
@@ -504,5 +537,69 @@ mod tests {
                 "H0 row {r}"
             );
         }
+    }
+
+    /// A 16 x 12-cell level with pressures (zero in the outlet), its film at H0 = 0.3, with
+    /// the far field or without.
+    fn loaded_level(phys: &PointPhysics, far: bool) -> PointLevel {
+        let mut lv = PointLevel::new(phys, -3.0, 1.5, 2.5, 16, 12);
+        if far {
+            lv = lv.with_far_field(phys.d, (4.5 / 16.0, 5.0 / 12.0), phys.coef * phys.load);
+        }
+        for j in 1..lv.ny - 1 {
+            for i in 1..lv.nx - 1 {
+                let c = lv.at(i, j);
+                let (x, y) = (lv.x[i], lv.y[j] / phys.k);
+                lv.p[c] = (1.0 - x * x - y * y).max(0.0).sqrt();
+            }
+        }
+        lv.update_film(phys, 0.3);
+        lv
+    }
+
+    #[test]
+    fn the_diagonal_alone_is_the_dense_jacobians_to_the_bit() {
+        let phys = PointPhysics::piezoviscous_compressible();
+        let mut far_terms = 0;
+        for far in [false, true] {
+            let lv = loaded_level(&phys, far);
+            let u = lv.unknowns();
+            let jac = lv.dense_jacobian(&phys, &u);
+            let diag = lv.jacobian_diagonal(&phys, &u);
+            assert_eq!(diag.len(), u.len());
+            let rows = lv.rows();
+            for (r, (d, &c)) in diag.iter().zip(&u).enumerate() {
+                assert_eq!(d.to_bits(), jac[(r, r)].to_bits(), "far {far}, row {r}");
+                let own = PointJacRow::new(&rows, &phys, c % lv.nx, c / lv.nx).entry(
+                    &lv.kernel,
+                    lv.nx,
+                    c % lv.nx,
+                    c / lv.nx,
+                );
+                far_terms += usize::from(*d != own);
+            }
+            if !far {
+                assert_eq!(far_terms, 0);
+            }
+        }
+        // The far field adds to the diagonal of the rows next to the boundary.
+        assert!(far_terms > 0);
+    }
+
+    #[test]
+    fn rows_assembled_on_two_threads_are_those_of_one() {
+        let phys = PointPhysics::piezoviscous_compressible();
+        let lv = loaded_level(&phys, true);
+        let u = lv.unknowns();
+        // Above the parallel threshold, so that two threads do share the rows.
+        assert!(u.len() >= crate::solve::newton::PARALLEL_JACOBIAN_ROWS);
+        let on = |threads: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .expect("a pool")
+                .install(|| lv.dense_jacobian(&phys, &u))
+        };
+        assert_eq!(on(1), on(2));
     }
 }
