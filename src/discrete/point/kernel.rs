@@ -120,6 +120,29 @@ const BLOCK: usize = 8;
 /// not map them all to the same few cache sets.
 const COL_PAD: usize = 8;
 
+/// What a column of the spectrum holds below its transformed rows: zeros (a product's input,
+/// zero padded) or the even extension col[r] = col[my - r] (the kernel's circulant).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Below {
+    Zero,
+    Mirror,
+}
+
+impl Below {
+    /// Fill `col[rows..]` (a whole column of my bins).
+    fn fill(self, col: &mut [Complex<f64>], rows: usize) {
+        match self {
+            Below::Zero => col[rows..].fill(Complex::default()),
+            Below::Mirror => {
+                let my = col.len();
+                for r in rows..my {
+                    col[r] = col[my - r];
+                }
+            }
+        }
+    }
+}
+
 /// A reusable plan for the fast 2D deformation product on one grid: FFT plans, the transformed
 /// kernel and all work buffers are made once, so [`DeformPlan2d::apply`] never allocates.
 pub struct DeformPlan2d {
@@ -207,22 +230,21 @@ impl DeformPlan2d {
             row_spec: Vec::new(),
             jobs: Vec::new(),
         };
-        // The even circulant extension of K over the full mx x my period.
+        // The even circulant extension of K over the full mx x my period: its rows r and my - r
+        // are the same, so only the first ny are transformed (each extended along x to the
+        // period), and each column is completed by the same symmetry before its transform.
         let wrap = |d: usize, n: usize, m: usize| if d < n { d } else { m - d };
-        let mut circ = vec![0.0; mx * my];
-        for_each_row(parallel, &mut circ, mx, |r, row| {
-            let kr = wrap(r, ny, my);
+        let mut ext = vec![0.0; mx * ny];
+        for_each_row(parallel, &mut ext, mx, |r, row| {
             for (c, v) in row.iter_mut().enumerate() {
-                *v = kernel[kr * nx + wrap(c, nx, mx)];
+                *v = kernel[r * nx + wrap(c, nx, mx)];
             }
         });
         if parallel {
-            plan.rows_forward_parallel(&circ, mx, my);
-            plan.columns_parallel(my, false);
-            // The products need ny rows of it, not my.
-            plan.row_spec = Vec::new();
+            plan.rows_forward_parallel(&ext, mx, ny);
+            plan.columns_parallel(ny, Below::Mirror);
         } else {
-            plan.forward(&circ, mx, my);
+            plan.forward(&ext, mx, ny, Below::Mirror);
         }
         let scale = 1.0 / (mx * my) as f64;
         plan.kernel_hat = plan.spec.iter().map(|z| z.re * scale).collect();
@@ -247,7 +269,7 @@ impl DeformPlan2d {
             p.len() == nx * ny && out.len() == nx * ny,
             "2D deformation plan size mismatch"
         );
-        self.forward(p, nx, ny);
+        self.forward(p, nx, ny, Below::Zero);
         for (s, &k) in self.spec.iter_mut().zip(&self.kernel_hat) {
             *s *= k;
         }
@@ -292,7 +314,7 @@ impl DeformPlan2d {
             "2D deformation plan size mismatch"
         );
         self.rows_forward_parallel(p, nx, ny);
-        self.columns_parallel(ny, true);
+        self.columns_parallel(ny, Below::Zero);
         let rows_per = ny.div_ceil(self.jobs.len());
         let row_inv = &self.row_inv;
         let spec = &self.spec;
@@ -373,10 +395,11 @@ impl DeformPlan2d {
     }
 
     /// The column stage of the parallel transforms: each column of the spectrum gathered from
-    /// the first `rows` rows of `row_spec` (zeros below), transformed; with `product`, also
-    /// multiplied by the kernel's transform and transformed back. One contiguous share of
-    /// columns per rayon job.
-    fn columns_parallel(&mut self, rows: usize, product: bool) {
+    /// the first `rows` rows of `row_spec` and completed by `below`, transformed; for a product
+    /// (zeros below), also multiplied by the kernel's transform and transformed back. One
+    /// contiguous share of columns per rayon job.
+    fn columns_parallel(&mut self, rows: usize, below: Below) {
+        let product = below == Below::Zero;
         use rayon::prelude::*;
         let (my, cx, cs) = (self.my, self.cx, self.cs);
         let cols_per = cx.div_ceil(self.jobs.len());
@@ -399,7 +422,7 @@ impl DeformPlan2d {
                     // column through all steps in turn).
                     for col in group.chunks_exact_mut(cs) {
                         let col = &mut col[..my];
-                        col[rows..].fill(Complex::default());
+                        below.fill(col, rows);
                         col_fwd.process_with_scratch(col, &mut job.scratch);
                     }
                     if !product {
@@ -418,8 +441,9 @@ impl DeformPlan2d {
             });
     }
 
-    /// 2D forward DFT of `src` (`rows` rows of `width` values, zero padded to my x mx) into `spec`.
-    fn forward(&mut self, src: &[f64], width: usize, rows: usize) {
+    /// 2D forward DFT of `src` (`rows` rows of `width` values, zero padded to mx along x, each
+    /// column completed to my by `below`) into `spec`.
+    fn forward(&mut self, src: &[f64], width: usize, rows: usize, below: Below) {
         let (mx, my, cx, cs) = (self.mx, self.my, self.cx, self.cs);
         for r0 in (0..rows).step_by(BLOCK) {
             let nb = BLOCK.min(rows - r0);
@@ -444,7 +468,7 @@ impl DeformPlan2d {
         }
         for col in self.spec.chunks_exact_mut(cs) {
             let col = &mut col[..my];
-            col[rows..].fill(Complex::default());
+            below.fill(col, rows);
             self.col_fwd
                 .process_with_scratch(col, &mut self.col_scratch);
         }
