@@ -180,20 +180,21 @@ impl IndexMut<(usize, usize)> for RowMatrix {
     }
 }
 
-/// Unknowns from which [`dense_jacobian`] assembles its rows on the rayon pool (where it has
-/// more than one thread). Each row is computed alone, so the matrix is the same to the bit
-/// either way.
+/// Unknowns from which [`dense_jacobian`] assembles its rows on the rayon pool (where asked
+/// and the pool has more than one thread). Each row is computed alone, so the matrix is the
+/// same to the bit either way.
 pub const PARALLEL_JACOBIAN_ROWS: usize = 128;
 
 /// The dense Jacobian of (L at the unknowns, the load sum) with respect to (the unknowns, H0), H0
 /// last, for either contact: `row(c)` is the Jacobian row of L at storage index c,
 /// `fill(row, out)` writes its derivatives with respect to P at every unknown (in the order of
 /// `unknowns`), `d_h0(row)` its derivative with respect to H0, and `cell` the load sum's weight of
-/// each pressure (h, or hx hy). Rows are assembled on the rayon pool from
+/// each pressure (h, or hx hy). Rows are assembled on the rayon pool where `parallel`, from
 /// [`PARALLEL_JACOBIAN_ROWS`] unknowns on.
 pub fn dense_jacobian<R>(
     unknowns: &[usize],
     cell: f64,
+    parallel: bool,
     row: impl Fn(usize) -> R + Sync,
     fill: impl Fn(&R, &mut [f64]) + Sync,
     d_h0: impl Fn(&R) -> f64 + Sync,
@@ -208,7 +209,7 @@ pub fn dense_jacobian<R>(
         fill(&row, &mut out[..m]);
         out[m] = d_h0(&row);
     };
-    if m >= PARALLEL_JACOBIAN_ROWS && rayon::current_num_threads() > 1 {
+    if parallel && m >= PARALLEL_JACOBIAN_ROWS && rayon::current_num_threads() > 1 {
         body.par_chunks_mut(n).enumerate().for_each(one);
     } else {
         body.chunks_mut(n).enumerate().for_each(one);

@@ -124,6 +124,10 @@ pub struct PointLevel {
     /// Compute the film, the coefficients and the residual on the rayon pool (the same values
     /// to the bit as the serial loops, whatever the number of threads).
     pub parallel: bool,
+    /// Assemble the dense Newton Jacobian's rows on the rayon pool (a solve whose levels share
+    /// the pool, whatever their size; never in a sweep's one-solve-per-thread pool, where a
+    /// waiting thread would take up another case).
+    pub parallel_jacobian: bool,
     /// The asymptotic far field ([`FarField`]): boundary values and the load beyond the domain
     /// from the r^-3 decay; `None`: P = 0 on the boundary.
     pub far: Option<FarField>,
@@ -182,6 +186,7 @@ impl PointLevel {
             direct_deformation: false,
             deform_seconds: 0.0,
             parallel,
+            parallel_jacobian: parallel,
             far: None,
             h0: 0.0,
         }

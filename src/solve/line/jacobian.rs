@@ -134,9 +134,11 @@ impl NewtonLevel for LineLevel {
     }
     fn dense_jacobian(&self, phys: &LinePhysics, unknowns: &[usize]) -> RowMatrix {
         let row = |i| JacRow::new(self, phys, i);
+        // Line solves are serial (a sweep runs one per thread).
         dense_jacobian(
             unknowns,
             self.h,
+            false,
             row,
             |r, out| {
                 for (o, &j) in out.iter_mut().zip(unknowns) {

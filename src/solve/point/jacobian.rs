@@ -370,9 +370,11 @@ impl NewtonLevel for PointLevel {
             r.dense_row(&self.kernel, nx, ny, out);
             self.fold_far_row(r, &slaves, |q, v| out[q] += v);
         };
-        let mut jac = dense_jacobian(unknowns, self.hx * self.hy, row, fill, PointJacRow::d_h0);
+        let cell = self.hx * self.hy;
+        let parallel = self.parallel_jacobian;
+        let mut jac = dense_jacobian(unknowns, cell, parallel, row, fill, PointJacRow::d_h0);
         // The load row: the boundary nodes' load weights, and their films' dependence on H0.
-        let (m, cell) = (unknowns.len(), self.hx * self.hy);
+        let m = unknowns.len();
         let mut d_h0 = 0.0;
         for s in &slaves {
             for &(q, a) in &s.links {
@@ -589,7 +591,8 @@ mod tests {
     #[test]
     fn rows_assembled_on_two_threads_are_those_of_one() {
         let phys = PointPhysics::piezoviscous_compressible();
-        let lv = loaded_level(&phys, true);
+        let mut lv = loaded_level(&phys, true);
+        lv.parallel_jacobian = true;
         let u = lv.unknowns();
         // Above the parallel threshold, so that two threads do share the rows.
         assert!(u.len() >= crate::solve::newton::PARALLEL_JACOBIAN_ROWS);

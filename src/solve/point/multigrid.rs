@@ -130,6 +130,7 @@ impl Multigrid<PointContact> {
             let parallel = params.parallel && n + 1 >= PARALLEL_MIN_ROWS;
             let extent = (domain.x_in, domain.x_out, domain.y_half);
             let mut lv = PointLevel::new_on(&phys, extent, n, n, parallel);
+            lv.parallel_jacobian = params.parallel;
             if let Some(coarse) = far_spacing {
                 // The load's deformation far from the contact: coef W / R (none when rigid).
                 let deform = if rigid { 0.0 } else { phys.coef * phys.load };
