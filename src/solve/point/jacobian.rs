@@ -17,7 +17,9 @@ use crate::discrete::point::strip::RowsRef;
 use crate::discrete::stencil::{
     deps_dh, deps_dp, drho, face, jacobian_x_with, upwind, Fields, NodeDerivatives,
 };
-use crate::solve::newton::{dense_jacobian, newton_level_common, NewtonLevel, RowMatrix};
+use crate::solve::newton::{
+    dense_jacobian, newton_level_common, NewtonLevel, RowMatrix, PARALLEL_JACOBIAN_ROWS,
+};
 use crate::solve::relax::mirror_kernel;
 
 /// Row (i, j) of the Jacobian of L with respect to (P, H0).
@@ -386,34 +388,40 @@ impl NewtonLevel for PointLevel {
         jac
     }
     fn jacobian_diagonal(&self, phys: &PointPhysics, unknowns: &[usize]) -> Vec<f64> {
+        use rayon::prelude::*;
         let nx = self.nx;
         let rows = self.rows();
         let slaves = self.far_slaves();
-        unknowns
-            .iter()
-            .enumerate()
-            .map(|(col, &c)| {
-                let row = PointJacRow::new(&rows, phys, c % nx, c / nx);
-                // entry() is dense_row's value to the bit; the far field's terms for this
-                // column follow in the order of fold_far_row.
-                let mut d = row.entry(&self.kernel, nx, c % nx, c / nx);
-                // Only the boundary nodes that depend on this node add to it.
-                for s in &slaves {
-                    if !s.links.iter().any(|&(q, _)| self.unknown_column(q) == col) {
-                        continue;
-                    }
-                    let v = row.entry(&self.kernel, nx, s.node % nx, s.node / nx);
-                    if v != 0.0 {
-                        for &(q, a) in &s.links {
-                            if self.unknown_column(q) == col {
-                                d += v * a;
-                            }
+        let one = |(col, &c): (usize, &usize)| {
+            let row = PointJacRow::new(&rows, phys, c % nx, c / nx);
+            // entry() is dense_row's value to the bit; the far field's terms for this column
+            // follow in the order of fold_far_row.
+            let mut d = row.entry(&self.kernel, nx, c % nx, c / nx);
+            // Only the boundary nodes that depend on this node add to it.
+            for s in &slaves {
+                if !s.links.iter().any(|&(q, _)| self.unknown_column(q) == col) {
+                    continue;
+                }
+                let v = row.entry(&self.kernel, nx, s.node % nx, s.node / nx);
+                if v != 0.0 {
+                    for &(q, a) in &s.links {
+                        if self.unknown_column(q) == col {
+                            d += v * a;
                         }
                     }
                 }
-                d
-            })
-            .collect()
+            }
+            d
+        };
+        // On the pool where the Jacobian's rows are (each value computed alone: the same bits).
+        if self.parallel_jacobian
+            && unknowns.len() >= PARALLEL_JACOBIAN_ROWS
+            && rayon::current_num_threads() > 1
+        {
+            unknowns.par_iter().enumerate().map(one).collect()
+        } else {
+            unknowns.iter().enumerate().map(one).collect()
+        }
     }
     fn residual_at(&self, phys: &PointPhysics, c: usize) -> f64 {
         self.f[c] - self.reynolds(phys, c % self.nx, c / self.nx)
@@ -595,14 +603,25 @@ mod tests {
         lv.parallel_jacobian = true;
         let u = lv.unknowns();
         // Above the parallel threshold, so that two threads do share the rows.
-        assert!(u.len() >= crate::solve::newton::PARALLEL_JACOBIAN_ROWS);
+        assert!(u.len() >= PARALLEL_JACOBIAN_ROWS);
         let on = |threads: usize| {
             rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
                 .build()
                 .expect("a pool")
-                .install(|| lv.dense_jacobian(&phys, &u))
+                .install(|| {
+                    (
+                        lv.dense_jacobian(&phys, &u),
+                        lv.jacobian_diagonal(&phys, &u),
+                    )
+                })
         };
-        assert_eq!(on(1), on(2));
+        let (one, two) = (on(1), on(2));
+        assert_eq!(one.0, two.0);
+        assert!(one
+            .1
+            .iter()
+            .zip(&two.1)
+            .all(|(a, b)| a.to_bits() == b.to_bits()));
     }
 }
