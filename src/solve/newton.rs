@@ -9,7 +9,9 @@
 //! film response dH_m/dP_j = -(1/pi) K_{|m-j|} of eps_m (m = i-1, i, i+1) and of the wedge term
 //! (m = i-2..i); dH_m/dH0 = 1. Node i is pressurised when its Newton point value
 //! t_i = P_i + (f_i - L_i)/J_ii is positive (complementarity P >= 0, L - f <= 0, P (L - f) = 0).
-//! Steps are damped by backtracking on the semi-smooth residual norm.
+//! Steps are damped by backtracking on the semi-smooth residual norm. That norm and the active
+//! set need the residuals and the Jacobian's diagonal only ([`NewtonLevel::jacobian_diagonal`]):
+//! the dense Jacobian is built only where a step is taken.
 //!
 //! Used as the exact coarsest-grid solver of the multigrid and as the Newton baseline.
 
