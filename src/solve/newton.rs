@@ -116,12 +116,23 @@ struct Linearisation {
     rhs: DVector<f64>,
 }
 
+/// The row of the Newton system that an unknown gets ([`evaluate`] decides, [`system`] builds).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum RowKind {
+    /// Held fixed: dP = 0.
+    Frozen,
+    /// The Jacobian row, with rhs f - L.
+    Pressurised,
+    /// P + dP = 0.
+    Cavitated,
+}
+
 /// The semi-smooth residual at the current state (film up to date), without the Jacobian: each
-/// unknown's residual f - L and Jacobian diagonal, which decide its row of the system
-/// ([`system`]), and the norms that the stopping rule and the line search compare.
+/// unknown's residual f - L and row kind, and the norms that the stopping rule and the line
+/// search compare.
 struct Evaluation {
     res: Vec<f64>,
-    diag: Vec<f64>,
+    kind: Vec<RowKind>,
     merit: f64,
     /// The load equation's part of `merit` (0 at fixed H0).
     load: f64,
@@ -145,17 +156,13 @@ impl RowMatrix {
     }
 
     /// The n x n matrix with these entries, row after row.
-    pub fn from_rows(n: usize, entries: &[f64]) -> Self {
+    #[cfg(test)]
+    fn from_rows(n: usize, entries: &[f64]) -> Self {
         assert_eq!(entries.len(), n * n, "an n x n matrix needs n^2 entries");
         Self {
             n,
             data: entries.to_vec(),
         }
-    }
-
-    /// Rows (and columns).
-    pub fn n(&self) -> usize {
-        self.n
     }
 
     /// Row r.
@@ -187,6 +194,13 @@ impl IndexMut<(usize, usize)> for RowMatrix {
 /// same to the bit either way.
 pub const PARALLEL_JACOBIAN_ROWS: usize = 128;
 
+/// Whether `rows` Jacobian rows (or diagonal entries), computed one by one, go to the rayon
+/// pool: where `parallel` is asked, from [`PARALLEL_JACOBIAN_ROWS`] on, on a pool of more than
+/// one thread.
+pub fn rows_on_pool(parallel: bool, rows: usize) -> bool {
+    parallel && rows >= PARALLEL_JACOBIAN_ROWS && rayon::current_num_threads() > 1
+}
+
 /// The dense Jacobian of (L at the unknowns, the load sum) with respect to (the unknowns, H0), H0
 /// last, for either contact: `row(c)` is the Jacobian row of L at storage index c,
 /// `fill(row, out)` writes its derivatives with respect to P at every unknown (in the order of
@@ -211,7 +225,7 @@ pub fn dense_jacobian<R>(
         fill(&row, &mut out[..m]);
         out[m] = d_h0(&row);
     };
-    if parallel && m >= PARALLEL_JACOBIAN_ROWS && rayon::current_num_threads() > 1 {
+    if rows_on_pool(parallel, m) {
         body.par_chunks_mut(n).enumerate().for_each(one);
     } else {
         body.chunks_mut(n).enumerate().for_each(one);
@@ -344,6 +358,7 @@ fn evaluate<T: NewtonLevel>(
 ) -> Evaluation {
     let diag = lv.jacobian_diagonal(phys, unknowns);
     let mut res = Vec::with_capacity(unknowns.len());
+    let mut kind = Vec::with_capacity(unknowns.len());
     let mut merit = 0.0;
     let mut load = 0.0;
     for (&c, &d) in unknowns.iter().zip(&diag) {
@@ -351,15 +366,16 @@ fn evaluate<T: NewtonLevel>(
         res.push(r);
         let p = lv.pressure()[c];
         let t = if d < 0.0 { p + r / d } else { p };
-        if lv.frozen_at(c) {
-            continue;
-        }
-        if t > 0.0 {
+        kind.push(if lv.frozen_at(c) {
+            RowKind::Frozen
+        } else if t > 0.0 {
             let s = if d != 0.0 { r / d } else { r };
             merit += s * s;
+            RowKind::Pressurised
         } else {
             merit += p * p;
-        }
+            RowKind::Cavitated
+        });
     }
     if !fix_h0 {
         let g = lv.load_rhs();
@@ -369,7 +385,7 @@ fn evaluate<T: NewtonLevel>(
     }
     Evaluation {
         res,
-        diag,
+        kind,
         merit: merit.sqrt(),
         load,
     }
@@ -390,19 +406,14 @@ fn system<T: NewtonLevel>(
     let mut jac = lv.dense_jacobian(phys, unknowns);
     let mut rhs = DVector::<f64>::zeros(m + 1);
     for (row, &c) in unknowns.iter().enumerate() {
-        let (r, d) = (ev.res[row], ev.diag[row]);
-        let p = lv.pressure()[c];
-        let t = if d < 0.0 { p + r / d } else { p };
-        if lv.frozen_at(c) {
+        rhs[row] = match ev.kind[row] {
+            RowKind::Pressurised => ev.res[row],
+            RowKind::Frozen => 0.0,
+            RowKind::Cavitated => -lv.pressure()[c],
+        };
+        if ev.kind[row] != RowKind::Pressurised {
             jac.row_mut(row).fill(0.0);
             jac[(row, row)] = 1.0;
-            rhs[row] = 0.0;
-        } else if t > 0.0 {
-            rhs[row] = r;
-        } else {
-            jac.row_mut(row).fill(0.0);
-            jac[(row, row)] = 1.0;
-            rhs[row] = -p;
         }
     }
     if fix_h0 {

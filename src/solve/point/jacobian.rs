@@ -18,7 +18,7 @@ use crate::discrete::stencil::{
     deps_dh, deps_dp, drho, face, jacobian_x_with, upwind, Fields, NodeDerivatives,
 };
 use crate::solve::newton::{
-    dense_jacobian, newton_level_common, NewtonLevel, RowMatrix, PARALLEL_JACOBIAN_ROWS,
+    dense_jacobian, newton_level_common, rows_on_pool, NewtonLevel, RowMatrix,
 };
 use crate::solve::relax::mirror_kernel;
 
@@ -395,29 +395,20 @@ impl NewtonLevel for PointLevel {
         let one = |(col, &c): (usize, &usize)| {
             let row = PointJacRow::new(&rows, phys, c % nx, c / nx);
             // entry() is dense_row's value to the bit; the far field's terms for this column
-            // follow in the order of fold_far_row.
+            // follow in the same order, from the boundary nodes that depend on this node.
             let mut d = row.entry(&self.kernel, nx, c % nx, c / nx);
-            // Only the boundary nodes that depend on this node add to it.
-            for s in &slaves {
-                if !s.links.iter().any(|&(q, _)| self.unknown_column(q) == col) {
-                    continue;
+            let linked = slaves
+                .iter()
+                .filter(|s| s.links.iter().any(|&(q, _)| self.unknown_column(q) == col));
+            self.fold_far_row(&row, linked, |q, v| {
+                if q == col {
+                    d += v;
                 }
-                let v = row.entry(&self.kernel, nx, s.node % nx, s.node / nx);
-                if v != 0.0 {
-                    for &(q, a) in &s.links {
-                        if self.unknown_column(q) == col {
-                            d += v * a;
-                        }
-                    }
-                }
-            }
+            });
             d
         };
         // On the pool where the Jacobian's rows are (each value computed alone: the same bits).
-        if self.parallel_jacobian
-            && unknowns.len() >= PARALLEL_JACOBIAN_ROWS
-            && rayon::current_num_threads() > 1
-        {
+        if rows_on_pool(self.parallel_jacobian, unknowns.len()) {
             unknowns.par_iter().enumerate().map(one).collect()
         } else {
             unknowns.iter().enumerate().map(one).collect()
@@ -447,7 +438,12 @@ impl PointLevel {
     /// The far field's part of Jacobian row `row`: the boundary values are functions of
     /// interior pressures, so their columns fold into those of the interior nodes by the chain
     /// rule; `add(column, value)` for each term, in slave order.
-    fn fold_far_row(&self, row: &PointJacRow, slaves: &[Slave], mut add: impl FnMut(usize, f64)) {
+    fn fold_far_row<'a>(
+        &self,
+        row: &PointJacRow,
+        slaves: impl IntoIterator<Item = &'a Slave>,
+        mut add: impl FnMut(usize, f64),
+    ) {
         let nx = self.nx;
         for s in slaves {
             let v = row.entry(&self.kernel, nx, s.node % nx, s.node / nx);
@@ -603,7 +599,7 @@ mod tests {
         lv.parallel_jacobian = true;
         let u = lv.unknowns();
         // Above the parallel threshold, so that two threads do share the rows.
-        assert!(u.len() >= PARALLEL_JACOBIAN_ROWS);
+        assert!(u.len() >= crate::solve::newton::PARALLEL_JACOBIAN_ROWS);
         let on = |threads: usize| {
             rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
