@@ -20,6 +20,7 @@ pub mod relax;
 pub mod seed;
 pub mod single_grid;
 pub mod solution;
+pub mod warm;
 
 use serde::{Deserialize, Serialize};
 use std::fmt;

@@ -115,6 +115,10 @@ pub fn direct_product2d(kernel: &[f64], nx: usize, ny: usize, p: &[f64], out: &m
 /// Rows moved together between the row transforms and the column-major spectrum.
 const BLOCK: usize = 8;
 
+/// Jobs per thread in the stages of [`DeformPlan2d::apply_parallel`] (each stage's rows or
+/// columns cut into that many contiguous shares per thread).
+const SHARES_PER_THREAD: usize = 4;
+
 /// Unused bins after each column of the spectrum: the columns lie `my + COL_PAD` bins apart,
 /// not a power of two (my = 2(ny - 1) often is), so that reading one bin of every column does
 /// not map them all to the same few cache sets.
@@ -345,10 +349,17 @@ impl DeformPlan2d {
             });
     }
 
-    /// One set of buffers per rayon job of the parallel stages (made once per thread count).
+    /// One set of buffers per rayon job of the parallel stages (made once per thread count):
+    /// [`SHARES_PER_THREAD`] jobs per thread of a pool of two or more, so that a thread that
+    /// finishes its shares first takes over one of the other's.
     fn ensure_jobs(&mut self) {
         let threads = rayon::current_num_threads().max(1);
-        if self.jobs.len() == threads {
+        let shares = if threads > 1 {
+            threads * SHARES_PER_THREAD
+        } else {
+            1
+        };
+        if self.jobs.len() == shares {
             return;
         }
         let scratch_len = [
@@ -360,7 +371,7 @@ impl DeformPlan2d {
         .into_iter()
         .max()
         .unwrap_or(0);
-        self.jobs = (0..threads)
+        self.jobs = (0..shares)
             .map(|_| FftJob {
                 row: vec![0.0; self.mx],
                 hat: vec![Complex::default(); BLOCK * self.cx],
