@@ -2,6 +2,7 @@
 //! the cost (work units, wall time). Numerical failure is a result, never a panic.
 
 pub mod anderson;
+pub mod awake;
 pub mod banded;
 pub mod deadline;
 pub mod film;
@@ -20,7 +21,6 @@ pub mod relax;
 pub mod seed;
 pub mod single_grid;
 pub mod solution;
-pub mod warm;
 
 use serde::{Deserialize, Serialize};
 use std::fmt;

@@ -26,6 +26,7 @@ use crate::discrete::point::domain::PointDomainParams;
 use crate::discrete::point::domain::BIAS_CAUTION;
 use crate::discrete::point::operator::PointPhysics;
 use crate::model::case::PointCase;
+use crate::solve::awake::KeepAwake;
 use crate::solve::ladder::run_rungs;
 use crate::solve::mixed::{set_mixed_outputs, solve_mixed, MixedState};
 use crate::solve::multilevel::Seed;
@@ -36,7 +37,6 @@ use crate::solve::single_grid::solve_relax;
 use crate::solve::solution::grid_level;
 pub use crate::solve::solution::PointFields;
 use crate::solve::solution::{line_outputs, parabola_vertex, Outputs, Solution};
-use crate::solve::warm::KeepWarm;
 use crate::solve::SolveInfo;
 
 /// Parameters of a point solve.
@@ -117,7 +117,7 @@ pub fn point_outputs(mg: &PointMultigrid, info: &SolveInfo) -> Outputs {
 
 fn run(case: &PointCase, p: &PointMgParams, keep_fields: bool, seed: Option<&Seed>) -> Solution {
     // Parallel rows fork and join the pool many times per work unit: its workers stay awake.
-    let _warm = p.parallel.then(KeepWarm::start);
+    let _awake = p.parallel.then(KeepAwake::start);
     let mut mg = PointMultigrid::new(case, p);
     mg.seed = seed.cloned().or_else(|| start::hertz_start(&mut mg));
     let (info, mixed) = solve_mixed(&mut mg);

@@ -1,4 +1,4 @@
-//! The current rayon pool kept awake for the span of one parallel solve ([`KeepWarm`]).
+//! The current rayon pool kept awake for the span of one parallel solve ([`KeepAwake`]).
 //!
 //! A point solve with parallel rows ([`crate::solve::params::MgParams::parallel`]) forks and
 //! joins the pool many times per work unit: each relaxation sweep, FFT product, film update,
@@ -6,7 +6,7 @@
 //! Between regions an idle rayon worker goes to sleep within microseconds, and waking it takes
 //! as long as a short region on a virtual machine (docs/performance.md has the measurement).
 //!
-//! Contract: while a [`KeepWarm`] lives, every other worker of the current pool, up to the
+//! Contract: while a [`KeepAwake`] lives, every other worker of the current pool, up to the
 //! machine's cores less one, runs a job that executes pending pool work as soon as it appears
 //! (`rayon::yield_now`) and spins otherwise; dropping the guard ends those jobs. Invariants:
 //! - no result changes: which thread runs a piece of a parallel stage never does (the stages
@@ -21,17 +21,17 @@ use std::sync::Arc;
 /// Guard that keeps the other workers of the current rayon pool spinning until it drops (see
 /// the module docs).
 #[must_use = "the workers are kept awake only while the guard lives"]
-pub struct KeepWarm {
+pub struct KeepAwake {
     stop: Option<Arc<AtomicBool>>,
 }
 
-impl KeepWarm {
+impl KeepAwake {
     /// Occupy the other workers of the current pool (nothing on one thread or one core).
     pub fn start() -> Self {
         let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
         let spinners = rayon::current_num_threads().min(cores).saturating_sub(1);
         if spinners == 0 {
-            return KeepWarm { stop: None };
+            return KeepAwake { stop: None };
         }
         let stop = Arc::new(AtomicBool::new(false));
         let taken = Arc::new(AtomicUsize::new(0));
@@ -47,7 +47,7 @@ impl KeepWarm {
                 }
             }
         });
-        KeepWarm { stop: Some(stop) }
+        KeepAwake { stop: Some(stop) }
     }
 
     /// Whether workers were occupied.
@@ -56,7 +56,7 @@ impl KeepWarm {
     }
 }
 
-impl Drop for KeepWarm {
+impl Drop for KeepAwake {
     fn drop(&mut self) {
         if let Some(stop) = &self.stop {
             stop.store(true, Ordering::Release);
@@ -87,9 +87,9 @@ mod tests {
         let serial: Vec<f64> = v.chunks(1000).map(|c| c.iter().sum()).collect();
         let p = pool(2);
         p.install(|| {
-            let warm = KeepWarm::start();
+            let awake = KeepAwake::start();
             let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-            assert_eq!(warm.active(), cores > 1);
+            assert_eq!(awake.active(), cores > 1);
             for _ in 0..200 {
                 let par: Vec<f64> = v.par_chunks(1000).map(|c| c.iter().sum()).collect();
                 assert_eq!(par, serial);
@@ -101,6 +101,6 @@ mod tests {
 
     #[test]
     fn a_one_thread_pool_is_left_alone() {
-        pool(1).install(|| assert!(!KeepWarm::start().active()));
+        pool(1).install(|| assert!(!KeepAwake::start().active()));
     }
 }
