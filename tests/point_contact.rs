@@ -516,3 +516,29 @@ fn a_rigid_film_at_held_h0_is_not_taken_for_converged() {
         );
     }
 }
+
+#[test]
+fn a_runaway_coarse_load_balance_leaves_finite_films() {
+    // M = 3e4, L = 30/7, D = 0.01 on 65^2: the coarsest grid's Newton start fails, and its
+    // relaxed load balance used to run away (H0 -> inf after about 200 sweeps, then a NaN film:
+    // every rung of the fallback ladder ended at once with "non-finite residual or film on
+    // level 1" and H_c = 0). The balance now stops where the load error passes 10 g and restores
+    // Newton's state, so the cycles run on finite films (the grid is still too coarse to
+    // converge: max-iterations, H_c about 2.2).
+    let case = PointCase::new(3e4, 30.0 / 7.0, 0.01).unwrap();
+    let mut p = PointSolveParams::default();
+    p.mg.grid = 65;
+    p.fallback = false;
+    let s = solve_point(&case, &p);
+    assert!(
+        !s.outputs.reason.contains("non-finite"),
+        "{}",
+        s.outputs.reason
+    );
+    assert!(
+        s.outputs.h_c.is_finite() && s.outputs.h_c > 0.0 && s.outputs.h_min.is_finite(),
+        "H_c {} H_min {}",
+        s.outputs.h_c,
+        s.outputs.h_min
+    );
+}

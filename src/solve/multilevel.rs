@@ -24,6 +24,13 @@ use crate::solve::params::{Converge, FinerCoarsest, MgParams};
 use crate::solve::phases::{Phase, PhaseTimes};
 use crate::solve::{CycleRecord, Observer, SolveInfo};
 
+/// The gain of [`Multigrid::relaxed_coarse_balance`]'s H0 update per unit load error.
+pub const RELAXED_GAIN: f64 = 0.02;
+
+/// The load error, in units of the load g, at which [`Multigrid::relaxed_coarse_balance`] gives
+/// up.
+pub const RUNAWAY_LOAD: f64 = 10.0;
+
 /// Newton iterations allowed to a coarsest-level solve with the load equation after one has
 /// failed (see [`Multigrid::coarse_solve`]).
 pub const RETRY_NEWTON_ITERATIONS: usize = 8;
@@ -309,6 +316,32 @@ impl<C: Contact> Multigrid<C> {
     pub fn relax_level(&mut self, l: usize) {
         let cost = self.timed(Phase::Relaxation, |mg| C::sweep(mg, l));
         self.work_units += cost;
+    }
+
+    /// The coarsest level's load balance by relaxation where its Newton solve has failed (the
+    /// classic coarse-grid load balance): the film refreshed, then `sweeps` relaxation sweeps,
+    /// each followed by H0 += [`RELAXED_GAIN`] (h sum P - g) and the film's refresh. Where the
+    /// coupled iteration runs away (a load error that is not finite or above [`RUNAWAY_LOAD`]
+    /// times g: point M = 3e4, L = 4.3, D = 0.01 reached H0 = inf and a NaN film), it stops and
+    /// the state before its sweeps is restored, so that the cycles start from Newton's
+    /// unconverged solve instead of a non-finite film.
+    pub(crate) fn relaxed_coarse_balance(&mut self, sweeps: usize) {
+        let saved = (self.levels[0].p().to_vec(), self.h0);
+        self.levels[0].refresh(&self.phys, self.h0);
+        for _ in 0..sweeps {
+            self.relax_level(0);
+            let lv = &mut self.levels[0];
+            let (e, g) = (lv.load_sum() - lv.load_rhs(), lv.load_rhs());
+            let h0 = self.h0 + RELAXED_GAIN * e;
+            if !(h0.is_finite() && e.abs() <= RUNAWAY_LOAD * g.abs()) {
+                lv.pressure().copy_from_slice(&saved.0);
+                self.h0 = saved.1;
+                lv.refresh(&self.phys, self.h0);
+                return;
+            }
+            self.h0 = h0;
+            lv.refresh(&self.phys, self.h0);
+        }
     }
 
     /// Run the step `f`, its time charged to `phase` and its levels' deformation products to

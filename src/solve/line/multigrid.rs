@@ -287,14 +287,7 @@ impl Contact for LineContact {
         mg.work_units += (out.iterations * lv.len()) as f64 / mg.extra.fine_intervals as f64;
         // (Not after the deadline: the solve stops at its first cycle anyway.)
         if !(out.converged || out.residual < 1e-6 * out.unit || past(mg.params.deadline)) {
-            // Relaxation with a gentle H0 update (the classic coarse-grid load balance).
-            lv.update_film(&mg.phys, mg.h0);
-            for _ in 0..20 * mg.params.coarse_sweeps {
-                mg.relax_level(0);
-                let lv = &mut mg.levels[0];
-                mg.h0 += 0.02 * (lv.load() - lv.g);
-                lv.update_film(&mg.phys, mg.h0);
-            }
+            mg.relaxed_coarse_balance(20 * mg.params.coarse_sweeps);
         }
         let lv = &mut mg.levels[0];
         if !with_slope {

@@ -413,13 +413,7 @@ impl Contact for PointContact {
         mg.work_units += PointContact::newton_cost(mg, out.iterations);
         // (Not after the deadline: the solve stops at its first cycle anyway.)
         if !(out.converged || out.residual < 1e-6 * out.unit || past(mg.params.deadline)) {
-            mg.levels[0].update_film(&mg.phys, mg.h0);
-            for _ in 0..20 * mg.params.coarse_sweeps {
-                mg.relax_level(0);
-                let lv = &mut mg.levels[0];
-                mg.h0 += 0.02 * (lv.load() - lv.g);
-                lv.update_film(&mg.phys, mg.h0);
-            }
+            mg.relaxed_coarse_balance(20 * mg.params.coarse_sweeps);
         }
         if !with_slope {
             return out;
