@@ -326,7 +326,7 @@ impl<C: Contact> Multigrid<C> {
     /// the state before its sweeps is restored, so that the cycles start from Newton's
     /// unconverged solve instead of a non-finite film.
     pub(crate) fn relaxed_coarse_balance(&mut self, sweeps: usize) {
-        let saved = (self.levels[0].p().to_vec(), self.h0);
+        let (p_start, h0_start) = (self.levels[0].p().to_vec(), self.h0);
         self.levels[0].refresh(&self.phys, self.h0);
         for _ in 0..sweeps {
             self.relax_level(0);
@@ -334,8 +334,8 @@ impl<C: Contact> Multigrid<C> {
             let (e, g) = (lv.load_sum() - lv.load_rhs(), lv.load_rhs());
             let h0 = self.h0 + RELAXED_GAIN * e;
             if !(h0.is_finite() && e.abs() <= RUNAWAY_LOAD * g.abs()) {
-                lv.pressure().copy_from_slice(&saved.0);
-                self.h0 = saved.1;
+                lv.pressure().copy_from_slice(&p_start);
+                self.h0 = h0_start;
                 lv.refresh(&self.phys, self.h0);
                 return;
             }

@@ -392,15 +392,22 @@ impl NewtonLevel for PointLevel {
         let nx = self.nx;
         let rows = self.rows();
         let slaves = self.far_slaves();
+        // The boundary nodes that depend on each column's node, in slave order, each once.
+        let mut linked: Vec<Vec<&Slave>> = vec![Vec::new(); unknowns.len()];
+        for s in &slaves {
+            for &(q, _) in &s.links {
+                let l = &mut linked[self.unknown_column(q)];
+                if !l.last().is_some_and(|t| std::ptr::eq(*t, s)) {
+                    l.push(s);
+                }
+            }
+        }
         let one = |(col, &c): (usize, &usize)| {
             let row = PointJacRow::new(&rows, phys, c % nx, c / nx);
             // entry() is dense_row's value to the bit; the far field's terms for this column
             // follow in the same order, from the boundary nodes that depend on this node.
             let mut d = row.entry(&self.kernel, nx, c % nx, c / nx);
-            let linked = slaves
-                .iter()
-                .filter(|s| s.links.iter().any(|&(q, _)| self.unknown_column(q) == col));
-            self.fold_far_row(&row, linked, |q, v| {
+            self.fold_far_row(&row, linked[col].iter().copied(), |q, v| {
                 if q == col {
                     d += v;
                 }
