@@ -63,8 +63,9 @@ fn the_start_is_the_hertz_pressure_on_the_first_level_that_resolves_the_film() {
 
 /// The default 1 % solve of the same case: before the start the accuracy ladder's cold
 /// attempts on 33^2 to 257^2 failed and 1025^2 ran out of cycles (minutes, no answer). Now it
-/// solves 513^2 and 1025^2 only and answers with an honest error bar: H_min is not resolved on
-/// 1025^2 (0.24 against 0.27 on 2049^2), so the target is not met.
+/// solves 513^2 and 1025^2 only and answers with an honest error bar: H_min is not resolved to
+/// 1 % on 1025^2 (0.270 against 0.274 on 2049^2; 0.242 with the wider sides of thick films), so
+/// the target is not met.
 #[test]
 fn the_accuracy_ladder_answers_a_thin_isoviscous_film_with_its_error_bar() {
     let case = PointCase::new(5720.0, 0.0, 1.0).unwrap();

@@ -14,21 +14,28 @@
 //!
 //! * inlet   X_in   = -max(1 + clamp(inlet_elastic H_e^(2/3), 0.5, 3.5), g inlet_lh l_h)
 //! * outlet  X_out  =  max(1.5, g outlet_lh l_h)
-//! * sides   Y_half =  max(k + side / sqrt(D k), g side_lh l_h / sqrt(D))
+//! * sides   Y_half =  max(k + clamp(inlet_elastic H_e^(2/3), side_thin, side) / sqrt(D k),
+//!   g side_lh l_h / sqrt(D))
 //!
 //! and for rigid surfaces (no Hertzian zone) g [-inlet_lh l_h, outlet_lh l_h] x
 //! [-side_lh l_h/sqrt(D), side_lh l_h/sqrt(D)]. Defaults: inlet_elastic = 20, inlet_lh = 4.5,
-//! outlet_lh = 1.5, side = 2, side_lh = 3; at M = 20, L = 10, D = 1 this is the classic
+//! outlet_lh = 1.5, side = 2, side_thin = 0.5, side_lh = 3; at M = 20, L = 10, D = 1 this is the classic
 //! [-4.5, 1.5] x [-3, 3].
 //!
 //! Rationale (docs/method.md, Point contact): the elastic inlet shrinks towards -1.5 for thin
-//! films (high M), where a fixed -4.5 leaves too few points across the contact; the l_h terms
+//! films (high M), where a fixed -4.5 leaves too few points across the contact, and the side
+//! margin with it (towards k + 0.5 at D = 1): outside the Hertzian ellipse the elastic gap grows
+//! like the 3/2 power of the distance from its edge across the rolling direction as along it, and
+//! the side lobes of the film, where H_min lies, need the points; the l_h terms
 //! make the domain grow with the rigid pressure, which spreads over several l_h; across the
 //! rolling direction the gap grows like D k (|Y| - k) beyond the contact edge, hence the margin
 //! 1/sqrt(D k), and with D Y^2/2 in the gap the rigid side extent is stretched by 1/sqrt(D).
 //!
 //! Invariants: the coarsest grid has `n0` intervals per direction (a power of two, at least 4;
-//! 16 by default, 17^2 nodes for the exact Newton solve), and X_in is shifted so that X = 0 is a
+//! 16 by default, 17^2 nodes for the exact Newton solve; at least `n0_thin` = 32 for a thin
+//! elastic film, one whose side margin inlet_elastic H_e^(2/3) is below `side`: a 17^2 grid on
+//! the narrower domain leaves the thin film's Newton start a few nodes across the contact, and
+//! its first cycles diverged at M = 1000, L = 0, D = 1), and X_in is shifted so that X = 0 is a
 //! node of every level (Y = 0 is one by symmetry).
 //!
 //! **Truncation estimate.** A rigid-like contact's pressure decays slowly into the inlet and the
@@ -81,12 +88,18 @@ pub struct PointDomainParams {
     pub inlet_lh: f64,
     /// Outlet length in l_h, before g.
     pub outlet_lh: f64,
-    /// Side margin beyond Y = k, in units of 1/sqrt(D k).
+    /// Side margin beyond Y = k, in units of 1/sqrt(D k), of thick films.
     pub side: f64,
+    /// The least side margin, in units of 1/sqrt(D k), that thin films shrink it to (module
+    /// doc; `side` or more keeps the margin of thick films at every film).
+    pub side_thin: f64,
     /// Side half-width in l_h/sqrt(D), before g.
     pub side_lh: f64,
     /// Intervals per direction of the coarsest grid.
     pub n0: usize,
+    /// The least intervals per direction of the coarsest grid of a thin elastic film, one whose
+    /// side margin shrinks (module doc).
+    pub n0_thin: usize,
     /// The asymptotic far field on the boundary ([`crate::discrete::point::far_field`]):
     /// boundary values and the load beyond the domain from the r^-3 decay instead of P = 0
     /// (default on; off: the truncated domain of the classic references).
@@ -100,8 +113,10 @@ impl Default for PointDomainParams {
             inlet_lh: 4.5,
             outlet_lh: 1.5,
             side: 2.0,
+            side_thin: 0.5,
             side_lh: 3.0,
             n0: 16,
+            n0_thin: 32,
             far_field: true,
         }
     }
@@ -117,6 +132,7 @@ impl PointDomainParams {
             inlet_lh: factor * self.inlet_lh,
             outlet_lh: factor * self.outlet_lh,
             side: factor * self.side,
+            side_thin: factor * self.side_thin,
             side_lh: factor * self.side_lh,
             ..self
         }
@@ -171,6 +187,7 @@ impl PointDomain {
             (nvm_point_asymptotes(m, l, d)[0] / h_moes).min(1.0).powi(2)
         };
         let g = 1.0 + w;
+        let elastic_margin = p.inlet_elastic * h_e.powf(2.0 / 3.0);
         let (x_in, x_out, y_half) = if rigid {
             (
                 -g * p.inlet_lh * lh,
@@ -179,13 +196,15 @@ impl PointDomain {
             )
         } else {
             (
-                -(1.0 + (p.inlet_elastic * h_e.powf(2.0 / 3.0)).clamp(0.5, 3.5))
-                    .max(g * p.inlet_lh * lh),
+                -(1.0 + elastic_margin.clamp(0.5, 3.5)).max(g * p.inlet_lh * lh),
                 (1.5f64).max(g * p.outlet_lh * lh),
-                (k + p.side / (d * k).sqrt()).max(g * p.side_lh * lh / d.sqrt()),
+                (k + elastic_margin.clamp(p.side_thin.min(p.side), p.side) / (d * k).sqrt())
+                    .max(g * p.side_lh * lh / d.sqrt()),
             )
         };
-        let n0 = p.n0.max(4).next_power_of_two();
+        let thin = !rigid && elastic_margin < p.side;
+        let n0 = if thin { p.n0.max(p.n0_thin) } else { p.n0 };
+        let n0 = n0.max(4).next_power_of_two();
         let (x_in, x_out) = align_origin(x_in, x_out, n0);
         PointDomain {
             x_in,
@@ -252,5 +271,46 @@ mod tests {
         let (i, j) = d.centre(n);
         let h = (d.x_out - d.x_in) / n as f64;
         assert!((d.x_in + i as f64 * h).abs() < 1e-9 && j == 64);
+    }
+
+    #[test]
+    fn thin_films_shrink_the_side_margin_and_refine_the_coarsest_grid() {
+        use crate::model::case::PointCase;
+        let p = PointDomainParams::default();
+        let wide = PointDomainParams {
+            side_thin: p.side,
+            ..p
+        };
+        let dom = |m: f64, l: f64, d: f64, q: &PointDomainParams| {
+            PointDomain::of_case(&PointCase::new(m, l, d).unwrap(), q)
+        };
+        // Thick film: the classic sides and coarsest grid.
+        let thick = dom(20.0, 10.0, 1.0, &p);
+        assert_eq!((thick.y_half, thick.n0), (3.0, 16), "{thick:?}");
+        // Thin film (H_e = 1.7e-3 Hertzian): the margin at its floor, k + 0.5, and 33^2.
+        let thin = dom(5720.0, 0.0, 1.0, &p);
+        assert!(thin.h_estimate < 2e-3, "{thin:?}");
+        assert!((thin.y_half - 1.5).abs() < 1e-12, "{thin:?}");
+        assert_eq!(thin.n0, 32);
+        let coarse = PointDomainParams { n0_thin: 16, ..p };
+        assert_eq!(dom(5720.0, 0.0, 1.0, &coarse).n0, 16);
+        // Between them the margin is 20 H_e^(2/3) / sqrt(D k).
+        let mid = dom(1000.0, 0.0, 1.0, &p);
+        let margin = 20.0 * mid.h_estimate.powf(2.0 / 3.0);
+        assert!(margin > 0.5 && margin < 2.0, "{mid:?}");
+        assert!((mid.y_half - (1.0 + margin)).abs() < 1e-12, "{mid:?}");
+        // The side rule leaves the rolling direction alone, and side_thin = side is the wide
+        // side margin of thick films at every film.
+        for (m, l, d) in [(5720.0, 0.0, 1.0), (1000.0, 0.0, 0.25), (3e4, 10.0, 0.01)] {
+            let (a, b) = (dom(m, l, d, &p), dom(m, l, d, &wide));
+            assert_eq!((a.x_in, a.x_out), (b.x_in, b.x_out), "M = {m}, D = {d}");
+            assert!(a.y_half < b.y_half, "M = {m}, D = {d}");
+            assert_eq!((a.n0, b.n0), (32, 32));
+            let k = PointCase::new(m, l, d).unwrap().venner().k;
+            assert!(
+                (b.y_half - (k + 2.0 / (d * k).sqrt())).abs() < 1e-9,
+                "{b:?}"
+            );
+        }
     }
 }
