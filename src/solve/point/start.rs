@@ -87,8 +87,8 @@ pub fn hertz_start(mg: &mut PointMultigrid) -> Option<Seed> {
     let top = mg.levels.len() - 1;
     let hx: Vec<f64> = mg.levels.iter().map(|lv| lv.hx).collect();
     let h_e = mg.domain.h_estimate;
-    let l = resolving_level(h_e, &hx)
-        .filter(|&l| mg.levels[l].nx - 1 >= MIN_START_INTERVALS && l < top)?;
+    let l =
+        resolving_level(h_e, &hx).filter(|&l| mg.levels[l].nx > MIN_START_INTERVALS && l < top)?;
     let k = mg.phys.k;
     let lv = &mut mg.levels[l];
     let (nx, ny) = (lv.nx, lv.ny);
