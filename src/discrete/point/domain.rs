@@ -19,8 +19,8 @@
 //!
 //! and for rigid surfaces (no Hertzian zone) g [-inlet_lh l_h, outlet_lh l_h] x
 //! [-side_lh l_h/sqrt(D), side_lh l_h/sqrt(D)]. Defaults: inlet_elastic = 20, inlet_lh = 4.5,
-//! outlet_lh = 1.5, side = 2, side_thin = 0.5, side_lh = 3; at M = 20, L = 10, D = 1 this is the classic
-//! [-4.5, 1.5] x [-3, 3].
+//! outlet_lh = 1.5, side = 2, side_thin = 0.5, side_lh = 3; at M = 20, L = 10, D = 1 this is
+//! the classic [-4.5, 1.5] x [-3, 3].
 //!
 //! Rationale (docs/method.md, Point contact): the elastic inlet shrinks towards -1.5 for thin
 //! films (high M), where a fixed -4.5 leaves too few points across the contact, and the side
@@ -188,6 +188,7 @@ impl PointDomain {
         };
         let g = 1.0 + w;
         let elastic_margin = p.inlet_elastic * h_e.powf(2.0 / 3.0);
+        let side_margin = elastic_margin.clamp(p.side_thin.min(p.side), p.side);
         let (x_in, x_out, y_half) = if rigid {
             (
                 -g * p.inlet_lh * lh,
@@ -198,10 +199,10 @@ impl PointDomain {
             (
                 -(1.0 + elastic_margin.clamp(0.5, 3.5)).max(g * p.inlet_lh * lh),
                 (1.5f64).max(g * p.outlet_lh * lh),
-                (k + elastic_margin.clamp(p.side_thin.min(p.side), p.side) / (d * k).sqrt())
-                    .max(g * p.side_lh * lh / d.sqrt()),
+                (k + side_margin / (d * k).sqrt()).max(g * p.side_lh * lh / d.sqrt()),
             )
         };
+        // A thin film: the elastic margin is below the side margin of thick films.
         let thin = !rigid && elastic_margin < p.side;
         let n0 = if thin { p.n0.max(p.n0_thin) } else { p.n0 };
         let n0 = n0.max(4).next_power_of_two();

@@ -6,8 +6,8 @@
 //! H_e in Hertzian units, [`crate::discrete::point::domain::PointDomain::h_estimate`], and its
 //! levels). Let l_h = sqrt(2 H_e) be the hydrodynamic length and l_s the coarsest level whose
 //! spacing h_x along the rolling direction satisfies l_h >= [`RESOLVE_CELLS`] h_x. Where the
-//! surfaces are elastic, the lubricant isoviscous (alpha_bar = 0), l_s has at least [`MIN_START_INTERVALS`] intervals
-//! and l_s is below the finest level, [`hertz_start`] returns a [`Seed`] on level l_s:
+//! surfaces are elastic, the lubricant isoviscous (alpha_bar = 0), l_s has at least
+//! [`MIN_START_INTERVALS`] intervals per direction and l_s is below the finest level, [`hertz_start`] returns a [`Seed`] on level l_s:
 //!
 //! * P = sqrt(1 - X^2 - (Y/k)^2) inside the Hertz ellipse, 0 outside (its load is the case's,
 //!   2 pi k / 3);
@@ -45,6 +45,12 @@ pub const START_FILM_FACTOR: f64 = 2.0;
 /// per direction (257^2 nodes) or more: coarser starts are the usual FMG ascent.
 pub const MIN_START_INTERVALS: usize = 256;
 
+/// Whether a resolving level with `intervals` per direction is fine enough for the start
+/// ([`MIN_START_INTERVALS`]).
+fn fine_enough(intervals: usize) -> bool {
+    intervals >= MIN_START_INTERVALS
+}
+
 /// The level l_s of the module doc: the coarsest whose spacing `hx[l]` the hydrodynamic length
 /// of the film `h_e` (Hertzian units) spans [`RESOLVE_CELLS`] times; None if none does.
 pub fn resolving_level(h_e: f64, hx: &[f64]) -> Option<usize> {
@@ -59,7 +65,7 @@ fn admits(common: &Physics) -> bool {
 }
 
 /// The level l_s of the module doc for `case` on the domain of `p`, where the start applies on
-/// grids finer than it (at least [`MIN_START_INTERVALS`] intervals); None where it never applies.
+/// grids finer than it ([`fine_enough`]); None where it never applies.
 fn start_level(case: &PointCase, p: &PointDomainParams) -> Option<(usize, usize)> {
     if !admits(&PointPhysics::from_case(case).common) {
         return None;
@@ -67,7 +73,7 @@ fn start_level(case: &PointCase, p: &PointDomainParams) -> Option<(usize, usize)
     let dom = PointDomain::of_case(case, p);
     let width = dom.x_out - dom.x_in;
     let hx: Vec<f64> = (0..16).map(|l| width / (dom.n0 << l) as f64).collect();
-    let l = resolving_level(dom.h_estimate, &hx).filter(|&l| dom.n0 << l >= MIN_START_INTERVALS)?;
+    let l = resolving_level(dom.h_estimate, &hx).filter(|&l| fine_enough(dom.n0 << l))?;
     Some((l, dom.n0))
 }
 
@@ -87,8 +93,7 @@ pub fn hertz_start(mg: &mut PointMultigrid) -> Option<Seed> {
     let top = mg.levels.len() - 1;
     let hx: Vec<f64> = mg.levels.iter().map(|lv| lv.hx).collect();
     let h_e = mg.domain.h_estimate;
-    let l =
-        resolving_level(h_e, &hx).filter(|&l| mg.levels[l].nx > MIN_START_INTERVALS && l < top)?;
+    let l = resolving_level(h_e, &hx).filter(|&l| fine_enough(mg.levels[l].nx - 1) && l < top)?;
     let k = mg.phys.k;
     let lv = &mut mg.levels[l];
     let (nx, ny) = (lv.nx, lv.ny);
