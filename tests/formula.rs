@@ -33,8 +33,8 @@ fn films(r: &FitReport) -> Vec<(bool, &QuantityFit)> {
 }
 
 /// The committed line data choose nested terms; the line H_pm formula gets a lattice correction
-/// too (Shifted and Cell bumps over a grid of cases, fixed coefficients), so that formula.py is
-/// checked on every kind of term.
+/// too (Shifted and Cell bumps of both lattice levels over a grid of cases, fixed coefficients),
+/// so that formula.py is checked on every kind of term.
 fn with_lattice(mut r: FitReport) -> FitReport {
     let q = r.line.h_pm.as_mut().expect("line H_pm fitted");
     let mut z = vec![];
@@ -44,7 +44,10 @@ fn with_lattice(mut r: FitReport) -> FitReport {
             z.push(Coordinates::new(q.model.blend.asymptotes(m, l, 1.0), 1.0));
         }
     }
-    let lattice = lattice_terms(&z);
+    let mut lattice = lattice_terms(&z, 0);
+    lattice.extend(lattice_terms(&z, 1));
+    let levels: std::collections::HashSet<_> = lattice.iter().map(|t| t.level).collect();
+    assert_eq!(levels.len(), 2, "both lattice levels: {levels:?}");
     let kinds: std::collections::HashSet<_> = lattice.iter().map(|t| t.transition).collect();
     assert_eq!(kinds.len(), 2, "both lattice kinds: {kinds:?}");
     let c = &mut q.model.correction;

@@ -16,8 +16,9 @@
 //!
 //! Lattice bumps (where the data are dense enough to place them; point fits also take each one
 //! times ln D): Shifted g(a/W - i) (1 - w) and Cell g(a/W - i) g(c/W - j) (0 at L = 0), centred
-//! on the lattice (a, c) = (i W, j W), W = [`LATTICE`]; [`lattice_terms`] keeps those some data
-//! case sees. Each tends to 0 at every corner, since a or c goes to infinity there, and they are
+//! on the lattice (a, c) = (i W, j W), W = [`LATTICE`] / 2^level (level 0 or 1: a lattice of half
+//! the spacing follows sharper features where the data are dense, such as the line H_c where the
+//! pressure peak crosses X = 0); [`lattice_terms`] keeps those some data case sees. Each tends to 0 at every corner, since a or c goes to infinity there, and they are
 //! fitted with a ridge penalty (lambda |c|^2, chosen by held-out error) instead of being tried in
 //! order.
 //!
@@ -47,13 +48,15 @@ pub enum Transition {
     /// The slow approach to the elastic-isoviscous limit: t(a) (1 - w), t(a) = e^(-a/TAIL) /
     /// (1 + e^-a) (0 at the rigid corner, decaying like e^(-a/TAIL) into the elastic one).
     Tail,
-    /// A lattice bump on the isoviscous transition: g(a/W - i) (1 - w), W = [`LATTICE`].
+    /// A lattice bump on the isoviscous transition: g(a/W - i) (1 - w), W = [`LATTICE`] /
+    /// 2^level.
     Shifted,
     /// A lattice bump in the (a, c) plane: g(a/W - i) g(c/W - j) (0 at L = 0).
     Cell,
 }
 
-/// The spacing (and width) W of the lattice bumps in the coordinates a and c.
+/// The spacing (and width) W of the level-0 lattice bumps in the coordinates a and c (level n:
+/// W / 2^n).
 pub const LATTICE: f64 = 0.75;
 
 /// A lattice bump is kept when it reaches at least this value at some data case.
@@ -81,6 +84,10 @@ pub struct Term {
     /// The lattice centre (i, j) of a Shifted or Cell bump (unused by the other transitions).
     #[serde(default)]
     pub at: [i8; 2],
+    /// The lattice level of a Shifted or Cell bump: spacing [`LATTICE`] / 2^level (0 in fit
+    /// reports written before levels existed).
+    #[serde(default)]
+    pub level: u8,
 }
 
 /// The coordinates of one case (module doc).
@@ -129,18 +136,23 @@ fn bump(t: f64) -> f64 {
 }
 
 impl Term {
+    /// The lattice spacing W of a Shifted or Cell bump: [`LATTICE`] / 2^level.
+    pub fn width(&self) -> f64 {
+        LATTICE * 0.5f64.powi(i32::from(self.level))
+    }
+
     /// phi(z): 0 at L = 0 for the piezoviscous and outer terms.
     pub fn eval(&self, z: &Coordinates) -> f64 {
         let piezo = z.c > f64::NEG_INFINITY;
+        let lw = self.width();
         let base = match self.transition {
             Transition::Isoviscous => bump(z.a) * (1.0 - z.w),
             Transition::Tail => tail(z.a) * (1.0 - z.w),
-            Transition::Shifted => bump(z.a / LATTICE - f64::from(self.at[0])) * (1.0 - z.w),
+            Transition::Shifted => bump(z.a / lw - f64::from(self.at[0])) * (1.0 - z.w),
             Transition::Piezoviscous if piezo => bump(z.b) * z.w,
             Transition::Outer if piezo => bump(z.c),
             Transition::Cell if piezo => {
-                bump(z.a / LATTICE - f64::from(self.at[0]))
-                    * bump(z.c / LATTICE - f64::from(self.at[1]))
+                bump(z.a / lw - f64::from(self.at[0])) * bump(z.c / lw - f64::from(self.at[1]))
             }
             _ => return 0.0,
         };
@@ -166,14 +178,17 @@ fn terms(list: &[(Transition, [u8; 5])]) -> Vec<Term> {
             transition,
             powers,
             at: [0, 0],
+            level: 0,
         })
         .collect()
 }
 
-/// The lattice bumps over the data's coordinates `z`: Shifted bumps on the a range and Cell
-/// bumps on the (a, c) range (finite c only), each range widened by one spacing, keeping those
-/// that reach [`LATTICE_REACH`] at some case; in (kind, i, j) order. Empty when `z` is.
-pub fn lattice_terms(z: &[Coordinates]) -> Vec<Term> {
+/// The lattice bumps of spacing [`LATTICE`] / 2^`level` over the data's coordinates `z`: Shifted
+/// bumps on the a range and Cell bumps on the (a, c) range (finite c only), each range widened by
+/// one spacing, keeping those that reach [`LATTICE_REACH`] at some case; in (kind, i, j) order.
+/// Empty when `z` is.
+pub fn lattice_terms(z: &[Coordinates], level: u8) -> Vec<Term> {
+    let lw = LATTICE * 0.5f64.powi(i32::from(level));
     let range = |v: &mut dyn Iterator<Item = f64>| {
         v.filter(|x| x.is_finite())
             .fold(None, |r: Option<(f64, f64)>, x| {
@@ -182,13 +197,14 @@ pub fn lattice_terms(z: &[Coordinates]) -> Vec<Term> {
     };
     let index = |(lo, hi): (f64, f64)| {
         let clamp = |v: f64| v.clamp(f64::from(i8::MIN), f64::from(i8::MAX)) as i8;
-        clamp((lo / LATTICE).floor() - 1.0)..=clamp((hi / LATTICE).ceil() + 1.0)
+        clamp((lo / lw).floor() - 1.0)..=clamp((hi / lw).ceil() + 1.0)
     };
     let reaches = |t: &Term| z.iter().any(|zi| t.eval(zi).abs() >= LATTICE_REACH);
     let term = |transition, i, j| Term {
         transition,
         powers: [0; 5],
         at: [i, j],
+        level,
     };
     let mut out = vec![];
     let Some(a) = range(&mut z.iter().map(|zi| zi.a)) else {
@@ -313,8 +329,13 @@ pub fn fit_correction(
     }
     let phi = DMatrix::from_fn(z.len(), terms.len(), |i, k| terms[k].eval(&z[i]));
     let rhs = DVector::from_column_slice(r);
-    let c = if ridge > 0.0 {
-        let n = terms.len();
+    let (cases, n) = phi.shape();
+    let c = if ridge > 0.0 && n > cases {
+        // More terms than cases: the same minimiser from the smaller system,
+        // c = Phi^T (Phi Phi^T + ridge I)^-1 r.
+        let gram = &phi * phi.transpose() + DMatrix::<f64>::identity(cases, cases) * ridge;
+        phi.tr_mul(&gram.cholesky()?.solve(&rhs))
+    } else if ridge > 0.0 {
         let normal = phi.tr_mul(&phi) + DMatrix::<f64>::identity(n, n) * ridge;
         normal.cholesky()?.solve(&phi.tr_mul(&rhs))
     } else {
@@ -358,8 +379,9 @@ mod tests {
             ("RP", 1.0, 1e120),
             ("EP", 1e60, 1e12),
         ];
-        let lattice = lattice_terms(&interior_cases());
+        let mut lattice = lattice_terms(&interior_cases(), 0);
         assert!(lattice.len() > 20, "{}", lattice.len());
+        lattice.extend(lattice_terms(&interior_cases(), 1));
         for t in point_terms().iter().chain(&line_terms()).chain(&lattice) {
             for (name, m, l) in corners {
                 let v = t.eval(&Coordinates::new(line_asym(m, l), 0.5));
@@ -399,10 +421,24 @@ mod tests {
     #[test]
     fn the_lattice_covers_the_data_and_only_the_data() {
         let z = interior_cases();
-        let lattice = lattice_terms(&z);
+        for level in [0, 1] {
+            lattice_covers(&z, level);
+        }
+        assert!(lattice_terms(&[], 0).is_empty());
+        // The half-spacing lattice has bumps of half the width: more than twice as many terms
+        // (2.3 times here: along c, four L values limit the cells that some case reaches).
+        let n = |level| lattice_terms(&z, level).len() as f64;
+        assert!(n(1) > 2.0 * n(0), "{} {}", n(0), n(1));
+        assert!(lattice_terms(&z, 1)
+            .iter()
+            .all(|t| t.width() == LATTICE / 2.0));
+    }
+
+    fn lattice_covers(z: &[Coordinates], level: u8) {
+        let lattice = lattice_terms(z, level);
         // Every case is reached by some Shifted bump (its isoviscous part) or, at L > 0, by some
         // Cell bump; and every term kept reaches some case.
-        for zi in &z {
+        for zi in z {
             let best = |kind| {
                 lattice
                     .iter()
@@ -421,15 +457,15 @@ mod tests {
             }
         }
         for t in &lattice {
+            assert_eq!(t.level, level);
             assert!(z.iter().any(|zi| t.eval(zi) >= LATTICE_REACH), "{t:?}");
         }
-        assert!(lattice_terms(&[]).is_empty());
     }
 
     #[test]
     fn a_small_ridge_recovers_known_lattice_coefficients_and_a_large_one_shrinks_them() {
         let z = interior_cases();
-        let lattice = lattice_terms(&z);
+        let lattice = lattice_terms(&z, 0);
         let truth: Vec<f64> = (0..lattice.len())
             .map(|k| 0.02 * ((k * 5 % 11) as f64 - 5.0))
             .collect();
@@ -454,6 +490,34 @@ mod tests {
         // 96 cases), and the ridge trades fit for size.
         assert!(fitted(1e-12) < 1e-6, "{}", fitted(1e-12));
         assert!(fitted(1.0) > 10.0 * fitted(1e-12));
+    }
+
+    #[test]
+    fn the_ridge_fit_with_more_terms_than_cases_is_the_normal_equations_minimiser() {
+        // 96 cases, some 400 half-spacing lattice terms: the solve takes the cases' system; the
+        // oracle is the terms' normal equations (Phi^T Phi + ridge I) c = Phi^T r.
+        let z = interior_cases();
+        let lattice = lattice_terms(&z, 1);
+        assert!(lattice.len() > z.len(), "{}", lattice.len());
+        let r: Vec<f64> = z
+            .iter()
+            .enumerate()
+            .map(|(i, zi)| 0.01 * (zi.a.sin() + ((i * 7 % 5) as f64 - 2.0) * 0.1))
+            .collect();
+        for ridge in [1e-4, 1e-2] {
+            let fast = fit_correction(&z, &r, &lattice, ridge).unwrap();
+            let phi = DMatrix::from_fn(z.len(), lattice.len(), |i, k| lattice[k].eval(&z[i]));
+            let n = lattice.len();
+            let normal = phi.tr_mul(&phi) + DMatrix::<f64>::identity(n, n) * ridge;
+            let slow = normal
+                .cholesky()
+                .unwrap()
+                .solve(&phi.tr_mul(&DVector::from_column_slice(&r)));
+            let scale = slow.amax();
+            for (a, b) in fast.coef.iter().zip(slow.iter()) {
+                assert!((a - b).abs() < 1e-8 * scale, "{a} {b} (ridge {ridge})");
+            }
+        }
     }
 
     #[test]

@@ -55,13 +55,14 @@ pub fn nested(terms: &[Term]) -> Vec<Basis> {
 /// against a few dozen cases are chosen by folds of a handful of cases each.
 pub const LATTICE_MIN_CASES: usize = 100;
 
-/// The lattice candidates over data at coordinates `z` ([`lattice_terms`]; with `times_ln_d`
-/// each term also times ln D), one per ridge weight; none below [`LATTICE_MIN_CASES`] cases.
-pub fn lattice(z: &[Coordinates], ridges: &[f64], times_ln_d: bool) -> Vec<Basis> {
+/// The lattice candidates of spacing [`crate::fit::correction::LATTICE`] / 2^`level` over data at
+/// coordinates `z` ([`lattice_terms`]; with `times_ln_d` each term also times ln D), one per
+/// ridge weight; none below [`LATTICE_MIN_CASES`] cases.
+pub fn lattice(z: &[Coordinates], level: u8, ridges: &[f64], times_ln_d: bool) -> Vec<Basis> {
     if z.len() < LATTICE_MIN_CASES {
         return vec![];
     }
-    let mut terms = lattice_terms(z);
+    let mut terms = lattice_terms(z, level);
     if times_ln_d {
         let with_d: Vec<Term> = terms
             .iter()
@@ -92,6 +93,11 @@ pub struct SizeScore {
     /// The candidate's index in the list given to [`select`].
     #[serde(default)]
     pub candidate: usize,
+    /// The lattice level of a lattice candidate (spacing
+    /// [`crate::fit::correction::LATTICE`] / 2^level; 0 for the nested terms and in reports
+    /// written before levels existed).
+    #[serde(default)]
+    pub level: u8,
     /// RMS of the held-out relative errors formula/data - 1.
     pub rms: f64,
     /// Largest |held-out relative error|, sign kept.
@@ -398,6 +404,7 @@ fn score(data: &[Sample], basis: &Basis, k: usize, e: Vec<f64>) -> Option<(SizeS
         terms: basis.terms.len(),
         ridge: basis.ridge,
         candidate: k,
+        level: basis.terms.first().map_or(0, |t| t.level),
         rms,
         max: e[worst],
         worst: (data[worst].m, data[worst].l, data[worst].d),

@@ -111,7 +111,7 @@ def _tail(a):
 
 
 def _correction(terms, asym, D):
-    """sum c_k phi_k; terms = [(transition, (i, j, k, l, n), c, (lattice i, lattice j)), ...]."""
+    """sum c_k phi_k; terms = [(transition, (i, j, k, l, n), c, (lattice i, j, level)), ...]."""
     if not terms:
         return 0.0
     ri, ei, rp, ep = asym
@@ -128,18 +128,19 @@ def _correction(terms, asym, D):
     variables = (a, b, c, math.log(D), w)
     total = 0.0
     for transition, powers, coef, at in terms:
+        lw = LATTICE * 0.5 ** at[2]
         if transition == "isoviscous":
             base = _bump(a) * (1.0 - w)
         elif transition == "tail":
             base = _tail(a) * (1.0 - w)
         elif transition == "shifted":
-            base = _bump(a / LATTICE - at[0]) * (1.0 - w)
+            base = _bump(a / lw - at[0]) * (1.0 - w)
         elif c == -INF:
             base = 0.0
         elif transition == "piezoviscous":
             base = _bump(b) * w
         elif transition == "cell":
-            base = _bump(a / LATTICE - at[0]) * _bump(c / LATTICE - at[1])
+            base = _bump(a / lw - at[0]) * _bump(c / lw - at[1])
         else:
             base = _bump(c)
         if base != 0.0:
@@ -174,7 +175,7 @@ fn terms(c: &Correction) -> String {
         .map(|(t, k)| {
             let p = t.powers;
             format!(
-                "(\"{}\", ({}, {}, {}, {}, {}), {}, ({}, {}))",
+                "(\"{}\", ({}, {}, {}, {}, {}), {}, ({}, {}, {}))",
                 transition(t.transition),
                 p[0],
                 p[1],
@@ -183,7 +184,8 @@ fn terms(c: &Correction) -> String {
                 p[4],
                 f(*k),
                 t.at[0],
-                t.at[1]
+                t.at[1],
+                t.level
             )
         })
         .collect();

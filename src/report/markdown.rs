@@ -51,8 +51,8 @@ H_RI = 2.4475/M. C = sum c_k phi_k is the interior correction: each phi_k is a t
 times a monomial and vanishes wherever one asymptote dominates (coordinates a = ln(H_EI/H_RI), \
 b = ln(H_EP/H_RP), c = ln(H_piezo/H_iso), w = 1/(1 + e^-c); bumps g(t) = 2/(1 + cosh t): \
 isoviscous g(a)(1 - w), piezoviscous g(b) w, outer g(c)), or a lattice of bumps \
-g(a/W - i)(1 - w) and g(a/W - i) g(c/W - j) (W = 0.75) over the data, fitted with a ridge weight; \
-the candidate (number of terms, or lattice and ridge) is chosen by 5-fold held-out error, the \
+g(a/W - i)(1 - w) and g(a/W - i) g(c/W - j) (W = 0.75 or 0.375) over the data, fitted with a ridge weight; \
+the candidate (number of terms, or lattice spacing and ridge) is chosen by 5-fold held-out error, the \
 coefficients fitted on all cases. H_pm is not fitted where the pressure maximum is not \
 grid-converged (the outlet spike, or P_max_err above 2 %). formula.py evaluates H.";
 
@@ -128,7 +128,12 @@ fn term_name(t: &Term) -> String {
 /// A candidate in the list of those tried: its number of terms, and its ridge weight if any.
 fn short_name(s: &SizeScore) -> String {
     if s.ridge > 0.0 {
-        format!("{} (lattice, ridge {:.0e})", s.terms, s.ridge)
+        format!(
+            "{} (lattice W = {}, ridge {:.0e})",
+            s.terms,
+            LATTICE * 0.5f64.powi(i32::from(s.level)),
+            s.ridge
+        )
     } else {
         s.terms.to_string()
     }
@@ -138,8 +143,10 @@ fn short_name(s: &SizeScore) -> String {
 pub fn candidate_name(s: &SizeScore) -> String {
     if s.ridge > 0.0 {
         format!(
-            "{} lattice terms (W = {LATTICE}, ridge {:.0e})",
-            s.terms, s.ridge
+            "{} lattice terms (W = {}, ridge {:.0e})",
+            s.terms,
+            LATTICE * 0.5f64.powi(i32::from(s.level)),
+            s.ridge
         )
     } else {
         format!("{} correction terms", s.terms)

@@ -380,6 +380,7 @@ mod tests {
             terms: 0,
             ridge: 0.0,
             candidate: 0,
+            level: 0,
             rms: 0.0,
             max: 0.0,
             worst: (0.0, 0.0, 0.0),
