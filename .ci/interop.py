@@ -22,7 +22,7 @@ expect = {
     "status": pl.String, "reason": pl.String, "valid": pl.Boolean, "grid": pl.Int64, "wall_s": pl.Float64,
     "contact": pl.String, "D": pl.Float64, "model_used": pl.String, "level": pl.Int64,
     "error_estimate": pl.Float64, "warm_start": pl.String, "half_grid_estimate": pl.Boolean,
-    "far_field": pl.Boolean, "H_c_pmax_err": pl.Float64,
+    "far_field": pl.Boolean, "H_c_pmax_err": pl.Float64, "H_min_cl": pl.Float64, "H_min_cl_err": pl.Float64,
     "P_max_err": pl.Float64,
 }
 df = pl.scan_parquet(dataset).collect()  # the directory layout, as a notebook opens it

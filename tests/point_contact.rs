@@ -141,6 +141,74 @@ fn circular_reference_case_and_second_order_convergence() {
     }
 }
 
+/// The node minimum of the film on the row Y = 0 and its X: the slow oracle of `H_min_cl`.
+fn centre_row_minimum(s: &ehlmap::Solution) -> (f64, f64) {
+    let f = s.fields.as_ref().unwrap();
+    let nx = f.x.len();
+    let j =
+        f.y.iter()
+            .position(|y| y.abs() < 1e-12)
+            .expect("a node row at Y = 0");
+    (1..nx - 1)
+        .map(|i| (f.h[j * nx + i], f.x[i]))
+        .fold((f64::INFINITY, 0.0), |a, b| if b.0 < a.0 { b } else { a })
+}
+
+#[test]
+fn the_centre_line_minimum_is_the_y_0_rows_and_a_branch_of_h_min() {
+    // Circular M = 20, L = 10: the minimum is in the side lobes; the centre line's own minimum
+    // (the exit constriction on Y = 0) is a thicker second branch, converging at second order.
+    let sols: Vec<_> = [65, 129, 257]
+        .iter()
+        .map(|&g| solve(20.0, 10.0, 1.0, g))
+        .collect();
+    let mut cl = vec![];
+    for s in &sols {
+        let o = &s.outputs;
+        assert_eq!(o.status, Status::Converged, "{}", o.reason);
+        let c = o
+            .centre_line
+            .expect("a point solve reports the centre line");
+        let (node, x_node) = centre_row_minimum(s);
+        let f = s.fields.as_ref().unwrap();
+        let hx = f.x[1] - f.x[0];
+        // The parabola through the node minimum and its neighbours: at most the node value, by
+        // far less than the film's variation over a cell, and within a cell of the node.
+        assert!(
+            c.h_min <= node && c.h_min > node * (1.0 - 1e-2),
+            "{} {node}",
+            c.h_min
+        );
+        assert!((c.x_min - x_node).abs() <= hx, "{} {x_node}", c.x_min);
+        assert!(
+            c.h_min > 1.1 * o.h_min,
+            "side lobes: {} vs {}",
+            c.h_min,
+            o.h_min
+        );
+        assert!(o.y_min.unwrap().abs() > 0.3);
+        cl.push(c.h_min);
+    }
+    let order = ((cl[1] - cl[0]) / (cl[2] - cl[1])).abs().log2();
+    assert!(order > 1.4 && order < 2.6, "order {order}: {cl:?}");
+    // A slender contact without side lobes (D = 0.1, L = 0): the minimum is on the centre line,
+    // and the two are the same film.
+    let s = solve(100.0, 0.0, 0.1, 129);
+    let o = &s.outputs;
+    assert_eq!(o.status, Status::Converged, "{}", o.reason);
+    let c = o.centre_line.unwrap();
+    // (The global minimum's parabola in Y puts it a hair off the row: 3.5e-5 here, a grid
+    // spacing being 5e-2.)
+    assert!(o.y_min.unwrap().abs() < 1e-3, "{:?}", o.y_min);
+    assert!(
+        (c.h_min / o.h_min - 1.0).abs() < 1e-9,
+        "{} {}",
+        c.h_min,
+        o.h_min
+    );
+    assert!((c.x_min - o.x_min).abs() < 1e-9);
+}
+
 #[test]
 fn extreme_inputs_end_with_a_status_and_no_nan() {
     // Corners of the required box M in [1, 2000], L in [0, 20], D in [0.05, 1], on a coarse

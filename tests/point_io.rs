@@ -208,6 +208,9 @@ fn point_json_has_the_line_fields_plus_d_k_y_min() {
         "H_min",
         "X_min",
         "Y_min",
+        "H_min_cl",
+        "X_min_cl",
+        "H_min_cl_err",
         "D",
         "k",
         "P_max",
@@ -249,6 +252,32 @@ fn point_json_has_the_line_fields_plus_d_k_y_min() {
         );
     }
     assert!(v["H_c"].as_f64().unwrap() > 0.0);
+    // The centre line's minimum film: a second branch of the minimum, never below H_min; no
+    // estimate from a 17^2 half grid.
+    let (h_min, h_min_cl) = (
+        v["H_min"].as_f64().unwrap(),
+        v["H_min_cl"].as_f64().unwrap(),
+    );
+    assert!(h_min_cl >= h_min && h_min > 0.0, "{h_min_cl} {h_min}");
+    assert!(v["X_min_cl"].as_f64().is_some_and(|x| x > 0.0 && x < 1.5));
+    assert!(v["H_min_cl_err"].is_null());
+    let with_estimate = ehlmap(&[
+        "solve",
+        "--contact",
+        "point",
+        "--D",
+        "1",
+        "--M",
+        "20",
+        "--L",
+        "10",
+        "--grid",
+        "65",
+        "--json",
+    ]);
+    let e: serde_json::Value = serde_json::from_slice(&with_estimate.stdout).unwrap();
+    let err = e["H_min_cl_err"].as_f64().expect("a half-grid estimate");
+    assert!(err > 0.0 && err < 0.1, "{err}");
     let text = ehlmap(&[
         "solve",
         "--contact",
@@ -268,6 +297,7 @@ fn point_json_has_the_line_fields_plus_d_k_y_min() {
         t.starts_with("point contact  M = 100  L = 10  D = 0.25  (k = "),
         "{t}"
     );
+    assert!(t.contains("H_min, Y = 0   "), "{t}");
 }
 
 #[test]

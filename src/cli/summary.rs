@@ -45,7 +45,7 @@ pub fn summary(case: &Case, o: &Outputs, skipped_estimate: bool) -> String {
     } else {
         h_min_at
     };
-    let rows = [
+    let mut rows = vec![
         ("status", format!("{}: {}", o.status, o.reason)),
         (
             "H_c",
@@ -78,6 +78,19 @@ pub fn summary(case: &Case, o: &Outputs, skipped_estimate: bool) -> String {
             ),
         ),
     ];
+    if let Some(cl) = &o.centre_line {
+        rows.insert(
+            4,
+            (
+                "H_min, Y = 0",
+                format!(
+                    "{}   at X = {:.4} (the centre line's minimum)",
+                    estimated(cl.h_min, cl.h_min_err),
+                    cl.x_min
+                ),
+            ),
+        );
+    }
     let mut out = format!(
         "{head}  ({}, {}, {})\n",
         m.elasticity,

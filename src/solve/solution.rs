@@ -117,6 +117,9 @@ pub struct Outputs {
     /// Point contacts: where the minimum film is across the rolling direction (Y = y/b).
     #[serde(rename = "Y_min", skip_serializing_if = "Option::is_none", default)]
     pub y_min: Option<f64>,
+    /// Point contacts: the minimum film on the centre line Y = 0 (absent for line contacts).
+    #[serde(flatten, default)]
+    pub centre_line: Option<CentreLine>,
     /// Point contacts: the ellipticity parameter D = Rx/Ry.
     #[serde(rename = "D", skip_serializing_if = "Option::is_none", default)]
     pub d: Option<f64>,
@@ -204,6 +207,8 @@ pub struct ErrorEstimates {
     pub h_min: f64,
     /// Of P_max (may be NaN).
     pub p_max: f64,
+    /// Of the centre line's minimum film of a point contact (NaN where there is none).
+    pub h_min_cl: f64,
 }
 
 impl Outputs {
@@ -219,6 +224,7 @@ impl Outputs {
             h_min,
             x_min: f64::NAN,
             y_min: None,
+            centre_line: None,
             d: None,
             k: None,
             p_max: f64::NAN,
@@ -253,6 +259,9 @@ impl Outputs {
         self.p_max_err = Some(e.p_max).filter(|v| v.is_finite());
         self.h_min_err = Some(e.h_min);
         self.error_estimate = Some(e.h_c.max(e.h_min));
+        if let Some(cl) = &mut self.centre_line {
+            cl.h_min_err = Some(e.h_min_cl).filter(|v| v.is_finite());
+        }
     }
 
     /// Add `e` to every error estimate there is (a neglected effect, a truncation estimate).
@@ -264,6 +273,9 @@ impl Outputs {
             &mut self.error_estimate,
         ] {
             *x = x.map(|v| v + e);
+        }
+        if let Some(cl) = &mut self.centre_line {
+            cl.h_min_err = cl.h_min_err.map(|v| v + e);
         }
     }
 }
@@ -300,6 +312,23 @@ pub struct Profile {
     pub h: Vec<f64>,
     /// Rough surfaces: the asperity pressure p_a/p_h at the nodes.
     pub p_asperity: Option<Vec<f64>>,
+}
+
+/// A point contact's minimum film on the centre line Y = 0 (the exit constriction there), with
+/// where it is and its error estimate. It is H_min where the minimum lies on the centre line;
+/// where the side lobes are thinner (circular contacts from M of about 15) it is the second
+/// branch of the minimum film.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CentreLine {
+    /// The minimum film on Y = 0, Moes units (parabola-refined, as H_min).
+    #[serde(rename = "H_min_cl")]
+    pub h_min: f64,
+    /// Where it is along the rolling direction (X = x/b).
+    #[serde(rename = "X_min_cl")]
+    pub x_min: f64,
+    /// Its relative error estimate, as `H_min_err` (none without an estimate).
+    #[serde(rename = "H_min_cl_err", default)]
+    pub h_min_err: Option<f64>,
 }
 
 /// What a solve with rough surfaces reports besides the films (Moes units; module docs of
@@ -409,6 +438,7 @@ pub fn line_outputs(
         h_min: hm * h_scale,
         x_min: x[imin] + tm * h,
         y_min: None,
+        centre_line: None,
         d: None,
         k: None,
         p_max,

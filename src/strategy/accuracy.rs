@@ -65,7 +65,8 @@ pub fn richardson2(coarse: f64, fine: f64) -> Richardson {
     }
 }
 
-/// The relative error estimates of H_c, H_c_pmax, H_min and P_max of `fine` from `coarse`, the
+/// The relative error estimates of H_c, H_c_pmax, H_min, P_max and the centre line's minimum
+/// film (point contacts; NaN for line contacts) of `fine` from `coarse`, the
 /// solve on its half grid: Richardson at `order` ([`relative_error`]) plus the algebraic errors
 /// both solves left (they contaminate the difference as well as the fine answer). None unless
 /// both converged and the estimates of H_c and H_min are finite (the others may be NaN).
@@ -80,6 +81,7 @@ pub fn half_grid_errors(coarse: &Outputs, fine: &Outputs, order: f64) -> Option<
         h_c_pmax: of(|o| o.h_c_pmax),
         h_min: of(|o| o.h_min),
         p_max: of(|o| o.p_max),
+        h_min_cl: of(|o| o.centre_line.map_or(f64::NAN, |c| c.h_min)),
     };
     (e.h_c.is_finite() && e.h_min.is_finite()).then_some(e)
 }

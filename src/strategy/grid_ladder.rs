@@ -225,6 +225,7 @@ pub(crate) mod tests {
             h_c_pmax: rel(c.h_c_pmax, f.h_c_pmax),
             h_min: rel(c.h_min, f.h_min),
             p_max: rel(c.p_max, f.p_max),
+            h_min_cl: f64::NAN,
         })
     }
 

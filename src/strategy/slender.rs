@@ -25,7 +25,7 @@
 use crate::model::case::{Elasticity, LineCase, PointCase};
 use crate::model::lubricant::{Density, Viscosity};
 use crate::solve::solution::Solution;
-use crate::solve::solution::{Outputs, Spike};
+use crate::solve::solution::{CentreLine, Outputs, Spike};
 use std::f64::consts::PI;
 
 /// The largest ellipticity D = Rx/Ry answered by a line contact.
@@ -59,13 +59,19 @@ pub fn gap_bound(case: &PointCase) -> Option<f64> {
 }
 
 /// The point outputs of a line solve of [`equivalent_line`]: films as they are (Moes units),
-/// pressures converted to the ellipse's p_h, `Y_min` = 0 (the centre line), `D` and `k` set;
-/// `H0` and `f` are NaN (the line's film constant and traction are not the ellipse's).
+/// pressures converted to the ellipse's p_h, `Y_min` = 0 (the centre line, whose minimum film
+/// is then H_min, with its estimate), `D` and `k` set; `H0` and `f` are NaN (the line's film
+/// constant and traction are not the ellipse's).
 pub fn point_outputs(case: &PointCase, line: &Outputs) -> Outputs {
     let el = case.ellipse();
     let p = el.e / (1.0 + case.d);
     Outputs {
         y_min: Some(0.0),
+        centre_line: Some(CentreLine {
+            h_min: line.h_min,
+            x_min: line.x_min,
+            h_min_err: line.h_min_err,
+        }),
         d: Some(case.d),
         k: Some(el.k),
         p_max: line.p_max * p,

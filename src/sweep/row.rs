@@ -207,6 +207,11 @@ fn fill_outputs(row: &mut CaseRow, o: &Outputs, attempt: usize, valid: &mut bool
     row.h_min = finite(o.h_min, valid);
     row.x_min = solved(o.x_min, valid);
     row.y_min = o.y_min.and_then(|y| solved(y, valid));
+    if let Some(cl) = &o.centre_line {
+        row.h_min_cl = finite(cl.h_min, valid);
+        row.x_min_cl = solved(cl.x_min, valid);
+        row.h_min_cl_err = cl.h_min_err.and_then(|e| finite(e, valid));
+    }
     row.p_max = opt(o.p_max, valid);
     if let Some(sp) = o.spike {
         row.spike_x = finite(sp.x, valid);

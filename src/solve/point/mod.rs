@@ -36,7 +36,7 @@ use crate::solve::point::multigrid::PointMultigrid;
 use crate::solve::single_grid::solve_relax;
 use crate::solve::solution::grid_level;
 pub use crate::solve::solution::PointFields;
-use crate::solve::solution::{line_outputs, parabola_vertex, Outputs, Solution};
+use crate::solve::solution::{line_outputs, parabola_vertex, CentreLine, Outputs, Solution};
 use crate::solve::SolveInfo;
 
 /// Parameters of a point solve.
@@ -59,6 +59,13 @@ pub fn point_outputs(mg: &PointMultigrid, info: &SolveInfo) -> Outputs {
         ic,
         info,
     );
+    // The centre row's minimum (line_outputs'), then the global minimum film over the
+    // interior, refined by a parabola in each direction.
+    out.centre_line = Some(CentreLine {
+        h_min: out.h_min,
+        x_min: out.x_min,
+        h_min_err: None,
+    });
     // Global minimum film over the interior, refined by a parabola in each direction.
     let mut cmin = lv.at(1, 1);
     for j in 1..ny - 1 {

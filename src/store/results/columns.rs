@@ -22,8 +22,10 @@ use std::sync::Arc;
 /// `asperity_load_fraction`, `P_asperity_max`, `H_c_smooth`, `H_min_smooth`,
 /// `mixed_iterations`), all null for smooth surfaces. Schema 5 added `far_field` (false in the
 /// rows of older files, whose point domains had P = 0 on the boundary). Schema 6 added
-/// `H_c_pmax_err` and `P_max_err` (null in the rows of older files).
-pub const SCHEMA_VERSION: u32 = 6;
+/// `H_c_pmax_err` and `P_max_err` (null in the rows of older files). Schema 7 added the point
+/// contacts' centre-line minimum film `H_min_cl`, `X_min_cl` and `H_min_cl_err` (null for line
+/// contacts and in the rows of older files).
+pub const SCHEMA_VERSION: u32 = 7;
 
 /// How one column's values are taken from a row (`get`) and put into one (`set`). The variant
 /// fixes the Arrow type (Utf8, Float64, Int64, Boolean) and the nullability (`Opt*` columns are
@@ -238,6 +240,8 @@ pub static COLUMNS: &[Column] = &[
     col!("H_min", opt_f64, h_min),
     col!("X_min", opt_f64, x_min),
     col!("Y_min", opt_f64, y_min),
+    col!("H_min_cl", opt_f64, h_min_cl, 7),
+    col!("X_min_cl", opt_f64, x_min_cl, 7),
     col!("P_max", opt_f64, p_max),
     col!("spike_X", opt_f64, spike_x),
     col!("spike_P", opt_f64, spike_p),
@@ -248,6 +252,7 @@ pub static COLUMNS: &[Column] = &[
     col!("H_min_err", opt_f64, h_min_err),
     col!("H_c_pmax_err", opt_f64, h_c_pmax_err, 6),
     col!("P_max_err", opt_f64, p_max_err, 6),
+    col!("H_min_cl_err", opt_f64, h_min_cl_err, 7),
     col!("Lambda", opt_f64, lambda_min, 4),
     col!("Lambda_c", opt_f64, lambda_c, 4),
     col!("asperity_load_fraction", opt_f64, asperity_load_fraction, 4),
@@ -318,6 +323,8 @@ mod tests {
             ("H_min", F, true),
             ("X_min", F, true),
             ("Y_min", F, true),
+            ("H_min_cl", F, true),
+            ("X_min_cl", F, true),
             ("P_max", F, true),
             ("spike_X", F, true),
             ("spike_P", F, true),
@@ -328,6 +335,7 @@ mod tests {
             ("H_min_err", F, true),
             ("H_c_pmax_err", F, true),
             ("P_max_err", F, true),
+            ("H_min_cl_err", F, true),
             ("Lambda", F, true),
             ("Lambda_c", F, true),
             ("asperity_load_fraction", F, true),

@@ -197,6 +197,10 @@ pub struct CaseRow {
     pub x_min: Option<f64>,
     /// y/b of the minimum film (point contacts), column `Y_min`.
     pub y_min: Option<f64>,
+    /// The minimum film on the centre line Y = 0 (point contacts), column `H_min_cl` (schema 7).
+    pub h_min_cl: Option<f64>,
+    /// x/b of the centre line's minimum film, column `X_min_cl` (schema 7).
+    pub x_min_cl: Option<f64>,
     /// Maximum pressure p/p_h, column `P_max`.
     pub p_max: Option<f64>,
     /// x/b of the outlet pressure spike, column `spike_X`.
@@ -218,6 +222,9 @@ pub struct CaseRow {
     pub h_c_pmax_err: Option<f64>,
     /// Relative error estimate of P_max, column `P_max_err` (schema 6).
     pub p_max_err: Option<f64>,
+    /// Relative error estimate of `H_min_cl`, column `H_min_cl_err` (schema 7; not part of
+    /// `error_estimate`).
+    pub h_min_cl_err: Option<f64>,
     /// The film parameter H_min/sigma, column `Lambda`.
     pub lambda_min: Option<f64>,
     /// H_c/sigma, column `Lambda_c`.
@@ -287,6 +294,8 @@ impl Default for CaseRow {
             h_min: None,
             x_min: None,
             y_min: None,
+            h_min_cl: None,
+            x_min_cl: None,
             p_max: None,
             spike_x: None,
             spike_p: None,
@@ -297,6 +306,7 @@ impl Default for CaseRow {
             h_min_err: None,
             h_c_pmax_err: None,
             p_max_err: None,
+            h_min_cl_err: None,
             sigma: None,
             gamma: None,
             slide_roll: None,
@@ -374,6 +384,8 @@ pub(crate) fn sample(id: &str) -> CaseRow {
         h_min: Some(3.9),
         x_min: Some(0.9),
         y_min: None,
+        h_min_cl: Some(4.1),
+        x_min_cl: Some(0.85),
         p_max: Some(1.1),
         spike_x: Some(0.8),
         spike_p: Some(0.7),
@@ -384,6 +396,7 @@ pub(crate) fn sample(id: &str) -> CaseRow {
         h_min_err: None,
         h_c_pmax_err: Some(2e-3),
         p_max_err: Some(4e-2),
+        h_min_cl_err: Some(3e-3),
         sigma: Some(0.5),
         gamma: Some(1.0),
         slide_roll: Some(0.2),
