@@ -181,22 +181,27 @@ fn bad_point_input_exits_2_naming_the_value() {
     assert!(stderr(&o).contains("--fields applies to point contacts only"));
 }
 
-#[test]
-fn point_json_has_the_line_fields_plus_d_k_y_min() {
-    let o = ehlmap(&[
+/// `ehlmap solve --json` of the circular case (M, L = 10) on `grid`^2 nodes.
+fn circular_json(m: &str, grid: &str) -> Output {
+    ehlmap(&[
         "solve",
         "--contact",
         "point",
         "--D",
         "1",
         "--M",
-        "100",
+        m,
         "--L",
         "10",
         "--grid",
-        "33",
+        grid,
         "--json",
-    ]);
+    ])
+}
+
+#[test]
+fn point_json_has_the_line_fields_plus_d_k_y_min() {
+    let o = circular_json("100", "33");
     // A non-converged solve is a result: exit 0, like the line solve.
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("one JSON object");
@@ -261,20 +266,7 @@ fn point_json_has_the_line_fields_plus_d_k_y_min() {
     assert!(h_min_cl >= h_min && h_min > 0.0, "{h_min_cl} {h_min}");
     assert!(v["X_min_cl"].as_f64().is_some_and(|x| x > 0.0 && x < 1.5));
     assert!(v["H_min_cl_err"].is_null());
-    let with_estimate = ehlmap(&[
-        "solve",
-        "--contact",
-        "point",
-        "--D",
-        "1",
-        "--M",
-        "20",
-        "--L",
-        "10",
-        "--grid",
-        "65",
-        "--json",
-    ]);
+    let with_estimate = circular_json("20", "65");
     let e: serde_json::Value = serde_json::from_slice(&with_estimate.stdout).unwrap();
     let err = e["H_min_cl_err"].as_f64().expect("a half-grid estimate");
     assert!(err > 0.0 && err < 0.1, "{err}");
