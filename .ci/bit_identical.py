@@ -8,7 +8,8 @@ and bounds the moves (efc37d6: the row-scaled Newton LU, at most 8e-9 relative; 
 with the load's deformation, 2026-11-29: the 24 point rows of the smoke H_c by at most 0.28 %,
 the solves unchanged; the point band by L, 2026-12-01: the point solve's H_c by 2.6e-5 and
 H_min by 1.2e-4 relative (31.1 -> 22.5 work units, no frozen band below L = 25), one smoke
-H_c row by 9e-7, the line solve unchanged); JSON floats are
+H_c row by 9e-7, the line solve unchanged; 2026-12-03: the point solve's three centre-line
+keys added, no value moved); JSON floats are
 printed shortest-round-trip, so equal text is equal bits.
 
     python3 .ci/bit_identical.py target/release/ehlmap outputs/smoke            # check
