@@ -264,6 +264,8 @@ fn a_film_with_a_large_error_estimate_is_left_out_of_its_fit_only() {
         h_c_err: Some(0.012),
         h_min_err: Some(0.035),
         h_pm_err: None,
+        h_min_cl: None,
+        h_min_cl_err: None,
     };
     assert_eq!(p.film(Film::Centre), Some(0.98));
     assert_eq!(p.film(Film::Minimum), None);

@@ -10,6 +10,7 @@
 
 use ehlmap::fit::correction::{lattice_terms, Coordinates, TAIL};
 use ehlmap::fit::dataset::load_fit_input;
+use ehlmap::fit::side::{tensor_powers, SideLobe};
 use ehlmap::report::formula_py::formula_py;
 use ehlmap::report::{fit_report, FitReport, QuantityFit};
 use std::io::Write;
@@ -34,7 +35,7 @@ fn films(r: &FitReport) -> Vec<(bool, &QuantityFit)> {
 
 /// The committed line data choose nested terms; the line H_pm formula gets a lattice correction
 /// too (Shifted and Cell bumps of both lattice levels over a grid of cases, fixed coefficients),
-/// so that formula.py is checked on every kind of term.
+/// so that formula.py is checked on every kind of term; the point H_min gets a side-lobe factor.
 fn with_lattice(mut r: FitReport) -> FitReport {
     let q = r.line.h_pm.as_mut().expect("line H_pm fitted");
     let mut z = vec![];
@@ -55,6 +56,31 @@ fn with_lattice(mut r: FitReport) -> FitReport {
         c.terms.push(t);
         c.coef.push(0.01 * ((k % 7) as f64 - 3.0));
     }
+    // The point H_min gets a side-lobe factor (the committed point data predate H_min,cl), over
+    // M 10 ... 1000, D 0.1 ... 1, L 0 ... 20, lifting nothing and 1 in part of the box
+    // and below the ramp's start, M = 20.
+    let q = r.point.h_min.as_mut().expect("point H_min fitted");
+    let powers = tensor_powers([2, 2, 2]);
+    let side = SideLobe {
+        lo: [10f64.ln(), 0.1f64.ln(), 0.0],
+        hi: [1000f64.ln(), 0.0, 21f64.ln()],
+        coef: (0..powers.len())
+            .map(|k| 0.05 * ((k % 5) as f64 - 1.0))
+            .collect(),
+        powers,
+        ramp: Some([20f64.ln(), 40f64.ln()]),
+    };
+    let f: Vec<f64> = [
+        (30.0, 0.0, 0.2),
+        (500.0, 5.0, 1.0),
+        (3e4, 40.0, 0.01),
+        (0.3, 0.0, 1.0),
+    ]
+    .iter()
+    .map(|&(m, l, d)| side.factor(m, l, d))
+    .collect();
+    assert!(f.contains(&1.0) && f.iter().any(|v| *v < 0.99), "{f:?}");
+    q.model.side = Some(side);
     r
 }
 

@@ -66,6 +66,8 @@ fn check_set() -> FitInput {
                 h_c_err: o.h_c_err,
                 h_min_err: o.h_min_err,
                 h_pm_err: o.h_c_pmax_err,
+                h_min_cl: None,
+                h_min_cl_err: None,
             });
         }
     }

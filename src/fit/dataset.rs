@@ -81,6 +81,14 @@ pub struct FitPoint {
     /// schema 6; H_pm then needs H_c's and H_min's estimates within the limit).
     #[serde(default)]
     pub h_pm_err: Option<f64>,
+    /// Dimensionless minimum film on the centre line Y = 0, H_min,cl (the dataset's `H_min_cl`,
+    /// schema 7; None when missing, not finite or not positive): the point H_min law is its law
+    /// times the side-lobe factor ([`crate::fit::side`]).
+    #[serde(default)]
+    pub h_min_cl: Option<f64>,
+    /// Richardson error estimate of H_min,cl, relative (None: not estimated).
+    #[serde(default)]
+    pub h_min_cl_err: Option<f64>,
 }
 
 impl FitPoint {
@@ -109,6 +117,13 @@ impl FitPoint {
                 .or_else(|| self.h_c_err.zip(self.h_min_err).map(|(a, b)| a.max(b))),
             Film::Minimum => self.h_min_err,
         }
+    }
+
+    /// H_min,cl of this case (None when the dataset does not carry it, or when its error
+    /// estimate exceeds [`MAX_ERROR_ESTIMATE`]).
+    pub fn centre_line_min(&self) -> Option<f64> {
+        self.h_min_cl
+            .filter(|_| self.h_min_cl_err.is_none_or(|e| e <= MAX_ERROR_ESTIMATE))
     }
 
     /// D, or 1 for a line contact.
@@ -271,6 +286,8 @@ pub fn load_fit_input(dirs: &[PathBuf]) -> Result<FitInput, FitError> {
                 h_c_err: row.h_c_err,
                 h_min_err: row.h_min_err,
                 h_pm_err: row.h_c_pmax_err,
+                h_min_cl: row.h_min_cl.filter(|v| v.is_finite() && *v > 0.0),
+                h_min_cl_err: row.h_min_cl_err,
             }),
             _ => None,
         };
@@ -390,6 +407,8 @@ mod tests {
             h_c_err: Some(1e-3),
             h_min_err: Some(1e-3),
             h_pm_err: None,
+            h_min_cl: None,
+            h_min_cl_err: None,
         }
     }
 

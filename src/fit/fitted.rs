@@ -6,6 +6,7 @@ use crate::fit::dataset::FitPoint;
 use crate::fit::heldout::{CaseError, HeldOut};
 use crate::fit::model::LineModel;
 use crate::fit::point_model::PointModel;
+use crate::fit::side::{SideChoice, SideLobe};
 use crate::fit::stats::{ErrStats, RegionStats, TargetRange};
 use crate::solve::film::Film;
 use serde::{Deserialize, Serialize};
@@ -56,7 +57,8 @@ impl Blend {
 }
 
 /// A fitted formula: the blend times its interior correction
-/// ([`crate::fit::correction`]), H = H_blend exp(correction).
+/// ([`crate::fit::correction`]), H = H_blend exp(correction), for the point minimum film times
+/// the side-lobe factor ([`crate::fit::side`]) when the data carry the centre line's minimum.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FittedModel {
     /// The blended-asymptote law (its asymptotes are the formula's).
@@ -65,14 +67,26 @@ pub struct FittedModel {
     /// The interior correction (no terms: none; fit reports before it had none).
     #[serde(default)]
     pub correction: Correction,
+    /// The side-lobe factor of the point H_min law (None: the law is the corrected blend; then
+    /// the blend was fitted to H_min itself).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub side: Option<SideLobe>,
 }
 
 impl FittedModel {
     /// The fitted film H at (M, L, D) in Moes units; a line law ignores D.
     pub fn eval(&self, m: f64, l: f64, d: f64) -> f64 {
         let b = &self.blend;
-        self.correction
-            .apply(b.eval(m, l, d), b.asymptotes(m, l, d), d)
+        let h = self
+            .correction
+            .apply(b.eval(m, l, d), b.asymptotes(m, l, d), d);
+        self.side.as_ref().map_or(h, |s| h * s.factor(m, l, d))
+    }
+
+    /// The factor that turns the blend's asymptotes into the formula's at (M, L, D): 1, or the
+    /// side-lobe factor (constant beyond the data's box).
+    pub fn asymptote_factor(&self, m: f64, l: f64, d: f64) -> f64 {
+        self.side.as_ref().map_or(1.0, |s| s.factor(m, l, d))
     }
 
     /// The relative errors formula / data - 1 of `film` at the cases of `pts` that carry it,
@@ -131,4 +145,8 @@ pub struct QuantityFit {
     /// e.g. the midpoints between the data), never fitted; with the data's error estimates.
     #[serde(default)]
     pub check: Vec<CaseError>,
+    /// The held-out choice of the side-lobe factor (point H_min fitted through the centre
+    /// line's minimum; None otherwise).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub side: Option<SideChoice>,
 }

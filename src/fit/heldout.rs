@@ -262,6 +262,23 @@ pub fn correction_for<Mo: FilmModel>(
     fit_correction(&z, &r, &basis.terms, basis.ridge)
 }
 
+/// The fold of each sample (module doc): ranked by (M, L, D), the sample of rank k in fold
+/// k mod [`FOLDS`].
+pub fn folds_of(data: &[Sample]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..data.len()).collect();
+    order.sort_by(|&i, &j| {
+        let (a, b) = (&data[i], &data[j]);
+        a.m.total_cmp(&b.m)
+            .then(a.l.total_cmp(&b.l))
+            .then(a.d.total_cmp(&b.d))
+    });
+    let mut fold = vec![0; data.len()];
+    for (rank, &i) in order.iter().enumerate() {
+        fold[i] = rank % FOLDS;
+    }
+    fold
+}
+
 /// Cross-validate the `candidates` (those without a ridge only when the folds have [`SPARE`] more
 /// cases than terms). None when there are fewer than 2 [`FOLDS`] cases, a fold's blend fit fails
 /// or no candidate without terms (the blend alone) is scored.
@@ -274,17 +291,7 @@ pub fn select<Mo: FilmModel>(
     if data.len() < 2 * FOLDS {
         return None;
     }
-    let mut order: Vec<usize> = (0..data.len()).collect();
-    order.sort_by(|&i, &j| {
-        let (a, b) = (&data[i], &data[j]);
-        a.m.total_cmp(&b.m)
-            .then(a.l.total_cmp(&b.l))
-            .then(a.d.total_cmp(&b.d))
-    });
-    let mut fold = vec![0; data.len()];
-    for (rank, &i) in order.iter().enumerate() {
-        fold[i] = rank % FOLDS;
-    }
+    let fold = folds_of(data);
     let smallest_train = (0..FOLDS)
         .map(|f| fold.iter().filter(|&&g| g != f).count())
         .min()?;

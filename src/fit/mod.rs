@@ -3,7 +3,8 @@
 //! [`model`] (line, Moes 1992 form) and [`point_model`] (point, NVM 1994 form) define the
 //! blended-asymptote formulas, [`lsq`] fits either in log space by Levenberg-Marquardt with
 //! parameter uncertainties, [`correction`] is the interior correction that vanishes in every
-//! asymptotic limit and [`heldout`] chooses its size by cross-validation, [`stats`] turns formula-vs-data errors into tables (overall and per
+//! asymptotic limit and [`heldout`] chooses its size by cross-validation, [`side`] is the
+//! side-lobe factor of the point minimum film, [`stats`] turns formula-vs-data errors into tables (overall and per
 //! region of the (M, L) plane, and the M range that meets a target), [`dataset`] reads the
 //! sweep rows a fit uses, [`fitted`] holds what a fit returns and [`error`] why a fit failed.
 
@@ -15,4 +16,5 @@ pub mod heldout;
 pub mod lsq;
 pub mod model;
 pub mod point_model;
+pub mod side;
 pub mod stats;

@@ -25,6 +25,7 @@ use crate::fit::dataset::FitPoint;
 use crate::fit::dataset::MAX_ERROR_ESTIMATE;
 use crate::fit::model::LineModel;
 use crate::fit::point_model::PointModel;
+use crate::fit::side::SideLobe;
 use crate::fit::stats::null_as_nan;
 use crate::limits::rigid_d_factor::{FarFieldRigid, CHECK_GRIDS};
 use crate::limits::rigid_point::{extrapolate, RigidPointSolves, DOMAIN_SCALES};
@@ -219,7 +220,11 @@ pub fn line_checks(fits: &[(Film, LineModel)], pts: &[FitPoint]) -> Vec<Asymptot
 /// enlarged domains (about 110 s of work at 257^2, 60 s on two cores; on the 513^2 nightly
 /// data 10 min, most of it elastic L = 20 solves that run the whole fallback ladder and fail);
 /// and the D factor's four far-field rigid solves (a few seconds) when the data have D < 1.
-pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<AsymptoteCheck> {
+pub fn point_checks(
+    fits: &[(Film, PointModel)],
+    side: Option<&SideLobe>,
+    pts: &[FitPoint],
+) -> Vec<AsymptoteCheck> {
     // At D = 1 when the data have it (else their largest D), up to that D's largest M and L.
     let ds = pts.iter().filter_map(|p| p.d);
     let d = if ds.clone().any(|d| d == 1.0) {
@@ -270,6 +275,12 @@ pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<Asympt
     let mut out = vec![];
     for (film, fit) in fits {
         let x = &fit.x;
+        // H_min's asymptotes are the centre-line law's times the side-lobe factor (constant
+        // beyond the data's box, 1 where there is no side lobe).
+        let factor = |m: f64, l: f64, d: f64| match side {
+            Some(s) if *film == Film::Minimum => s.factor(m, l, d),
+            _ => 1.0,
+        };
         let laws = Laws {
             text: [
                 format!("{:.3} f_RI(D) D^{:.3} M^-2", x[0].exp(), x[1]),
@@ -291,7 +302,7 @@ pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<Asympt
                 "largest L of the data and the largest M there (the other laws still \
                  contribute; also solved at twice that L, beyond the data)",
             ],
-            at: &|m, l| fit.asymptotes(m, l, d),
+            at: &|m, l| fit.asymptotes(m, l, d).map(|h| h * factor(m, l, d)),
         };
         let mut rows = film_checks(*film, &s, Some(d), laws);
         match domains.as_ref().filter(|r| r.converged()) {
@@ -303,7 +314,7 @@ pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<Asympt
             }
             None => rows[0].note = RIGID_POINT_FAILED.to_string(),
         }
-        if let Some(row) = d_factor_row(fit, *film, &far) {
+        if let Some(row) = d_factor_row(fit, *film, &far, &factor) {
             rows.insert(1, row);
         }
         out.extend(rows);
@@ -314,13 +325,16 @@ pub fn point_checks(fits: &[(Film, PointModel)], pts: &[FitPoint]) -> Vec<Asympt
 /// The rigid-isoviscous row of the D factor: at the last of the far-field solves `far` (a tenth
 /// of the data's smallest D, beyond the data), its trend the ratio at each D; None without
 /// solves. A failed solve gives a row without a solver value.
-fn d_factor_row(fit: &PointModel, film: Film, far: &[FarFieldRigid]) -> Option<AsymptoteCheck> {
+fn d_factor_row(
+    fit: &PointModel,
+    film: Film,
+    far: &[FarFieldRigid],
+    factor: &dyn Fn(f64, f64, f64) -> f64,
+) -> Option<AsymptoteCheck> {
     let last = far.last()?;
-    let ratio = |r: &FarFieldRigid| {
-        r.converged()
-            .then(|| r.constant(film) / fit.asymptotes(1.0, 0.0, r.d)[0])
-    };
-    let fitted = fit.asymptotes(1.0, 0.0, last.d)[0];
+    let ri = |d: f64| fit.asymptotes(1.0, 0.0, d)[0] * factor(1.0, 0.0, d);
+    let ratio = |r: &FarFieldRigid| r.converged().then(|| r.constant(film) / ri(r.d));
+    let fitted = ri(last.d);
     let [a, p, q] = fit.ri_shape;
     Some(AsymptoteCheck {
         quantity: film.name().to_string(),

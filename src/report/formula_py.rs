@@ -1,13 +1,15 @@
 //! `formula.py`: the fitted formulas as a standalone Python module (standard library only) whose
 //! `H(M, L, D=None, film="H_c")` reproduces [`FittedModel::eval`] operation by operation (the
 //! blend of [`crate::fit::model`] / [`crate::fit::point_model`] times the correction of
-//! [`crate::fit::correction`]); `D=None` is the line formula, a number the point formula. Every
+//! [`crate::fit::correction`], for the point H_min times the side-lobe factor of
+//! [`crate::fit::side`]); `D=None` is the line formula, a number the point formula. Every
 //! parameter is written with the shortest decimal that reads back to the same f64, so Python and
 //! Rust agree to rounding (tests/formula_py.rs: 1e-12 relative). Overflow in Python (which raises
 //! where Rust gives infinity) is caught and mapped to infinity, as in the Rust evaluation.
 
 use crate::fit::correction::{Correction, Transition, LATTICE, TAIL};
 use crate::fit::fitted::{Blend, FittedModel};
+use crate::fit::side::SideLobe;
 use crate::report::{ContactReport, FitReport};
 use std::fmt::Write;
 
@@ -150,6 +152,31 @@ def _correction(terms, asym, D):
         total += coef * base
     return total
 
+
+def _side(side, M, L, D):
+    """The side-lobe factor exp(-max(0, g)) of the point H_min (1 without one)."""
+    if side is None:
+        return 1.0
+    x = (math.log(M), math.log(D), math.log1p(L))
+    if side["ramp"] is None:
+        r = 1.0
+    else:
+        a, b = side["ramp"]
+        r = min(max((x[0] - a) / (b - a), 0.0), 1.0)
+    if r == 0.0:
+        return 1.0
+    t = []
+    for v, lo, hi in zip(x, side["lo"], side["hi"]):
+        w = hi - lo
+        t.append(min(max(2.0 * (v - lo) / w - 1.0, -1.0), 1.0) if w > 0.0 else 0.0)
+    g = 0.0
+    for powers, coef in zip(side["powers"], side["coef"]):
+        m = 1.0
+        for v, k in zip(t, powers):
+            m *= v ** k
+        g += coef * m
+    return _exp(-max(0.0, r * g))
+
 "#;
 
 fn f(v: f64) -> String {
@@ -192,6 +219,30 @@ fn terms(c: &Correction) -> String {
     format!("[{}]", rows.join(", "))
 }
 
+fn list(v: &[f64]) -> String {
+    v.iter().map(|v| f(*v)).collect::<Vec<_>>().join(", ")
+}
+
+fn side(s: Option<&SideLobe>) -> String {
+    let Some(s) = s else {
+        return "None".to_string();
+    };
+    let powers: Vec<String> = s
+        .powers
+        .iter()
+        .map(|p| format!("({}, {}, {})", p[0], p[1], p[2]))
+        .collect();
+    format!(
+        "{{\"lo\": [{}], \"hi\": [{}], \"powers\": [{}], \"coef\": [{}], \"ramp\": {}}}",
+        list(&s.lo),
+        list(&s.hi),
+        powers.join(", "),
+        list(&s.coef),
+        s.ramp
+            .map_or("None".to_string(), |r| format!("[{}]", list(&r)))
+    )
+}
+
 fn entry(m: &FittedModel) -> String {
     match &m.blend {
         Blend::Line(x) => format!(
@@ -201,14 +252,11 @@ fn entry(m: &FittedModel) -> String {
             terms(&m.correction)
         ),
         Blend::Point(x) => format!(
-            "{{\"x\": [{}], \"ri_shape\": [{}], \"terms\": {}}}",
-            x.x.iter().map(|v| f(*v)).collect::<Vec<_>>().join(", "),
-            x.ri_shape
-                .iter()
-                .map(|v| f(*v))
-                .collect::<Vec<_>>()
-                .join(", "),
-            terms(&m.correction)
+            "{{\"x\": [{}], \"ri_shape\": [{}], \"terms\": {}, \"side\": {}}}",
+            list(&x.x),
+            list(&x.ri_shape),
+            terms(&m.correction),
+            side(m.side.as_ref())
         ),
     }
 }
@@ -236,7 +284,8 @@ def H(M, L, D=None, film="H_c"):
         raise ValueError(f"no point formula for {film} (fitted: {sorted(POINT)})")
     e = POINT[film]
     asym = _point_asymptotes(e["x"], e["ri_shape"], M, L, D)
-    return _point_blend(e["x"], e["ri_shape"], M, L, D) * _exp(_correction(e["terms"], asym, D))
+    h = _point_blend(e["x"], e["ri_shape"], M, L, D) * _exp(_correction(e["terms"], asym, D))
+    return h * _side(e.get("side"), M, L, D)
 "#;
 
 /// The text of `formula.py` for the report's fitted formulas (a contact not fitted gives an

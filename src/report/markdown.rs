@@ -209,6 +209,44 @@ fn heldout(md: &mut String, q: &QuantityFit) {
     }
 }
 
+/// The side-lobe factor of the point H_min (src/fit/side.rs), when it has one.
+fn side_lobe(md: &mut String, q: &QuantityFit) {
+    let (Some(s), Some(c)) = (&q.model.side, &q.side) else {
+        return;
+    };
+    let _ = writeln!(
+        md,
+        "H_min = (the law above, fitted to the centre line's minimum H_min,cl) x exp(-max(0, g)), \
+         g = r(M) sum c_k t_M^i t_D^j t_L^n, with t_M, t_D, t_L = ln M, ln D, ln(1 + L) mapped \
+         onto [-1, 1] over ln M in [{}, {}], ln D in [{}, {}], ln(1 + L) in [{}, {}] and clamped \
+         there, r(M) = {}; the held-out errors above are of H_min (the candidates tried, of \
+         H_min,cl). Degrees ({}, {}, {}), ridge {:e}, chosen by held-out error: ln F held out \
+         RMS {:.2} %, max {}.\n",
+        sig5(s.lo[0]),
+        sig5(s.hi[0]),
+        sig5(s.lo[1]),
+        sig5(s.hi[1]),
+        sig5(s.lo[2]),
+        sig5(s.hi[2]),
+        s.ramp.map_or("1".to_string(), |[a, b]| format!(
+            "(ln M - {}) / {} clamped to [0, 1]",
+            sig5(a),
+            sig5(b - a)
+        )),
+        c.chosen.degrees[0],
+        c.chosen.degrees[1],
+        c.chosen.degrees[2],
+        c.chosen.ridge,
+        100.0 * c.rms,
+        pct(c.max)
+    );
+    let _ = writeln!(md, "| (i, j, n) | c_k |\n|---|---|");
+    for (p, k) in s.powers.iter().zip(&s.coef) {
+        let _ = writeln!(md, "| ({}, {}, {}) | {} |", p[0], p[1], p[2], sig5(*k));
+    }
+    md.push('\n');
+}
+
 fn quantity(md: &mut String, q: &QuantityFit) {
     let _ = writeln!(
         md,
@@ -228,6 +266,7 @@ fn quantity(md: &mut String, q: &QuantityFit) {
         );
     }
     heldout(md, q);
+    side_lobe(md, q);
     table(md, &q.overall, &q.regions);
     if !q.per_d.is_empty() {
         let _ = writeln!(md, "Per ellipticity:\n");

@@ -29,9 +29,12 @@ use crate::fit::correction::{Coordinates, Correction};
 pub use crate::fit::dataset::{FitInput, FitPoint};
 use crate::fit::error::FitError;
 pub use crate::fit::fitted::{Blend, FittedModel, Param, QuantityFit};
-use crate::fit::heldout::{joint, select, HeldOut, Refit};
+use crate::fit::heldout::{
+    folds_of, joint, select, worst_and_rms, CaseError, HeldOut, Refit, FOLDS,
+};
 use crate::fit::lsq::{fit, LsqFit, Sample};
 use crate::fit::model::FilmModel;
+use crate::fit::side::{select_side, SideCase, SideChoice, SideLobe, NO_LOBE};
 use crate::fit::stats::{d_table, err_stats, region_table, target_range, ErrStats, RegionStats};
 use crate::model::formulas::{
     dowson_toyoda_line_hc_moes, hamrock_dowson_hc_moes, moes_line_hc, nvm_point_hc,
@@ -201,6 +204,7 @@ fn quantity<Mo: FilmModel>(
     let model = FittedModel {
         blend: wrap(f.model.clone()),
         correction: correction.0,
+        side: None,
     };
     let data: Vec<_> = pts
         .iter()
@@ -237,6 +241,7 @@ fn quantity<Mo: FilmModel>(
         within_target: target_range(&tuples, MAX_ERROR_TARGET),
         heldout: correction.1,
         check: vec![],
+        side: None,
     }
 }
 
@@ -326,6 +331,123 @@ fn corrected<Mo: FilmModel>(
     }
 }
 
+/// The cases carrying both the minimum film and the centre line's, with y = ln(H_min,cl /
+/// H_min) (0 where rounding puts H_min above H_min,cl).
+fn side_cases(pts: &[FitPoint]) -> Vec<SideCase> {
+    pts.iter()
+        .filter_map(|p| {
+            let cl = p.centre_line_min()?;
+            let h = p.film(Film::Minimum)?;
+            Some(SideCase {
+                m: p.m,
+                l: p.l,
+                d: p.dd(),
+                y: (cl / h).ln().max(0.0),
+            })
+        })
+        .collect()
+}
+
+/// The samples of the centre line's minimum film (the cases that carry it).
+fn centre_line_samples(pts: &[FitPoint]) -> Vec<Sample> {
+    pts.iter()
+        .filter_map(|p| {
+            p.centre_line_min().map(|h| Sample {
+                m: p.m,
+                l: p.l,
+                d: p.dd(),
+                h,
+            })
+        })
+        .collect()
+}
+
+/// The side-lobe factor chosen by held-out error with the folds of the centre-line fit
+/// (`cl`: its samples, `heldout`: its held-out errors), and the held-out errors of H_min composed
+/// of both: each case predicted by the centre-line law and the factor of the fits without its
+/// fold. None (and no held-out errors) when either cross-validation could not be made.
+#[allow(clippy::type_complexity)]
+fn with_side_lobes(
+    cl: &[Sample],
+    heldout: Option<HeldOut>,
+    cases: &[SideCase],
+    pts: &[FitPoint],
+) -> (Option<HeldOut>, Option<(SideLobe, SideChoice)>) {
+    let folds = folds_of(cl);
+    let index = |c: &SideCase| {
+        cl.iter()
+            .position(|s| s.m == c.m && s.l == c.l && s.d == c.d)
+            .expect("a side case carries the centre line's film")
+    };
+    let fold: Vec<usize> = cases.iter().map(|c| folds[index(c)]).collect();
+    let Some((lobe, choice)) = select_side(cases, &fold, FOLDS) else {
+        return (None, None);
+    };
+    let heldout = heldout.filter(|h| h.cases.len() == cl.len()).map(|mut h| {
+        let point = |c: &SideCase| {
+            pts.iter()
+                .find(|p| p.m == c.m && p.l == c.l && p.dd() == c.d)
+                .expect("a side case is a data case")
+        };
+        h.cases = cases
+            .iter()
+            .zip(&choice.heldout_g)
+            .map(|(c, g)| {
+                let p = point(c);
+                let h_min = p.film(Film::Minimum).expect("a side case carries H_min");
+                let predicted = (1.0 + h.cases[index(c)].error) * cl[index(c)].h;
+                CaseError {
+                    m: c.m,
+                    l: c.l,
+                    d: c.d,
+                    h: Some(h_min),
+                    error: predicted * (-g.max(0.0)).exp() / h_min - 1.0,
+                    estimate: p.estimate(Film::Minimum),
+                }
+            })
+            .collect();
+        let e: Vec<f64> = h.cases.iter().map(|c| c.error).collect();
+        let (worst, rms) = worst_and_rms(&e);
+        let w = &h.cases[worst];
+        h.chosen.rms = rms;
+        h.chosen.max = e[worst];
+        h.chosen.worst = (w.m, w.l, w.d);
+        h
+    });
+    (heldout, Some((lobe, choice)))
+}
+
+/// `q` (fitted to the centre line's minimum) with the side-lobe factor: its formula, errors
+/// and tables those of H_min.
+fn with_side(q: QuantityFit, pts: &[FitPoint], lobe: SideLobe, choice: SideChoice) -> QuantityFit {
+    let model = FittedModel {
+        side: Some(lobe),
+        ..q.model
+    };
+    let tuples: Vec<_> = pts
+        .iter()
+        .filter_map(|p| p.film(Film::Minimum).map(|h| (p, h)))
+        .map(|(p, h)| (p.m, p.l, model.eval(p.m, p.l, p.dd()), h))
+        .collect();
+    let dts: Vec<_> = tuples
+        .iter()
+        .zip(pts.iter().filter(|p| p.film(Film::Minimum).is_some()))
+        .filter_map(|(t, p)| p.d.map(|d| (d, t.2, t.3)))
+        .collect();
+    QuantityFit {
+        rms_log: (tuples.iter().map(|t| (t.2 / t.3).ln().powi(2)).sum::<f64>()
+            / tuples.len() as f64)
+            .sqrt(),
+        overall: err_stats(&tuples).unwrap_or(q.overall),
+        regions: region_table(&tuples),
+        per_d: d_table(&dts),
+        within_target: target_range(&tuples, MAX_ERROR_TARGET),
+        model,
+        side: Some(choice),
+        ..q
+    }
+}
+
 /// Fit each film the data carry (a film with fewer cases than the contact needs is left out and
 /// named in `skipped_films`); returns the report without checks and published formulas, and the
 /// fitted models for the checks.
@@ -343,7 +465,13 @@ fn fit_films<Mo: FilmModel>(
     };
     let mut models = vec![];
     for film in Film::ALL {
-        let data = samples(pts, film);
+        let side = (r.side_lobes && film == Film::Minimum)
+            .then(|| side_cases(pts))
+            .filter(|c| c.len() >= need && c.iter().any(|c| c.y > NO_LOBE));
+        let data = match side {
+            Some(_) => centre_line_samples(pts),
+            None => samples(pts, film),
+        };
         if data.len() < need {
             report.skipped_films.push(format!(
                 "{}: {} of {} cases carry it, need at least {need}",
@@ -365,9 +493,23 @@ fn fit_films<Mo: FilmModel>(
             .filter(|p| p.film(film).is_some())
             .map(|p| p.estimate(film))
             .collect();
-        let correction = (correction, heldout.map(|h| h.with_estimates(&estimates)));
-        models.push((film, f.model.clone()));
-        let q = Some(quantity(film, pts, f, correction, r.names, r.wrap));
+        let (correction, heldout, side) = match side {
+            Some(cases) => {
+                let (heldout, side) = with_side_lobes(&data, heldout, &cases, pts);
+                (correction, heldout, side)
+            }
+            None => (
+                correction,
+                heldout.map(|h| h.with_estimates(&estimates)),
+                None,
+            ),
+        };
+        let q = quantity(film, pts, f.clone(), (correction, heldout), r.names, r.wrap);
+        let q = Some(match side {
+            Some((lobe, choice)) => with_side(q, pts, lobe, choice),
+            None => q,
+        });
+        models.push((film, f.model));
         match film {
             Film::Centre => report.h_c = q,
             Film::PressureMax => report.h_pm = q,
@@ -412,7 +554,8 @@ fn point_report(
     }
     let (mut report, models) = fit_films(&recipe, pts, failed)?;
     if limit_solves {
-        report.asymptotes = point_checks(&models, pts);
+        let side = report.h_min.as_ref().and_then(|q| q.model.side.clone());
+        report.asymptotes = point_checks(&models, side.as_ref(), pts);
     }
     report.published = published("NVM 1994", pts, |p| nvm_point_hc(p.m, p.l, p.dd()));
     report

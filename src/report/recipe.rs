@@ -99,6 +99,9 @@ pub(super) struct Recipe<Mo> {
     pub(super) wrap: fn(Mo) -> Blend,
     /// The candidate corrections for data at these coordinates ([`crate::fit::heldout`]).
     pub(super) bases: fn(&[Coordinates]) -> Vec<Basis>,
+    /// Whether H_min is fitted as the centre line's minimum times the side-lobe factor
+    /// ([`crate::fit::side`]) when the data carry H_min,cl (point contacts).
+    pub(super) side_lobes: bool,
 }
 
 /// Ridge weights of the line lattice candidates ([`line_bases`]).
@@ -172,6 +175,7 @@ pub(super) fn line_recipe() -> Recipe<LineModel> {
         names: &PARAM_NAMES,
         wrap: Blend::Line,
         bases: line_bases,
+        side_lobes: false,
     }
 }
 
@@ -201,5 +205,6 @@ pub(super) fn point_recipe(pts: &[FitPoint]) -> Recipe<PointModel> {
         names: &POINT_PARAM_NAMES,
         wrap: Blend::Point,
         bases: point_bases,
+        side_lobes: true,
     }
 }

@@ -391,6 +391,7 @@ mod tests {
         FittedModel {
             blend: crate::fit::fitted::Blend::Line(crate::fit::model::LineModel::moes()),
             correction: Default::default(),
+            side: None,
         }
     }
 
@@ -440,6 +441,7 @@ mod tests {
                 regions: vec![],
                 per_d: vec![],
                 within_target: None,
+                side: None,
                 check: [20.0, 50.0]
                     .map(|m| CaseError {
                         m,

@@ -1,0 +1,405 @@
+//! The side-lobe factor of the elliptic-contact minimum film.
+//!
+//! Where the exit constriction of a point contact closes faster at its sides than on the centre
+//! line, the minimum film H_min sits in a side lobe, below the centre line's minimum H_min,cl;
+//! elsewhere the two are the same film. The point formula for H_min is therefore the
+//! centre-line law (the blend and its interior correction fitted to H_min,cl) times
+//!
+//! F = exp(-max(0, g)),  g = r(M) sum_k c_k t_M^i t_D^j t_L^n,  (i, j, n) = powers of term k,
+//!
+//! with t_M, t_D, t_L the coordinates ln M, ln D and ln(1 + L) mapped linearly onto [-1, 1] over
+//! the box of the data fitted and clamped to it, and the ramp r(M) = (ln M - ln M_0) /
+//! (ln M_1 - ln M_0) clamped to [0, 1], M_1 the smallest M of a side-lobe case and M_0 the
+//! largest M of the data below it (r = 1 when the smallest M of the data already has a side
+//! lobe): no side lobe up to M_0, the polynomial alone from M_1 on. Invariants: F <= 1 everywhere (the side lobe never
+//! lifts the minimum above the centre line's); F = 1 exactly wherever g <= 0 (no side lobe),
+//! in particular at every M <= M_0, so the rigid limit is the centre line's; and beyond the
+//! data's box F is its value at the nearest point of the box (each asymptote of H_min is the
+//! centre-line asymptote times a constant factor).
+//!
+//! The coefficients minimise |Phi c - y|^2 + lambda |c|^2 over the hinge: y = ln(H_min,cl /
+//! H_min) >= 0 at every case where the minimum is in a side lobe, and at a case without one
+//! (y = 0) only while the fitted g is positive there (an active-set iteration from the side-lobe
+//! cases; [`fit_side`]). Which powers and ridge weight are kept is chosen by held-out error
+//! ([`select_side`]).
+
+use nalgebra::{DMatrix, DVector};
+use serde::{Deserialize, Serialize};
+
+/// One case of the side-lobe fit: M, L, D and y = ln(H_min,cl / H_min) (>= 0).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SideCase {
+    /// Moes' M.
+    pub m: f64,
+    /// Moes' L.
+    pub l: f64,
+    /// D = Rx/Ry.
+    pub d: f64,
+    /// ln(H_min,cl / H_min): 0 where the minimum is on the centre line.
+    pub y: f64,
+}
+
+/// The fitted side-lobe factor (module doc).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SideLobe {
+    /// The box of the data in (ln M, ln D, ln(1 + L)): lower corner.
+    pub lo: [f64; 3],
+    /// Upper corner.
+    pub hi: [f64; 3],
+    /// The powers (i, j, n) of t_M, t_D, t_L of each term.
+    pub powers: Vec<[u8; 3]>,
+    /// The coefficient of each term.
+    pub coef: Vec<f64>,
+    /// ln M_0 and ln M_1 of the ramp (None: no ramp, r = 1).
+    #[serde(default)]
+    pub ramp: Option<[f64; 2]>,
+}
+
+/// A y below this counts as no side lobe (the centre line's minimum and the global one agree to
+/// rounding).
+pub const NO_LOBE: f64 = 1e-9;
+
+/// Rounds of the active-set iteration of [`fit_side`].
+const ROUNDS: usize = 50;
+
+fn raw(m: f64, l: f64, d: f64) -> [f64; 3] {
+    [m.ln(), d.ln(), l.ln_1p()]
+}
+
+impl SideLobe {
+    /// The coordinates (t_M, t_D, t_L) in [-1, 1] of (M, L, D), clamped to the box.
+    pub fn coords(&self, m: f64, l: f64, d: f64) -> [f64; 3] {
+        let x = raw(m, l, d);
+        std::array::from_fn(|k| {
+            let w = self.hi[k] - self.lo[k];
+            if w > 0.0 {
+                (2.0 * (x[k] - self.lo[k]) / w - 1.0).clamp(-1.0, 1.0)
+            } else {
+                0.0
+            }
+        })
+    }
+
+    /// The ramp r(M) (module doc).
+    pub fn ramp(&self, m: f64) -> f64 {
+        self.ramp
+            .map_or(1.0, |[a, b]| ((m.ln() - a) / (b - a)).clamp(0.0, 1.0))
+    }
+
+    /// g(M, L, D) before the hinge.
+    pub fn g(&self, m: f64, l: f64, d: f64) -> f64 {
+        let r = self.ramp(m);
+        if r == 0.0 {
+            return 0.0;
+        }
+        let t = self.coords(m, l, d);
+        r * self
+            .powers
+            .iter()
+            .zip(&self.coef)
+            .map(|(p, c)| c * monomial(t, *p))
+            .sum::<f64>()
+    }
+
+    /// The factor F = exp(-max(0, g)) in (0, 1].
+    pub fn factor(&self, m: f64, l: f64, d: f64) -> f64 {
+        (-self.g(m, l, d).max(0.0)).exp()
+    }
+}
+
+fn monomial(t: [f64; 3], p: [u8; 3]) -> f64 {
+    t.iter().zip(p).map(|(v, k)| v.powi(i32::from(k))).product()
+}
+
+/// The tensor powers (i, j, n) with i <= `deg[0]`, j <= `deg[1]`, n <= `deg[2]`.
+pub fn tensor_powers(deg: [u8; 3]) -> Vec<[u8; 3]> {
+    let mut out = vec![];
+    for i in 0..=deg[0] {
+        for j in 0..=deg[1] {
+            for n in 0..=deg[2] {
+                out.push([i, j, n]);
+            }
+        }
+    }
+    out
+}
+
+/// The box of `cases` in (ln M, ln D, ln(1 + L)).
+pub fn data_box(cases: &[SideCase]) -> ([f64; 3], [f64; 3]) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for c in cases {
+        let x = raw(c.m, c.l, c.d);
+        for k in 0..3 {
+            lo[k] = lo[k].min(x[k]);
+            hi[k] = hi[k].max(x[k]);
+        }
+    }
+    (lo, hi)
+}
+
+/// The hinge fit of `powers` with ridge weight `ridge` to `cases` (module doc): least squares
+/// over the side-lobe cases (y > [`NO_LOBE`]) and the cases without one where g > 0, iterated
+/// until that set stops changing. None without a side-lobe case or when a solve fails.
+pub fn fit_side(cases: &[SideCase], powers: &[[u8; 3]], ridge: f64) -> Option<SideLobe> {
+    let (lo, hi) = data_box(cases);
+    let first_lobe = cases
+        .iter()
+        .filter(|c| c.y > NO_LOBE)
+        .map(|c| c.m.ln())
+        .fold(f64::INFINITY, f64::min);
+    let ramp = cases
+        .iter()
+        .map(|c| c.m.ln())
+        .filter(|&x| x < first_lobe)
+        .fold(None, |a: Option<f64>, x| Some(a.map_or(x, |a| a.max(x))))
+        .map(|m0| [m0, first_lobe]);
+    let mut side = SideLobe {
+        lo,
+        hi,
+        powers: powers.to_vec(),
+        coef: vec![0.0; powers.len()],
+        ramp,
+    };
+    let phi: Vec<Vec<f64>> = cases
+        .iter()
+        .map(|c| {
+            let t = side.coords(c.m, c.l, c.d);
+            let r = side.ramp(c.m);
+            powers.iter().map(|p| r * monomial(t, *p)).collect()
+        })
+        .collect();
+    let mut active: Vec<bool> = cases.iter().map(|c| c.y > NO_LOBE).collect();
+    if !active.iter().any(|a| *a) {
+        return None;
+    }
+    for _ in 0..ROUNDS {
+        let rows: Vec<usize> = (0..cases.len()).filter(|&i| active[i]).collect();
+        let n = powers.len();
+        let a = DMatrix::from_fn(rows.len(), n, |r, k| phi[rows[r]][k]);
+        let b = DVector::from_iterator(rows.len(), rows.iter().map(|&i| cases[i].y.max(0.0)));
+        let normal = a.tr_mul(&a) + DMatrix::<f64>::identity(n, n) * ridge;
+        let c = normal.cholesky()?.solve(&a.tr_mul(&b));
+        if !c.iter().all(|v| v.is_finite()) {
+            return None;
+        }
+        side.coef = c.iter().copied().collect();
+        let next: Vec<bool> = (0..cases.len())
+            .map(|i| {
+                cases[i].y > NO_LOBE
+                    || phi[i]
+                        .iter()
+                        .zip(&side.coef)
+                        .map(|(p, c)| p * c)
+                        .sum::<f64>()
+                        > 0.0
+            })
+            .collect();
+        if next == active {
+            break;
+        }
+        active = next;
+    }
+    Some(side)
+}
+
+/// A candidate of [`select_side`]: tensor degrees in (t_M, t_D, t_L) and the ridge weight.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SideCandidate {
+    /// Largest power of t_M, t_D and t_L.
+    pub degrees: [u8; 3],
+    /// The ridge weight lambda.
+    pub ridge: f64,
+}
+
+/// The ridge weights of the candidates (the coefficients of a polynomial on [-1, 1]^3 are
+/// O(0.1 ... 1); the largest keeps the hinge's extrapolation into the cases without a side lobe
+/// tame).
+pub const SIDE_RIDGES: [f64; 4] = [1e-6, 1e-4, 1e-3, 1e-2];
+
+/// The candidates tried, simplest first: tensor degrees up to (3, 3, 4) (the point data have
+/// 4 D values and 7 L values), each with every ridge of [`SIDE_RIDGES`].
+pub fn side_candidates() -> Vec<SideCandidate> {
+    let mut out = vec![];
+    for degrees in [
+        [1, 1, 1],
+        [1, 2, 2],
+        [2, 2, 2],
+        [2, 2, 3],
+        [2, 3, 3],
+        [3, 3, 3],
+        [2, 3, 4],
+        [3, 3, 4],
+    ] {
+        for ridge in SIDE_RIDGES {
+            out.push(SideCandidate { degrees, ridge });
+        }
+    }
+    out
+}
+
+/// The held-out choice of the side-lobe factor.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SideChoice {
+    /// The candidate kept: the first whose held-out RMS log error is within
+    /// [`crate::fit::heldout::RMS_SLACK`] of the best.
+    pub chosen: SideCandidate,
+    /// Its held-out RMS of ln F - ln(H_min / H_min,cl).
+    pub rms: f64,
+    /// Its largest |held-out log error|, sign kept.
+    pub max: f64,
+    /// Each case's held-out g (the fold's fit, before the hinge), in the cases' order.
+    pub heldout_g: Vec<f64>,
+}
+
+/// Cross-validate [`side_candidates`] on `cases` with the fold of each case given (`fold[i]` in
+/// 0..`folds`), keep the first within [`crate::fit::heldout::RMS_SLACK`] of the best held-out
+/// RMS and fit it on all cases. None when no candidate can be fitted on every fold.
+pub fn select_side(
+    cases: &[SideCase],
+    fold: &[usize],
+    folds: usize,
+) -> Option<(SideLobe, SideChoice)> {
+    let scored: Vec<(SideCandidate, Vec<f64>)> = side_candidates()
+        .into_iter()
+        .filter_map(|cand| {
+            let powers = tensor_powers(cand.degrees);
+            if powers.len() + 5 > cases.len() {
+                return None;
+            }
+            let mut g = vec![f64::NAN; cases.len()];
+            for f in 0..folds {
+                let train: Vec<SideCase> = (0..cases.len())
+                    .filter(|&i| fold[i] != f)
+                    .map(|i| cases[i])
+                    .collect();
+                let s = fit_side(&train, &powers, cand.ridge)?;
+                for i in (0..cases.len()).filter(|&i| fold[i] == f) {
+                    g[i] = s.g(cases[i].m, cases[i].l, cases[i].d);
+                }
+            }
+            g.iter().all(|v| v.is_finite()).then_some((cand, g))
+        })
+        .collect();
+    let err =
+        |g: &[f64]| -> Vec<f64> { g.iter().zip(cases).map(|(g, c)| c.y - g.max(0.0)).collect() };
+    let rms = |e: &[f64]| (e.iter().map(|v| v * v).sum::<f64>() / e.len() as f64).sqrt();
+    let best = scored
+        .iter()
+        .map(|(_, g)| rms(&err(g)))
+        .fold(f64::INFINITY, f64::min);
+    let (chosen, g) = scored
+        .into_iter()
+        .find(|(_, g)| rms(&err(g)) <= crate::fit::heldout::RMS_SLACK * best)?;
+    let e = err(&g);
+    let max = e
+        .iter()
+        .copied()
+        .fold(0.0f64, |a, v| if v.abs() > a.abs() { v } else { a });
+    let side = fit_side(cases, &tensor_powers(chosen.degrees), chosen.ridge)?;
+    Some((
+        side,
+        SideChoice {
+            chosen,
+            rms: rms(&e),
+            max,
+            heldout_g: g,
+        },
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A grid of cases in M 10 ... 1000, L 0 ... 20, D 0.1 ... 1 with y = max(0, g_true), g_true
+    /// of the factor's own form (degrees (1, 1, 1), the ramp from M_0 = 10) crossing 0 inside
+    /// the box.
+    fn hinge_cases() -> (Vec<SideCase>, SideLobe) {
+        let mut cases = vec![];
+        for i in 0..9 {
+            for l in [0.0, 1.0, 5.0, 20.0] {
+                for d in [0.1, 0.25, 0.5, 1.0] {
+                    cases.push(SideCase {
+                        m: 10f64.powf(1.0 + 0.25 * f64::from(i)),
+                        l,
+                        d,
+                        y: 0.0,
+                    });
+                }
+            }
+        }
+        let (lo, hi) = data_box(&cases);
+        let truth = SideLobe {
+            lo,
+            hi,
+            powers: tensor_powers([1, 1, 1]),
+            coef: vec![0.1, 0.05, 0.2, 0.02, 0.3, 0.05, 0.1, 0.01],
+            ramp: Some([lo[0], lo[0] + 0.25 * 10f64.ln()]),
+        };
+        for c in &mut cases {
+            c.y = truth.g(c.m, c.l, c.d).max(0.0);
+        }
+        (cases, truth)
+    }
+
+    #[test]
+    fn the_hinge_fit_recovers_a_factor_of_its_own_form() {
+        let (cases, truth) = hinge_cases();
+        let lobes = cases.iter().filter(|c| c.y > NO_LOBE).count();
+        assert!(lobes > 20 && lobes < cases.len() - 20, "{lobes}");
+        let fit = fit_side(&cases, &tensor_powers([1, 1, 1]), 1e-12).unwrap();
+        let (a, b) = (fit.ramp.unwrap(), truth.ramp.unwrap());
+        assert!(
+            (a[0] - b[0]).abs() + (a[1] - b[1]).abs() < 1e-12,
+            "{a:?} {b:?}"
+        );
+        for (a, b) in fit.coef.iter().zip(&truth.coef) {
+            assert!((a - b).abs() < 1e-6, "{:?} {:?}", fit.coef, truth.coef);
+        }
+        for c in &cases {
+            let r = fit.factor(c.m, c.l, c.d) / (-c.y).exp();
+            assert!((r - 1.0).abs() < 1e-8, "{c:?} {r}");
+        }
+    }
+
+    #[test]
+    fn the_factor_never_lifts_the_film_and_is_constant_beyond_the_box() {
+        let (cases, truth) = hinge_cases();
+        for c in &cases {
+            assert!(truth.factor(c.m, c.l, c.d) <= 1.0);
+        }
+        // Beyond the box (M 1e6, L 40, D 0.01; M 1e-3): the value at the nearest box point.
+        let edge = truth.factor(1000.0, 20.0, 0.1);
+        assert!(edge < 0.99, "{edge}");
+        assert_eq!(truth.factor(1e6, 40.0, 0.01), edge);
+        assert_eq!(truth.factor(1e-3, 0.0, 1.0), truth.factor(10.0, 0.0, 1.0));
+        assert_eq!(truth.factor(10.0, 5.0, 1.0), 1.0, "the ramp is 0 at M_0");
+        assert_eq!(
+            truth.factor(100.0, 0.0, 0.1),
+            1.0,
+            "no side lobe in that corner"
+        );
+    }
+
+    #[test]
+    fn held_out_selection_finds_the_exact_form_and_predicts_every_case() {
+        let (cases, _) = hinge_cases();
+        let fold: Vec<usize> = (0..cases.len()).map(|i| i % 5).collect();
+        let (side, choice) = select_side(&cases, &fold, 5).unwrap();
+        assert_eq!(choice.heldout_g.len(), cases.len());
+        assert!(choice.rms < 1e-4 && choice.max.abs() < 1e-3, "{choice:?}");
+        // The simplest candidate that holds the exact form is kept.
+        assert_eq!(choice.chosen.degrees, [1, 1, 1]);
+        assert_eq!(side.powers.len(), 8);
+    }
+
+    #[test]
+    fn no_side_lobe_case_no_fit() {
+        let (mut cases, _) = hinge_cases();
+        for c in &mut cases {
+            c.y = 0.0;
+        }
+        assert!(fit_side(&cases, &tensor_powers([1, 1, 1]), 1e-8).is_none());
+    }
+}
