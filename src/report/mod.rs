@@ -362,28 +362,25 @@ fn centre_line_samples(pts: &[FitPoint]) -> Vec<Sample> {
         .collect()
 }
 
-/// The side-lobe factor chosen by held-out error with the folds of the centre-line fit
-/// (`cl`: its samples, `heldout`: its held-out errors), and the held-out errors of H_min composed
-/// of both: each case predicted by the centre-line law and the factor of the fits without its
-/// fold. None (and no held-out errors) when either cross-validation could not be made.
-#[allow(clippy::type_complexity)]
-fn with_side_lobes(
+/// The index of the side case `c` among the centre-line samples `cl`.
+fn index_in(cl: &[Sample], c: &SideCase) -> usize {
+    cl.iter()
+        .position(|s| s.m == c.m && s.l == c.l && s.d == c.d)
+        .expect("a side case carries the centre line's film")
+}
+
+/// The held-out errors of H_min composed of the centre-line law's (`heldout`, on the samples
+/// `cl`) and the side-lobe factor's (`choice`, on `cases`, the same folds): each case predicted
+/// by both parts fitted without its fold. None without the centre line's held-out errors.
+fn composed(
     cl: &[Sample],
     heldout: Option<HeldOut>,
     cases: &[SideCase],
+    choice: &SideChoice,
     pts: &[FitPoint],
-) -> (Option<HeldOut>, Option<(SideLobe, SideChoice)>) {
-    let folds = folds_of(cl);
-    let index = |c: &SideCase| {
-        cl.iter()
-            .position(|s| s.m == c.m && s.l == c.l && s.d == c.d)
-            .expect("a side case carries the centre line's film")
-    };
-    let fold: Vec<usize> = cases.iter().map(|c| folds[index(c)]).collect();
-    let Some((lobe, choice)) = select_side(cases, &fold, FOLDS) else {
-        return (None, None);
-    };
-    let heldout = heldout.filter(|h| h.cases.len() == cl.len()).map(|mut h| {
+) -> Option<HeldOut> {
+    let index = |c: &SideCase| index_in(cl, c);
+    heldout.filter(|h| h.cases.len() == cl.len()).map(|mut h| {
         let point = |c: &SideCase| {
             pts.iter()
                 .find(|p| p.m == c.m && p.l == c.l && p.dd() == c.d)
@@ -413,8 +410,7 @@ fn with_side_lobes(
         h.chosen.max = e[worst];
         h.chosen.worst = (w.m, w.l, w.d);
         h
-    });
-    (heldout, Some((lobe, choice)))
+    })
 }
 
 /// `q` (fitted to the centre line's minimum) with the side-lobe factor: its formula, errors
@@ -465,9 +461,17 @@ fn fit_films<Mo: FilmModel>(
     };
     let mut models = vec![];
     for film in Film::ALL {
+        // The point H_min through the centre line: when the data carry it with side lobes and
+        // the side-lobe factor can be cross-validated (else H_min is fitted directly).
         let side = (r.side_lobes && film == Film::Minimum)
             .then(|| side_cases(pts))
-            .filter(|c| c.len() >= need && c.iter().any(|c| c.y > NO_LOBE));
+            .filter(|c| c.len() >= need && c.iter().any(|c| c.y > NO_LOBE))
+            .and_then(|cases| {
+                let cl = centre_line_samples(pts);
+                let folds = folds_of(&cl);
+                let fold: Vec<usize> = cases.iter().map(|c| folds[index_in(&cl, c)]).collect();
+                select_side(&cases, &fold, FOLDS).map(|(lobe, choice)| (cases, lobe, choice))
+            });
         let data = match side {
             Some(_) => centre_line_samples(pts),
             None => samples(pts, film),
@@ -493,16 +497,12 @@ fn fit_films<Mo: FilmModel>(
             .filter(|p| p.film(film).is_some())
             .map(|p| p.estimate(film))
             .collect();
-        let (correction, heldout, side) = match side {
-            Some(cases) => {
-                let (heldout, side) = with_side_lobes(&data, heldout, &cases, pts);
-                (correction, heldout, side)
-            }
-            None => (
-                correction,
-                heldout.map(|h| h.with_estimates(&estimates)),
-                None,
+        let (heldout, side) = match side {
+            Some((cases, lobe, choice)) => (
+                composed(&data, heldout, &cases, &choice, pts),
+                Some((lobe, choice)),
             ),
+            None => (heldout.map(|h| h.with_estimates(&estimates)), None),
         };
         let q = quantity(film, pts, f.clone(), (correction, heldout), r.names, r.wrap);
         let q = Some(match side {
