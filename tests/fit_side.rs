@@ -5,7 +5,8 @@
 //!
 //! * The H_min law is the centre-line law times exp(-max(0, g)); its held-out errors are those of
 //!   H_min, every case predicted by both parts fitted without its fold (measured 2026-12-06:
-//!   4.88 % max, 1.01 % RMS; the NVM-form law fitted to H_min directly was 16.8 % / 3.54 % on
+//!   4.33 % max, 0.92 % RMS with the lattice ridge 1e-1 chosen; 4.88 % / 1.01 % when the
+//!   largest ridge offered was 1e-2; the NVM-form law fitted to H_min directly was 16.8 % / 3.54 % on
 //!   the same rows, docs/validation.md), which is still above issue 24's 2 %.
 //! * The factor alone is held out to 0.30 % RMS, 1.41 % max in ln F.
 //! * The formula never puts H_min above the centre line's minimum, and equals it up to the
@@ -57,7 +58,7 @@ fn the_point_minimum_film_is_the_centre_line_law_times_the_side_lobe_factor() {
     let h = q.heldout.as_ref().expect("held-out errors");
     assert_eq!(h.cases.len(), 420);
     assert!(
-        h.chosen.max.abs() < 0.055 && h.chosen.rms < 0.012,
+        h.chosen.max.abs() < 0.05 && h.chosen.rms < 0.011,
         "{} {}",
         h.chosen.max,
         h.chosen.rms
@@ -71,8 +72,9 @@ fn the_point_minimum_film_is_the_centre_line_law_times_the_side_lobe_factor() {
             .unwrap();
         assert!((c.h.unwrap() / p.h_min - 1.0).abs() < 1e-12);
     }
-    // In sample the formula meets 2.5 % at every case (measured 2.40 %).
-    assert!(q.overall.max.abs() < 0.025, "{:?}", q.overall);
+    // In sample the formula meets 3 % at every case (measured 2.66 %: the ridge chosen by
+    // held-out error, 1e-1, gives up some of the in-sample fit; 2.40 % with 1e-2).
+    assert!(q.overall.max.abs() < 0.03, "{:?}", q.overall);
     // The factor never lifts the film and is 1 up to M_0 = 7.2 at every (L, D) (the data's side
     // lobes start at M = 11.8).
     let [m0, m1] = side.ramp.expect("a ramp").map(f64::exp);
