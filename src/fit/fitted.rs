@@ -83,12 +83,6 @@ impl FittedModel {
         self.side.as_ref().map_or(h, |s| h * s.factor(m, l, d))
     }
 
-    /// The factor that turns the blend's asymptotes into the formula's at (M, L, D): 1, or the
-    /// side-lobe factor (constant beyond the data's box).
-    pub fn asymptote_factor(&self, m: f64, l: f64, d: f64) -> f64 {
-        self.side.as_ref().map_or(1.0, |s| s.factor(m, l, d))
-    }
-
     /// The relative errors formula / data - 1 of `film` at the cases of `pts` that carry it,
     /// with the data's film and error estimate (a check set: cases the formula was not fitted
     /// to).

@@ -23,6 +23,7 @@
 //! cases; [`fit_side`]). Which powers and ridge weight are kept is chosen by held-out error
 //! ([`select_side`]).
 
+use crate::fit::heldout::{worst_and_rms, RMS_SLACK};
 use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 
@@ -260,7 +261,8 @@ pub fn select_side(
     fold: &[usize],
     folds: usize,
 ) -> Option<(SideLobe, SideChoice)> {
-    let scored: Vec<(SideCandidate, Vec<f64>)> = side_candidates()
+    // Each candidate's held-out scores (log errors y - max(0, g)).
+    let scored: Vec<SideChoice> = side_candidates()
         .into_iter()
         .filter_map(|cand| {
             let powers = tensor_powers(cand.degrees);
@@ -278,34 +280,24 @@ pub fn select_side(
                     g[i] = s.g(cases[i].m, cases[i].l, cases[i].d);
                 }
             }
-            g.iter().all(|v| v.is_finite()).then_some((cand, g))
+            if !g.iter().all(|v| v.is_finite()) {
+                return None;
+            }
+            let e: Vec<f64> = g.iter().zip(cases).map(|(g, c)| c.y - g.max(0.0)).collect();
+            let (worst, rms) = worst_and_rms(&e);
+            Some(SideChoice {
+                chosen: cand,
+                rms,
+                max: e[worst],
+                heldout_g: g,
+            })
         })
         .collect();
-    let err =
-        |g: &[f64]| -> Vec<f64> { g.iter().zip(cases).map(|(g, c)| c.y - g.max(0.0)).collect() };
-    let rms = |e: &[f64]| (e.iter().map(|v| v * v).sum::<f64>() / e.len() as f64).sqrt();
-    let best = scored
-        .iter()
-        .map(|(_, g)| rms(&err(g)))
-        .fold(f64::INFINITY, f64::min);
-    let (chosen, g) = scored
-        .into_iter()
-        .find(|(_, g)| rms(&err(g)) <= crate::fit::heldout::RMS_SLACK * best)?;
-    let e = err(&g);
-    let max = e
-        .iter()
-        .copied()
-        .fold(0.0f64, |a, v| if v.abs() > a.abs() { v } else { a });
-    let side = fit_side(cases, &tensor_powers(chosen.degrees), chosen.ridge)?;
-    Some((
-        side,
-        SideChoice {
-            chosen,
-            rms: rms(&e),
-            max,
-            heldout_g: g,
-        },
-    ))
+    let best = scored.iter().map(|s| s.rms).fold(f64::INFINITY, f64::min);
+    let choice = scored.into_iter().find(|s| s.rms <= RMS_SLACK * best)?;
+    let c = choice.chosen;
+    let side = fit_side(cases, &tensor_powers(c.degrees), c.ridge)?;
+    Some((side, choice))
 }
 
 #[cfg(test)]

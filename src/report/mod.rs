@@ -23,18 +23,17 @@ pub mod formula_py;
 pub mod markdown;
 pub mod mixed;
 mod recipe;
+mod side_lobes;
 pub mod surrogate;
 
 use crate::fit::correction::{Coordinates, Correction};
 pub use crate::fit::dataset::{FitInput, FitPoint};
 use crate::fit::error::FitError;
 pub use crate::fit::fitted::{Blend, FittedModel, Param, QuantityFit};
-use crate::fit::heldout::{
-    folds_of, joint, select, worst_and_rms, CaseError, HeldOut, Refit, FOLDS,
-};
+use crate::fit::heldout::{joint, select, HeldOut, Refit};
 use crate::fit::lsq::{fit, LsqFit, Sample};
 use crate::fit::model::FilmModel;
-use crate::fit::side::{select_side, SideCase, SideChoice, SideLobe, NO_LOBE};
+use crate::fit::side::{SideChoice, SideLobe};
 use crate::fit::stats::{d_table, err_stats, region_table, target_range, ErrStats, RegionStats};
 use crate::model::formulas::{
     dowson_toyoda_line_hc_moes, hamrock_dowson_hc_moes, moes_line_hc, nvm_point_hc,
@@ -44,6 +43,7 @@ use crate::report::recipe::{line_recipe, point_recipe, Recipe};
 pub use crate::report::recipe::{
     A_EI_CENTRAL, A_EI_MIN, B_RP_CENTRAL, C_RI_CENTRAL, LINE_RIDGES, MIN_CASES, POINT_RIDGES,
 };
+use crate::report::side_lobes::{composed, side_lobes};
 pub use crate::solve::film::Film;
 use serde::{Deserialize, Serialize};
 
@@ -198,13 +198,15 @@ fn quantity<Mo: FilmModel>(
     pts: &[FitPoint],
     f: LsqFit<Mo>,
     correction: (Correction, Option<HeldOut>),
+    side: Option<(SideLobe, SideChoice)>,
     names: &[&str],
     wrap: fn(Mo) -> Blend,
 ) -> QuantityFit {
+    let (lobe, choice) = side.unzip();
     let model = FittedModel {
         blend: wrap(f.model.clone()),
         correction: correction.0,
-        side: None,
+        side: lobe,
     };
     let data: Vec<_> = pts
         .iter()
@@ -230,7 +232,8 @@ fn quantity<Mo: FilmModel>(
             })
             .collect(),
         model,
-        // Of the formula as fitted (blend and correction), over the cases that carry the film.
+        // Of the formula as fitted (blend, correction and any side-lobe factor), over the cases
+        // that carry the film.
         rms_log: (tuples.iter().map(|t| (t.2 / t.3).ln().powi(2)).sum::<f64>()
             / tuples.len() as f64)
             .sqrt(),
@@ -241,7 +244,7 @@ fn quantity<Mo: FilmModel>(
         within_target: target_range(&tuples, MAX_ERROR_TARGET),
         heldout: correction.1,
         check: vec![],
-        side: None,
+        side: choice,
     }
 }
 
@@ -331,119 +334,6 @@ fn corrected<Mo: FilmModel>(
     }
 }
 
-/// The cases carrying both the minimum film and the centre line's, with y = ln(H_min,cl /
-/// H_min) (0 where rounding puts H_min above H_min,cl).
-fn side_cases(pts: &[FitPoint]) -> Vec<SideCase> {
-    pts.iter()
-        .filter_map(|p| {
-            let cl = p.centre_line_min()?;
-            let h = p.film(Film::Minimum)?;
-            Some(SideCase {
-                m: p.m,
-                l: p.l,
-                d: p.dd(),
-                y: (cl / h).ln().max(0.0),
-            })
-        })
-        .collect()
-}
-
-/// The samples of the centre line's minimum film (the cases that carry it).
-fn centre_line_samples(pts: &[FitPoint]) -> Vec<Sample> {
-    pts.iter()
-        .filter_map(|p| {
-            p.centre_line_min().map(|h| Sample {
-                m: p.m,
-                l: p.l,
-                d: p.dd(),
-                h,
-            })
-        })
-        .collect()
-}
-
-/// The index of the side case `c` among the centre-line samples `cl`.
-fn index_in(cl: &[Sample], c: &SideCase) -> usize {
-    cl.iter()
-        .position(|s| s.m == c.m && s.l == c.l && s.d == c.d)
-        .expect("a side case carries the centre line's film")
-}
-
-/// The held-out errors of H_min composed of the centre-line law's (`heldout`, on the samples
-/// `cl`) and the side-lobe factor's (`choice`, on `cases`, the same folds): each case predicted
-/// by both parts fitted without its fold. None without the centre line's held-out errors.
-fn composed(
-    cl: &[Sample],
-    heldout: Option<HeldOut>,
-    cases: &[SideCase],
-    choice: &SideChoice,
-    pts: &[FitPoint],
-) -> Option<HeldOut> {
-    let index = |c: &SideCase| index_in(cl, c);
-    heldout.filter(|h| h.cases.len() == cl.len()).map(|mut h| {
-        let point = |c: &SideCase| {
-            pts.iter()
-                .find(|p| p.m == c.m && p.l == c.l && p.dd() == c.d)
-                .expect("a side case is a data case")
-        };
-        h.cases = cases
-            .iter()
-            .zip(&choice.heldout_g)
-            .map(|(c, g)| {
-                let p = point(c);
-                let h_min = p.film(Film::Minimum).expect("a side case carries H_min");
-                let predicted = (1.0 + h.cases[index(c)].error) * cl[index(c)].h;
-                CaseError {
-                    m: c.m,
-                    l: c.l,
-                    d: c.d,
-                    h: Some(h_min),
-                    error: predicted * (-g.max(0.0)).exp() / h_min - 1.0,
-                    estimate: p.estimate(Film::Minimum),
-                }
-            })
-            .collect();
-        let e: Vec<f64> = h.cases.iter().map(|c| c.error).collect();
-        let (worst, rms) = worst_and_rms(&e);
-        let w = &h.cases[worst];
-        h.chosen.rms = rms;
-        h.chosen.max = e[worst];
-        h.chosen.worst = (w.m, w.l, w.d);
-        h
-    })
-}
-
-/// `q` (fitted to the centre line's minimum) with the side-lobe factor: its formula, errors
-/// and tables those of H_min.
-fn with_side(q: QuantityFit, pts: &[FitPoint], lobe: SideLobe, choice: SideChoice) -> QuantityFit {
-    let model = FittedModel {
-        side: Some(lobe),
-        ..q.model
-    };
-    let tuples: Vec<_> = pts
-        .iter()
-        .filter_map(|p| p.film(Film::Minimum).map(|h| (p, h)))
-        .map(|(p, h)| (p.m, p.l, model.eval(p.m, p.l, p.dd()), h))
-        .collect();
-    let dts: Vec<_> = tuples
-        .iter()
-        .zip(pts.iter().filter(|p| p.film(Film::Minimum).is_some()))
-        .filter_map(|(t, p)| p.d.map(|d| (d, t.2, t.3)))
-        .collect();
-    QuantityFit {
-        rms_log: (tuples.iter().map(|t| (t.2 / t.3).ln().powi(2)).sum::<f64>()
-            / tuples.len() as f64)
-            .sqrt(),
-        overall: err_stats(&tuples).unwrap_or(q.overall),
-        regions: region_table(&tuples),
-        per_d: d_table(&dts),
-        within_target: target_range(&tuples, MAX_ERROR_TARGET),
-        model,
-        side: Some(choice),
-        ..q
-    }
-}
-
 /// Fit each film the data carry (a film with fewer cases than the contact needs is left out and
 /// named in `skipped_films`); returns the report without checks and published formulas, and the
 /// fitted models for the checks.
@@ -464,16 +354,10 @@ fn fit_films<Mo: FilmModel>(
         // The point H_min through the centre line: when the data carry it with side lobes and
         // the side-lobe factor can be cross-validated (else H_min is fitted directly).
         let side = (r.side_lobes && film == Film::Minimum)
-            .then(|| side_cases(pts))
-            .filter(|c| c.len() >= need && c.iter().any(|c| c.y > NO_LOBE))
-            .and_then(|cases| {
-                let cl = centre_line_samples(pts);
-                let folds = folds_of(&cl);
-                let fold: Vec<usize> = cases.iter().map(|c| folds[index_in(&cl, c)]).collect();
-                select_side(&cases, &fold, FOLDS).map(|(lobe, choice)| (cases, lobe, choice))
-            });
-        let data = match side {
-            Some(_) => centre_line_samples(pts),
+            .then(|| side_lobes(pts, need))
+            .flatten();
+        let data = match &side {
+            Some(s) => s.centre_line.clone(),
             None => samples(pts, film),
         };
         if data.len() < need {
@@ -498,18 +382,19 @@ fn fit_films<Mo: FilmModel>(
             .map(|p| p.estimate(film))
             .collect();
         let (heldout, side) = match side {
-            Some((cases, lobe, choice)) => (
-                composed(&data, heldout, &cases, &choice, pts),
-                Some((lobe, choice)),
-            ),
+            Some(s) => (composed(&s, heldout, pts), Some((s.lobe, s.choice))),
             None => (heldout.map(|h| h.with_estimates(&estimates)), None),
         };
-        let q = quantity(film, pts, f.clone(), (correction, heldout), r.names, r.wrap);
-        let q = Some(match side {
-            Some((lobe, choice)) => with_side(q, pts, lobe, choice),
-            None => q,
-        });
-        models.push((film, f.model));
+        models.push((film, f.model.clone()));
+        let q = Some(quantity(
+            film,
+            pts,
+            f,
+            (correction, heldout),
+            side,
+            r.names,
+            r.wrap,
+        ));
         match film {
             Film::Centre => report.h_c = q,
             Film::PressureMax => report.h_pm = q,
