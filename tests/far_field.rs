@@ -8,6 +8,7 @@ use ehlmap::discrete::point::domain::PointDomainParams;
 use ehlmap::fit::point_model::{nvm_ri_shape, ri_d_factor};
 use ehlmap::limits::rigid_d_factor::ri_shape;
 use ehlmap::limits::rigid_point::{C_RI_CENTRE, C_RI_PMAX};
+use ehlmap::limits::rigid_rp::pi_law;
 use ehlmap::model::case::{Elasticity, Models, PointCase};
 use ehlmap::solve::film::Film;
 use ehlmap::solve::params::Converge;
@@ -105,7 +106,9 @@ fn rigid_circular_contact_meets_the_published_constants_in_one_solve() {
 /// values that its shape was not fitted to (0.3, 0.03) and beyond them (0.003, near the exact
 /// slender limit that fixes its exponent): Richardson over 257^2 and 513^2, tight convergence.
 /// Measured 2026-11-29: -0.029, 0.029, 0.068 % (H_c) and -0.014, 0.011, 0.065 % (H_pm); the
-/// solves lie 3.6 % (H_c) and 6.6 % (H_pm) below NVM's factor at D = 0.03.
+/// solves lie 3.6 % (H_c) and 6.6 % (H_pm) below NVM's factor at D = 0.03. The same for the
+/// rigid-piezoviscous factor pi(D) (src/limits/rigid_rp.rs), measured 2026-12-06: solver / law
+/// 1.00019, 0.99972, 0.99938.
 #[test]
 fn rigid_d_factor_matches_far_field_solves_off_its_fitted_points() {
     let rigid = Models {
@@ -131,6 +134,16 @@ fn rigid_d_factor_matches_far_field_solves_off_its_fitted_points() {
                 assert!(nvm < 0.97, "NVM's factor is off here: {nvm}");
             }
         }
+        // The rigid-piezoviscous D factor (src/limits/rigid_rp.rs) from the same solves:
+        // pi(D) = (alpha_bar(M = 1, L = 1) P_max)^(2/3).
+        let ab1 = PointCase::with_models(1.0, 1.0, d, rigid)
+            .unwrap()
+            .venner()
+            .alpha_bar;
+        let pi = |o: &ehlmap::Outputs| (ab1 * o.p_max).powf(2.0 / 3.0);
+        let ratio = rich(pi(&coarse), pi(&fine)) / pi_law(d);
+        println!("D = {d}: pi solver / law {ratio:.5}");
+        assert!((ratio - 1.0).abs() < 2.5e-3, "D = {d} pi: {ratio}");
     }
 }
 

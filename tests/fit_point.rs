@@ -9,6 +9,7 @@ use ehlmap::fit::dataset::load_fit_input;
 use ehlmap::fit::point_model::ri_d_factor;
 use ehlmap::limits::rigid_d_factor::ri_shape;
 use ehlmap::limits::rigid_point::{RigidPointSolves, C_RI_CENTRE, C_RI_PMAX};
+use ehlmap::limits::rigid_rp::PI_CIRCULAR;
 use ehlmap::report::{fit_report, Film, FitInput};
 use std::path::PathBuf;
 use std::process::Command;
@@ -52,16 +53,19 @@ fn point_fit_beats_nvm_and_checks_its_asymptotes() {
         "fit H_c max {:+.3} rms {:.3}; NVM max {:+.3} rms {:.3}",
         h_c.overall.max, h_c.overall.rms, nvm.max, nvm.rms
     );
-    // Measured: fit max 1.01 % with the interior correction (the blend alone 1.56 %, RMS 0.70 %:
-    // H_RI held, the rest free, the blend too: 48 cases with H_c's error estimate within 2 %);
-    // NVM 1994 max 7.90 %, RMS 2.72 % on the same 48 cases. The target is 2 %. (With NVM's blend
-    // held, c_00 = 1.8 and r = 3/2, and no correction: 1.91 %.)
+    // Measured: fit max 1.40 %, RMS 0.5 %, with H_RI and H_RP held at the solver's limits and the
+    // elastic exponents at theory's, and the interior correction (48 cases with H_c's error
+    // estimate within 2 %; 1.01 % when H_RP and the exponents were free); NVM 1994 max 7.90 %,
+    // RMS 2.72 % on the same 48 cases. The target is 2 %. (From the all-case blend alone, without
+    // the folds' blends as starts of the final fit, 2.05 %.)
     assert!(h_c.overall.max.abs() < 0.02, "{}", h_c.overall.max);
     assert!(h_c.overall.max.abs() < 0.5 * nvm.max.abs());
     assert!(h_c.overall.rms < 0.5 * nvm.rms);
-    // H_min: NVM's form follows the side-lobe minimum poorly at high L; the stage-2 fallbacks
-    // (RP law held, blend held) keep the blend to 9.3 % (18.4 % without them), the interior
-    // correction fitted jointly with it brings it to 3.00 % (held out: 9.6 %).
+    // H_min: these rows (schema before 7) have no centre-line minimum, so H_min is fitted
+    // directly, and NVM's form follows the side-lobe minimum poorly at high L. Measured 3.68 %
+    // (held out 9.3 %) with the elastic exponents at theory's (3.00 % when they were free; 7.1 %
+    // from the all-case blend alone). Current data carry H_min_cl and take the centre-line route
+    // (tests/fit_side.rs).
     let h_min = r.h_min.as_ref().unwrap();
     assert!(h_min.overall.max.abs() < 0.04, "{:?}", h_min.overall);
     // The film at the pressure maximum: 1.91 % with the correction (the blend alone 3.04 %)
@@ -72,23 +76,32 @@ fn point_fit_beats_nvm_and_checks_its_asymptotes() {
     // NVM 41.3, truncated-domain numerics 23) is held at the solver's own, its rigid solves
     // extrapolated to an unbounded domain (35.5; checked against fresh solves below). Fitted
     // freely on these rows (M >= 7) it came out 40.2 with a sigma of ln c_RI of 0.19. The
-    // piezoviscous L exponent is near the theoretical 2/3 (0.655) and the elastic M exponent
-    // near NVM's -2/15 (-0.157, the data barely reach the EI regime; the bound is 0.04).
+    // rigid-piezoviscous law is held at the solver's limit (b = 35.5 pi(1), L^(2/3)) and the
+    // elastic exponents at theory's (-2/15; -1/12 and 3/4).
     assert_eq!(param(h_c, "ln_c_RI"), (35.5f64.ln(), 0.0));
     assert_eq!(
         param(r.h_pm.as_ref().unwrap(), "ln_c_RI"),
         (45f64.ln(), 0.0)
     );
-    let beta = param(h_c, "beta_RP").0;
-    assert!((beta - 2.0 / 3.0).abs() < 0.05, "beta_RP {beta}");
-    let alpha = param(h_c, "alpha_EI").0;
-    assert!((alpha + 2.0 / 15.0).abs() < 0.04, "alpha_EI {alpha}");
+    let b = param(h_c, "ln_b_RP");
+    assert!((b.0 - (35.5 * PI_CIRCULAR).ln()).abs() < 1e-12 && b.1 == 0.0);
+    for (name, v) in [
+        ("beta_RP", 2.0 / 3.0),
+        ("e_RP", 0.0),
+        ("alpha_EI", -2.0 / 15.0),
+        ("gamma_EP", -1.0 / 12.0),
+        ("delta_EP", 0.75),
+    ] {
+        let (x, sigma) = param(h_c, name);
+        assert!((x - v).abs() < 1e-15 && sigma == 0.0, "{name} {x} {sigma}");
+    }
     assert!(h_c.params.iter().all(|p| p.sigma.is_finite()));
-    // Four asymptote rows per film, and the D factor's rigid row (the data go down to D = 0.1).
+    // Four asymptote rows per film, and the D factor's rigid-isoviscous and rigid-piezoviscous
+    // rows (the data go down to D = 0.1).
     assert_eq!(
         r.asymptotes.len(),
-        15,
-        "four asymptotes and the D factor for each of three films"
+        18,
+        "four asymptotes and two D factors for each of three films"
     );
     let check = |film: &str, name: &str| {
         r.asymptotes
@@ -116,27 +129,31 @@ fn point_fit_beats_nvm_and_checks_its_asymptotes() {
     // smallest D (0.1) and a tenth of it, beyond the data, within 0.5 % of the held law
     // (measured 0.9998 and 1.0006 for H_c; 0.9998 and 1.0005 for H_pm). The solves lie 2.0 %
     // (H_c) and 4.8 % (H_pm) below NVM's factor at D = 0.1, 4.3 % and 7.5 % at D = 0.01.
+    // So is the D factor of H_RP (src/limits/rigid_rp.rs), from the same solves.
     for film in ["H_c", "H_pm", "H_min"] {
-        let row = r
-            .asymptotes
-            .iter()
-            .find(|a| a.quantity == film && a.trend_over == "D")
-            .unwrap_or_else(|| panic!("{film}: no D-factor row"));
-        assert_eq!(
-            (row.asymptote.as_str(), row.d),
-            ("rigid-isoviscous", Some(0.01))
-        );
-        assert_eq!(row.trend.len(), 2, "{:?}", row.trend);
-        assert_eq!(row.trend[0].0, 0.1);
-        for (d, ratio) in &row.trend {
-            assert!((ratio - 1.0).abs() < 5e-3, "{film} D = {d}: {ratio}");
+        for asymptote in ["rigid-isoviscous", "rigid-piezoviscous"] {
+            let row = r
+                .asymptotes
+                .iter()
+                .find(|a| a.quantity == film && a.trend_over == "D" && a.asymptote == asymptote)
+                .unwrap_or_else(|| panic!("{film}: no {asymptote} D-factor row"));
+            assert_eq!(row.d, Some(0.01));
+            assert_eq!(row.trend.len(), 2, "{:?}", row.trend);
+            assert_eq!(row.trend[0].0, 0.1);
+            for (d, ratio) in &row.trend {
+                assert!(
+                    (ratio - 1.0).abs() < 5e-3,
+                    "{film} {asymptote} D = {d}: {ratio}"
+                );
+            }
         }
     }
     let check = |name: &str| check("H_c", name);
-    // Why the fitted rigid-piezoviscous law is not the limit (README, known limits): the elastic
-    // films at the largest L lie well above it (measured: limit 0.7098 L^(2/3) = 5.23 at L = 20,
-    // D = 1; the data H_c 7.29 and 7.09 at M = 52 and 139, +36-40 %), and the blend's
-    // piezoviscous bracket never exceeds H_RP, so a law that fits them sits above the limit.
+    // The rigid-piezoviscous law is the limit: the row at D = 1 (rigid solves on domains enlarged
+    // 1, 2, 4 times, extrapolated) within 0.5 % of the law held from far-field solves, although
+    // the elastic films at the largest L lie well above it (limit 0.7098 L^(2/3) = 5.23 at L = 20,
+    // D = 1; the data H_c 7.29 and 7.09 at M = 52 and 139, +36-40 %): the interior correction
+    // carries the excess.
     let rp = check("rigid-piezoviscous");
     assert_eq!((rp.l, rp.d), (20.0, Some(1.0)));
     let limit = rp.solver.unwrap();
@@ -151,26 +168,26 @@ fn point_fit_beats_nvm_and_checks_its_asymptotes() {
         above.len() >= 2 && above.iter().all(|&x| x > 1.3),
         "{above:?}"
     );
-    assert!(
-        rp.fitted > 1.3 * limit,
-        "fitted {} limit {limit}",
-        rp.fitted
-    );
+    let ratio = rp.ratio.unwrap();
+    assert!((ratio - 1.0).abs() < 5e-3, "RP ratio {ratio}");
     // These 257^2 data stop at M = 139 (L = 0, its H_c only, and L = 20) for D = 1, short of the
-    // elastic limits: the solver / law ratio is below 1 and rises toward it over the data's M
-    // range (measured EI 0.921, 0.916, 0.940 at M = 13.9, 43.9, 139 with the blend fitted jointly
-    // with the interior correction; 0.893, 0.907, 0.939 with the blend alone, when this test
-    // asked for a strictly rising trend: loosened to last above first, since the jointly fitted
-    // EI law dips by 0.5 % at M = 43.9; EP 0.80, 0.86, 0.91). (The 513^2 nightly point sweep
-    // reaches M = 1000: EI ratio 1.000 there.)
+    // elastic limits: the solver / law ratio is below 1 over the data's M range. (Measured with
+    // the elastic exponents at theory's: EI 0.875, 0.853, 0.857 at M = 13.9, 43.9, 139, EP 0.783,
+    // 0.858, 0.911. With the exponents free this test also asked the EI ratio to rise over the
+    // range, last above first, measured 0.921, 0.916, 0.940; with theory's exponent the law is
+    // steeper than these pre-asymptotic data and the EI trend dips: that part is now asked of EP
+    // only.) (The 513^2 nightly point sweep reaches M = 1000: EI ratio 1.000 there.)
     for (name, n) in [("elastic-isoviscous", 3), ("elastic-piezoviscous", 3)] {
         let t = &check(name).trend;
+        println!("{name} trend {t:?}");
         assert_eq!(t.len(), n, "{name} trend {t:?}");
         assert!(
-            t[0].1 < t[n - 1].1 && t.iter().all(|p| p.1 < 1.01),
+            t.iter().all(|p| p.1 > 0.75 && p.1 < 1.01),
             "{name} trend {t:?}"
         );
     }
+    let ep = &check("elastic-piezoviscous").trend;
+    assert!(ep[0].1 < ep[2].1, "{ep:?}");
 }
 
 #[test]

@@ -205,7 +205,7 @@ pub fn joint<Mo: FilmModel>(
     blend: &Mo,
     basis: &Basis,
     refit: &Refit<Mo>,
-) -> Option<(Mo, Correction, Option<Vec<f64>>)> {
+) -> Option<JointFit<Mo>> {
     let mut blend = blend.clone();
     let mut c = correction_for(&blend, data, basis)?;
     let mut sigma = None;
@@ -244,6 +244,43 @@ pub fn joint<Mo: FilmModel>(
     Some((blend, c, sigma))
 }
 
+/// A [`joint`] fit: the blend, the correction and the blend's one-sigma uncertainties.
+pub type JointFit<Mo> = (Mo, Correction, Option<Vec<f64>>);
+
+/// [`joint`] from each blend of `starts`, the fit with the lowest RMS log error on `data` kept
+/// (the first on a tie); None when every start fails. The final fit of a film starts from the
+/// blend fitted on all cases and from each fold's blend of [`select`]: a nonlinear fit on all
+/// cases can settle where the folds' fits do better.
+pub fn joint_best<Mo: FilmModel>(
+    data: &[Sample],
+    starts: &[&Mo],
+    basis: &Basis,
+    refit: &Refit<Mo>,
+) -> Option<JointFit<Mo>> {
+    let rms = |(b, c, _): &JointFit<Mo>| {
+        let f = Corrected {
+            blend: b.clone(),
+            correction: c,
+        };
+        let ss: f64 = data
+            .iter()
+            .map(|s| (f.film(s.m, s.l, s.d) / s.h).ln().powi(2))
+            .sum();
+        ss / data.len() as f64
+    };
+    let mut best: Option<(JointFit<Mo>, f64)> = None;
+    for &start in starts {
+        let Some(fit) = joint(data, start, basis, refit) else {
+            continue;
+        };
+        let r = rms(&fit);
+        if r.is_finite() && best.as_ref().is_none_or(|(_, b)| r < *b) {
+            best = Some((fit, r));
+        }
+    }
+    best.map(|(fit, _)| fit)
+}
+
 fn coords<Mo: FilmModel>(model: &Mo, s: &Sample) -> Coordinates {
     Coordinates::new(model.asymptotes(s.m, s.l, s.d), s.d)
 }
@@ -280,14 +317,15 @@ pub fn folds_of(data: &[Sample]) -> Vec<usize> {
 }
 
 /// Cross-validate the `candidates` (those without a ridge only when the folds have [`SPARE`] more
-/// cases than terms). None when there are fewer than 2 [`FOLDS`] cases, a fold's blend fit fails
-/// or no candidate without terms (the blend alone) is scored.
+/// cases than terms): the scores, and the blend fitted on each fold's training cases. None when
+/// there are fewer than 2 [`FOLDS`] cases, a fold's blend fit fails or no candidate without
+/// terms (the blend alone) is scored.
 pub fn select<Mo: FilmModel>(
     data: &[Sample],
     candidates: &[Basis],
     fit_blend: &dyn Fn(&[Sample]) -> Option<Mo>,
     refit: &Refit<Mo>,
-) -> Option<HeldOut> {
+) -> Option<(HeldOut, Vec<Mo>)> {
     if data.len() < 2 * FOLDS {
         return None;
     }
@@ -372,13 +410,14 @@ pub fn select<Mo: FilmModel>(
             estimate: None,
         })
         .collect();
-    Some(HeldOut {
+    let h = HeldOut {
         folds: FOLDS,
         sizes: plain.into_iter().map(|(s, _)| s).collect(),
         joint: joint_scores.into_iter().map(|(s, _)| s).collect(),
         chosen,
         cases,
-    })
+    };
+    Some((h, blends))
 }
 
 /// The held-out RMS of candidate `k` among the `plain` scores.

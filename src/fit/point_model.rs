@@ -6,15 +6,17 @@
 //!
 //! H_RI = c_RI  f_RI(D) D^e_RI M^-2,            f_RI = [(1 + a D^p)/(1 + a)]^q / D
 //! H_EI = a M^alpha f_EI(D) D^e_EI,             f_EI = [c(D)/c(1)]^(-14/25) D^(-1/15)
-//! H_RP = b L^beta  f_RP(D) D^e_RP,             f_RP = [(1 + 0.691 D)/1.691]^(-2/3)
+//! H_RP = b L^beta  f_RP(D) D^e_RP,             f_RP = [(1 + 0.691 D)/1.691]^(-2/3) (NVM)
+//!                                              or f_RI(D) D psi(D) (the solver's)
 //! H_EP = d M^gamma L^delta f_EP(D) D^e_EP,     f_EP = [c(D)/c(1)]^(-7/20) D^(-1/24)
 //! H_00 = c_00 / D,
 //! H = { [H_RI^r + (H_EI^-4 + H_00^-4)^(-r/4)]^(s/r) + (H_RP^-8 + H_EP^-8)^(-s/8) }^(1/s),
 //! s = s0 (1 + exp(-s1 H_EI/H_RI));
 //!
 //! at L = 0 the piezoviscous bracket is dropped. Parameters: the vector of
-//! [`POINT_PARAM_NAMES`] (constants as logarithms) and the three constants (a, p, q) of f_RI,
-//! which are not fitted. [`PointModel::nvm`] (all e_i = 0, NVM's f_RI: a = 0.796, p = 14/15,
+//! [`POINT_PARAM_NAMES`] (constants as logarithms), the three constants (a, p, q) of f_RI and,
+//! when the RP law is the solver's, the three of psi(D) = [(1 + a D^p)/(1 + a)]^q
+//! ([`crate::limits::rigid_rp`]); none of them fitted. [`PointModel::nvm`] (all e_i = 0, NVM's f_RI: a = 0.796, p = 14/15,
 //! q = -15/7, c_00 = 1.8, r = 3/2 and NVM's constants) reproduces NVM 1994 exactly
 //! (docs/physics.md section 4); the fit frees c_00 and r with the other blend parameters once
 //! the data are many (as the line model frees its blending powers).
@@ -26,10 +28,14 @@
 //! 1/H^2 at fixed load); the fits hold its constant at the solver's own domain-extrapolated value
 //! ([`crate::limits::rigid_point`]) and its D factor at the solver's own, exact in the slender
 //! limit ([`crate::limits::rigid_d_factor`]; e_RI = 0), since the fitted rows barely see the
-//! rigid-isoviscous regime. (Fit figures behind these choices: docs/validation.md, "Fit: the
-//! nightly sweeps".)
+//! rigid-isoviscous regime; the fits hold the exponents of H_EI and H_EP at asymptotic theory's
+//! (NVM's), and H_RP at the solver's rigid-piezoviscous limit, beta = 2/3,
+//! b = c_RI pi(1), f_RP = f_RI(D) D psi(D), e_RP = 0 ([`crate::limits::rigid_rp`]). (Fit
+//! figures behind these choices: docs/validation.md, "Fit: the nightly sweeps" and "The
+//! rigid-piezoviscous D factor".)
 
 use crate::fit::model::FilmModel;
+use crate::limits::rigid_rp::psi;
 use serde::{Deserialize, Serialize};
 
 /// Names of the parameters, in vector order.
@@ -47,6 +53,10 @@ pub struct PointModel {
     /// The constants (a, p, q) of f_RI (not fitted; NVM's when absent from a stored model).
     #[serde(default = "nvm_ri_shape")]
     pub ri_shape: [f64; 3],
+    /// The constants (a, p, q) of psi(D) when f_RP is the solver's, f_RI(D) D psi(D)
+    /// ([`crate::limits::rigid_rp`]); None for NVM's f_RP (and in stored models before it).
+    #[serde(default)]
+    pub rp_shape: Option<[f64; 3]>,
 }
 
 /// NVM's (a, p, q) of f_RI.
@@ -55,8 +65,8 @@ pub fn nvm_ri_shape() -> [f64; 3] {
 }
 
 /// f_RI(D) = [(1 + a D^p)/(1 + a)]^q / D for the constants (a, p, q): 1 at D = 1.
-pub fn ri_d_factor([a, p, q]: [f64; 3], d: f64) -> f64 {
-    ((1.0 + a * d.powf(p)) / (1.0 + a)).powf(q) / d
+pub fn ri_d_factor(shape: [f64; 3], d: f64) -> f64 {
+    psi(shape, d) / d
 }
 
 fn c_nvm(d: f64) -> f64 {
@@ -75,11 +85,13 @@ pub fn nvm_d_factors(d: f64) -> [f64; 4] {
 }
 
 impl PointModel {
-    /// The fitted asymptote parameters: constants, exponents and D corrections of H_EI .. H_EP.
-    /// H_RI is held: c_RI at the solver's domain-extrapolated rigid value
+    /// The fitted asymptote parameters: the constants and D corrections of H_EI and H_EP, whose
+    /// exponents are held at asymptotic theory's (EI M^(-2/15), EP M^(-1/12) L^(3/4); NVM's
+    /// values, the start). H_RI is held: c_RI at the solver's domain-extrapolated rigid value
     /// ([`crate::limits::rigid_point`]), its D factor at the solver's
-    /// ([`crate::limits::rigid_d_factor`]) and its D correction e_RI at 0.
-    pub const ASYMPTOTES: [usize; 10] = [2, 3, 4, 5, 6, 7, 8, 9, 10, 11];
+    /// ([`crate::limits::rigid_d_factor`]) and its D correction e_RI at 0; so is H_RP, at the
+    /// solver's rigid-piezoviscous limit ([`crate::limits::rigid_rp`]).
+    pub const ASYMPTOTES: [usize; 4] = [2, 4, 8, 11];
     /// Indices of the D-correction exponents (held at 0 when the data have a single D).
     pub const D_EXPONENTS: [usize; 4] = [1, 4, 7, 11];
     /// Indices of the piezoviscous parameters (held when the data have no L > 0).
@@ -107,6 +119,15 @@ impl PointModel {
                 1.5,
             ],
             ri_shape: nvm_ri_shape(),
+            rp_shape: None,
+        }
+    }
+
+    /// f_RP(D): NVM's, or the solver's f_RI(D) D psi(D) when `rp_shape` is set.
+    pub fn rp_d_factor(&self, d: f64) -> f64 {
+        match self.rp_shape {
+            Some(s) => ri_d_factor(self.ri_shape, d) * d * psi(s, d),
+            None => nvm_d_factors(d)[2],
         }
     }
 
@@ -115,6 +136,7 @@ impl PointModel {
         let x = &self.x;
         let mut f = nvm_d_factors(d);
         f[0] = ri_d_factor(self.ri_shape, d);
+        f[2] = self.rp_d_factor(d);
         [
             x[0].exp() * f[0] * d.powf(x[1]) / (m * m),
             x[2].exp() * m.powf(x[3]) * f[1] * d.powf(x[4]),

@@ -3,4 +3,5 @@
 
 pub mod rigid_d_factor;
 pub mod rigid_point;
+pub mod rigid_rp;
 pub mod solves;

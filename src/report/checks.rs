@@ -285,7 +285,17 @@ pub fn point_checks(
             text: [
                 format!("{:.3} f_RI(D) D^{:.3} M^-2", x[0].exp(), x[1]),
                 format!("{:.4} f_EI(D) D^{:.3} M^{:.4}", x[2].exp(), x[4], x[3]),
-                format!("{:.4} f_RP(D) D^{:.3} L^{:.4}", x[5].exp(), x[7], x[6]),
+                format!(
+                    "{:.4} f_RP(D) D^{:.3} L^{:.4}{}",
+                    x[5].exp(),
+                    x[7],
+                    x[6],
+                    if fit.rp_shape.is_some() {
+                        " (held at the rigid limit)"
+                    } else {
+                        ""
+                    }
+                ),
                 format!(
                     "{:.4} f_EP(D) D^{:.3} M^{:.4} L^{:.4}",
                     x[8].exp(),
@@ -316,6 +326,12 @@ pub fn point_checks(
         }
         if let Some(row) = d_factor_row(fit, *film, &far, &factor) {
             rows.insert(1, row);
+        }
+        let rp_at = rows
+            .iter()
+            .position(|r| r.asymptote == "rigid-piezoviscous");
+        if let (Some(k), Some(row)) = (rp_at, rp_factor_row(fit, *film, &far, s.l_max)) {
+            rows.insert(k + 1, row);
         }
         out.extend(rows);
     }
@@ -361,6 +377,54 @@ fn d_factor_row(
         beyond: None,
     })
 }
+
+/// The rigid-piezoviscous row of the D factor at the largest L of the data: like
+/// [`d_factor_row`], the solver's value pi(D) H_RI(1, D) L^(2/3) of the far-field solves
+/// ([`FarFieldRigid::rp_constant`]); None without solves.
+fn rp_factor_row(
+    fit: &PointModel,
+    film: Film,
+    far: &[FarFieldRigid],
+    l: f64,
+) -> Option<AsymptoteCheck> {
+    let last = far.last()?;
+    let l23 = l.powf(2.0 / 3.0);
+    let solver = |r: &FarFieldRigid| {
+        let ab1 = point_alpha_bar_1(1.0, r.d, Elasticity::Rigid)?;
+        r.converged().then(|| r.rp_constant(film, ab1) * l23)
+    };
+    let rp = |d: f64| fit.asymptotes(1.0, l, d)[2];
+    let fitted = rp(last.d);
+    Some(AsymptoteCheck {
+        quantity: film.name().to_string(),
+        asymptote: "rigid-piezoviscous".to_string(),
+        law: format!(
+            "{:.4} f_RP(D) D^{:.3} L^{:.4}",
+            fit.x[5].exp(),
+            fit.x[7],
+            fit.x[6]
+        ),
+        m: f64::INFINITY,
+        l,
+        d: Some(last.d),
+        elasticity: "rigid".to_string(),
+        grid: last.converged().then_some(CHECK_GRIDS[1]),
+        solver: solver(last),
+        fitted,
+        ratio: solver(last).map(|v| v / fitted),
+        note: RP_FACTOR_NOTE.to_string(),
+        trend: far
+            .iter()
+            .filter_map(|r| solver(r).map(|v| (r.d, v / rp(r.d))))
+            .collect(),
+        trend_over: "D".to_string(),
+        beyond: None,
+    })
+}
+
+const RP_FACTOR_NOTE: &str = "the D factor: limit alpha q_max = 1 of the rigid solves, L = 0, \
+     with the far field on 257^2 and 513^2 (tight, Richardson in the grid; \
+     src/limits/rigid_rp.rs) at the data's smallest D and a tenth of it, beyond the data";
 
 const D_FACTOR_NOTE: &str = "the D factor: rigid solves, L = 0, with the far field on 257^2 \
      and 513^2 (tight, Richardson in the grid; src/limits/rigid_d_factor.rs) at the data's \

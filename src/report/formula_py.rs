@@ -79,10 +79,16 @@ def _nvm_d_factors(D):
     ]
 
 
-def _point_asymptotes(x, ri_shape, M, L, D):
+def _psi(shape, D):
+    a, p, q = shape
+    return _pow((1.0 + a * _pow(D, p)) / (1.0 + a), q)
+
+
+def _point_asymptotes(x, ri_shape, rp_shape, M, L, D):
     f = _nvm_d_factors(D)
-    a, p, q = ri_shape
-    f[0] = _pow((1.0 + a * _pow(D, p)) / (1.0 + a), q) / D
+    f[0] = _psi(ri_shape, D) / D
+    if rp_shape is not None:
+        f[2] = f[0] * D * _psi(rp_shape, D)
     return [
         _exp(x[0]) * f[0] * _pow(D, x[1]) / (M * M),
         _exp(x[2]) * _pow(M, x[3]) * f[1] * _pow(D, x[4]),
@@ -91,8 +97,8 @@ def _point_asymptotes(x, ri_shape, M, L, D):
     ]
 
 
-def _point_blend(x, ri_shape, M, L, D):
-    h_ri, h_ei, h_rp, h_ep = _point_asymptotes(x, ri_shape, M, L, D)
+def _point_blend(x, ri_shape, rp_shape, M, L, D):
+    h_ri, h_ei, h_rp, h_ep = _point_asymptotes(x, ri_shape, rp_shape, M, L, D)
     h_00 = _exp(x[14]) / D
     s = x[12] * (1.0 + _exp(-x[13] * h_ei / h_ri))
     r = x[15]
@@ -252,9 +258,11 @@ fn entry(m: &FittedModel) -> String {
             terms(&m.correction)
         ),
         Blend::Point(x) => format!(
-            "{{\"x\": [{}], \"ri_shape\": [{}], \"terms\": {}, \"side\": {}}}",
+            "{{\"x\": [{}], \"ri_shape\": [{}], \"rp_shape\": {}, \"terms\": {}, \"side\": {}}}",
             list(&x.x),
             list(&x.ri_shape),
+            x.rp_shape
+                .map_or("None".to_string(), |r| format!("[{}]", list(&r))),
             terms(&m.correction),
             side(m.side.as_ref())
         ),
@@ -283,8 +291,9 @@ def H(M, L, D=None, film="H_c"):
     if film not in POINT:
         raise ValueError(f"no point formula for {film} (fitted: {sorted(POINT)})")
     e = POINT[film]
-    asym = _point_asymptotes(e["x"], e["ri_shape"], M, L, D)
-    h = _point_blend(e["x"], e["ri_shape"], M, L, D) * _exp(_correction(e["terms"], asym, D))
+    shapes = (e["ri_shape"], e.get("rp_shape"))
+    asym = _point_asymptotes(e["x"], *shapes, M, L, D)
+    h = _point_blend(e["x"], *shapes, M, L, D) * _exp(_correction(e["terms"], asym, D))
     return h * _side(e.get("side"), M, L, D)
 "#;
 

@@ -60,14 +60,19 @@ const POINT_FORM: &str = "Formula (Moes point units, NVM 1994 form): H = H_blend
 H_blend = { [H_RI^r + (H_EI^-4 + H_00^-4)^(-r/4)]^(s/r) + (H_RP^-8 + H_EP^-8)^(-s/8) }^(1/s), \
 s = s0 (1 + exp(-s1 H_EI/H_RI)); H_RI = c_RI f_RI(D) D^e_RI M^-2, H_EI = a f_EI(D) D^e_EI \
 M^alpha, H_RP = b f_RP(D) D^e_RP L^beta, H_EP = d f_EP(D) D^e_EP M^gamma L^delta, \
-H_00 = c_00/D, with f_EI, f_RP, f_EP NVM's D factors normalised to 1 at D = 1 and e_* free \
+H_00 = c_00/D, with f_EI, f_EP NVM's D factors normalised to 1 at D = 1 and e_* free \
 corrections (0 = NVM; held at 0 when the data have one D). H_RI is held: c_RI at the solver's \
 rigid constant, its rigid solves extrapolated to an unbounded domain (35.5 for H_c and H_min, \
 45.0 for H_pm; NVM 41.3), e_RI = 0, and f_RI = [(1 + a D^p)/(1 + a)]^q / D the solver's own \
 (NVM: a = 0.796, p = 14/15, q = -15/7): a and p fitted to far-field rigid solves over D in \
 [0.005, 1], q set by the exact slender limit D M^2 H_c -> 2 (2.4475 pi)^2 (times 3/2.4475 for \
-H_pm). The other asymptotes are fitted with alpha_EI and the whole H_EP law first held \
-at NVM's, then all of them and the blend (s0, s1, c_00, r: NVM's 1.5, 1.2, 1.8, 3/2) too (kept \
+H_pm). H_RP is held at the solver's rigid-piezoviscous limit alpha q_max = 1: b = c_RI pi(1), \
+beta = 2/3, e_RP = 0, f_RP = f_RI(D) D psi(D), psi = [(1 + a D^p)/(1 + a)]^q with pi(D) = \
+(alpha_bar(M = 1, L = 1) P_max)^(2/3) of the rigid solves = pi(1) D psi(D): a and p fitted to the \
+same solves, q set by the exact slender limit pi(D) H_c(D) -> 1.0496 (the line's constant). \
+H_EI and H_EP keep the exponents of asymptotic theory (M^(-2/15); M^(-1/12) L^(3/4)); \
+their constants and D corrections are fitted, H_EP's first held at NVM's, then all of them and \
+the blend (s0, s1, c_00, r: NVM's 1.5, 1.2, 1.8, 3/2) too (kept \
 only if physical, identified and better) with 40 or more converged cases. C = sum c_k phi_k is \
 the interior correction (as for line contacts, with ln D factors), its size chosen by 5-fold \
 held-out error. H_c is the film at the centre, H_pm the film at the pressure maximum on the \
@@ -264,6 +269,12 @@ fn quantity(md: &mut String, q: &QuantityFit) {
             md,
             "f_RI(D) = [(1 + {a} D^{p})/(1 + {a})]^({e}) / D (held).\n"
         );
+        if let Some([a, p, e]) = m.rp_shape.map(|s| s.map(sig5)) {
+            let _ = writeln!(
+                md,
+                "f_RP(D) = f_RI(D) D [(1 + {a} D^{p})/(1 + {a})]^({e}) (held).\n"
+            );
+        }
     }
     heldout(md, q);
     side_lobe(md, q);

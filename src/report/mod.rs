@@ -30,7 +30,7 @@ use crate::fit::correction::{Coordinates, Correction};
 pub use crate::fit::dataset::{FitInput, FitPoint};
 use crate::fit::error::FitError;
 pub use crate::fit::fitted::{Blend, FittedModel, Param, QuantityFit};
-use crate::fit::heldout::{joint, select, HeldOut, Refit};
+use crate::fit::heldout::{joint_best, select, HeldOut, Refit};
 use crate::fit::lsq::{fit, LsqFit, Sample};
 use crate::fit::model::FilmModel;
 use crate::fit::side::{SideChoice, SideLobe};
@@ -295,8 +295,8 @@ fn skipped(contact: &str, n: usize, failed: usize, need: usize) -> ContactReport
 
 /// The interior correction of the blend fitted in `f`: its size chosen by held-out error
 /// ([`crate::fit::heldout`], the blend refitted per fold by [`staged`]), then blend and
-/// correction fitted together on all of `data` ([`joint`], the parameters of the last stage
-/// freed): `f` takes the refitted blend and its sigmas. No correction when the cross-validation
+/// correction fitted together on all of `data` ([`joint_best`], the parameters of the last stage
+/// freed, from `f`'s blend and from each fold's): `f` takes the refitted blend and its sigmas. No correction when the cross-validation
 /// could not be made.
 fn corrected<Mo: FilmModel>(
     data: &[Sample],
@@ -319,10 +319,11 @@ fn corrected<Mo: FilmModel>(
         free,
         physical: &r.physical,
     };
-    let Some(h) = select(data, &bases, &fit_blend, &refit) else {
+    let Some((h, folds)) = select(data, &bases, &fit_blend, &refit) else {
         return (Correction::default(), None);
     };
-    match joint(data, &f.model, &bases[h.chosen.candidate], &refit) {
+    let starts: Vec<&Mo> = std::iter::once(&f.model).chain(&folds).collect();
+    match joint_best(data, &starts, &bases[h.chosen.candidate], &refit) {
         Some((b, c, sigma)) => {
             f.model = b;
             if let Some(sigma) = sigma {

@@ -12,7 +12,7 @@ use crate::fit::fitted::Blend;
 use crate::fit::heldout::{lattice, nested, Basis};
 use crate::fit::model::{LineModel, PARAM_NAMES};
 use crate::fit::point_model::{PointModel, POINT_PARAM_NAMES};
-use crate::limits::{rigid_d_factor, rigid_point};
+use crate::limits::{rigid_d_factor, rigid_point, rigid_rp};
 use crate::solve::film::Film;
 use crate::strategy::closed_form::MARTIN_FLUX;
 
@@ -22,9 +22,9 @@ pub const C_RI_CENTRAL: f64 = 2.4475;
 /// The rigid-piezoviscous constant of the line film at X = 0: H_RP = (c L)^(2/3), c = alpha p_max
 /// H^(3/2)/L of the rigid isoviscous solution (the Barus reduced pressure reaches 1/alpha;
 /// docs/physics.md section 5), with c from the solver's rigid L = 0 solve at 4097 points
-/// (docs/validation.md). The start of the line RP law; the report re-derives the limit from a
+/// (docs/validation.md). The line RP law (held); the report re-derives the limit from a
 /// fresh solve (`crate::report::checks`).
-pub const B_RP_CENTRAL: f64 = 1.0496;
+pub const B_RP_CENTRAL: f64 = rigid_rp::B_RP_LINE;
 
 /// The elastic-isoviscous constant of the line films at X = 0 and at the pressure maximum:
 /// H_EI = a M^(-1/5) with a from the solver's L = 0 solves beyond the nightly data (H M^(1/5) =
@@ -150,13 +150,18 @@ fn point_free(pts: &[FitPoint]) -> Vec<usize> {
         .collect()
 }
 
-/// The start of a point fit of `film`: NVM 1994 with the solver's rigid constant c_RI and D
-/// factor (held), its elastic laws scaled by 0.6 for H_min.
+/// The start of a point fit of `film`: NVM 1994 with the solver's rigid-isoviscous law (c_RI
+/// and its D factor) and rigid-piezoviscous law (b = c_RI pi(1), beta = 2/3, f_RP = f_RI(D) D
+/// psi(D), e_RP = 0; [`rigid_rp`]), both held, its elastic laws scaled by 0.6 for H_min.
 fn point_start(film: Film) -> PointModel {
     let scale: f64 = if film == Film::Minimum { 0.6 } else { 1.0 };
     let mut start = PointModel::nvm();
     start.x[0] = rigid_point::c_ri(film).ln();
     start.ri_shape = rigid_d_factor::ri_shape(film);
+    start.x[5] = (rigid_point::c_ri(film) * rigid_rp::PI_CIRCULAR).ln();
+    start.x[6] = 2.0 / 3.0;
+    start.x[7] = 0.0;
+    start.rp_shape = Some(rigid_rp::rp_shape());
     for k in [2, 8] {
         start.x[k] += scale.ln();
     }
@@ -180,17 +185,18 @@ pub(super) fn line_recipe() -> Recipe<LineModel> {
     }
 }
 
-/// The point recipe for the data `pts`. Stage 1 holds the M exponent of H_EI (-2/15) and the
-/// whole H_EP law at NVM's: with few elastic cases they are not identifiable and run off when
-/// freed (docs/validation.md, "Earlier fit changes"). Stage 2 (from
-/// `FULL_FIT_MIN_POINTS` cases) frees everything and is kept only when
-/// physical, identified and better.
+/// The point recipe for the data `pts`. H_RI and H_RP are held at the solver's limits and the
+/// exponents of H_EI and H_EP at theory's ([`PointModel::ASYMPTOTES`]). Stage 1 also holds the
+/// H_EP law's constant and D correction at NVM's: with few elastic cases they are not
+/// identifiable and run off when freed (docs/validation.md, "Earlier fit changes"). Stage 2
+/// (from `FULL_FIT_MIN_POINTS` cases) frees them and the blend, and is kept only when physical,
+/// identified and better.
 pub(super) fn point_recipe(pts: &[FitPoint]) -> Recipe<PointModel> {
     let all_free = point_free(pts);
     let free: Vec<usize> = all_free
         .iter()
         .copied()
-        .filter(|k| ![3, 8, 9, 10, 11].contains(k))
+        .filter(|k| ![8, 11].contains(k))
         .collect();
     let mut all = all_free;
     // The blend: s0, s1, c_00 and the rigid/elastic isoviscous power r.
@@ -200,7 +206,7 @@ pub(super) fn point_recipe(pts: &[FitPoint]) -> Recipe<PointModel> {
         start: point_start,
         stage1: free,
         stage2: all,
-        rp: &[5, 6, 7],
+        rp: &[],
         late: &[14, 15],
         physical: PointModel::physical,
         names: &POINT_PARAM_NAMES,
