@@ -119,20 +119,26 @@ fn line_asymptotes_agree_with_the_limit_solves() {
         let rp = check(film, "rigid-piezoviscous").ratio.unwrap();
         assert!((rp - 1.0).abs() < 0.005, "{film} RP ratio {rp}");
     }
-    // Beyond the data: at twice the largest L (20, M = 500) the EI law's share of the blend
-    // falls (like L^-3/4) and the solver / fitted EP law ratio moves to 1 (measured H_pm 0.9994
-    // against 1.0358 at L = 10, with the EP exponents at theory).
+    // The EP law is held at the solver's limit (D_EP_CENTRAL M^(-1/8) L^(3/4), from solves at
+    // M = 1e4 and L up to 80). At the data's corner (M = 500, L = 10) the EI law still adds to
+    // the film, so the solver lies above the limit (measured H_pm 1.0540); beyond the data, at
+    // twice the largest L, that share falls (like L^-3/4) and the ratio moves toward 1 (1.0170).
+    // (When d was fitted this test asked the L = 20 ratio to be within 1 % of 1, measured
+    // 0.9994: the fitted law passed between the data's corner and the limit.)
     let ep = check("H_pm", "elastic-piezoviscous");
     let (l2, beyond) = ep.beyond.expect("EP solve at twice the largest L");
     let beyond = beyond.expect("converged");
     assert_eq!(l2, 20.0);
-    assert!((beyond - 1.0).abs() < 0.01, "beyond {beyond}");
-    assert!((beyond - 1.0).abs() < 0.3 * (ep.ratio.unwrap() - 1.0).abs());
+    let at_corner = ep.ratio.unwrap();
+    assert!(
+        beyond > 1.0 && beyond < 1.025 && beyond - 1.0 < 0.4 * (at_corner - 1.0),
+        "beyond {beyond}, at the corner {at_corner}"
+    );
     assert!(check("H_pm", "elastic-isoviscous").beyond.is_none());
     // The summary counts the checks within 1 %.
     assert!(
         md.contains(
-            "- H_pm: max error 1.04 % (target 2 %: met); held-out max 1.62 %, RMS 0.82 % (8 \
+            "- H_pm: max error 1.26 % (target 2 %: met); held-out max 2.35 %, RMS 0.78 % (10 \
              correction terms); Moes 1992 5.86 % (fit better); asymptotes within 1 % of the \
              limit solves: 3 of 4 (rigid-isoviscous, elastic-isoviscous, rigid-piezoviscous)."
         ),
@@ -219,21 +225,22 @@ fn fit_command_writes_report_json_and_charts() {
     // H_c and H_pm meet 2 % on this dataset (the blend alone: 2.37 % and 1.60 %). H_pm is fitted
     // on 27 of the 32 rows (not where the pressure maximum is the outlet spike). With H_RP held at
     // the solver's rigid limit and H_EP's exponents at theory (2026-11-27) the held-out maxima
-    // are H_c 2.74 %, H_pm 1.62 %, H_min 0.94 % (free RP law and EP exponents: 2.26, 2.94 and
-    // 1.14 % with the spike rows' exclusion; 2.26, 1.01, 1.14 % before it).
+    // were H_c 2.74 %, H_pm 1.62 %, H_min 0.94 % (free RP law and EP exponents: 2.26, 2.94 and
+    // 1.14 % with the spike rows' exclusion; 2.26, 1.01, 1.14 % before it); with H_EP's constant
+    // held at the solver's limit too (2026-12-06) 2.62 %, 2.35 % and 0.98 %.
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(
         md.contains(
-            "- H_pm: max error 1.04 % (target 2 %: met); held-out max 1.62 %, RMS 0.82 % (8 \
+            "- H_pm: max error 1.26 % (target 2 %: met); held-out max 2.35 %, RMS 0.78 % (10 \
              correction terms); Moes 1992 5.86 % (fit better)."
         ),
         "{md}"
     );
-    assert!(md.contains("- H_c: max error 1.61 % (target 2 %: met); held-out max 2.74 %"));
+    assert!(md.contains("- H_c: max error 1.18 % (target 2 %: met); held-out max 2.62 %"));
     // Every formula on the same cases in one table: the fit in sample and held out, the published.
     assert!(
         md.contains(
-            "| ehlmap fit, held out | 2.74 % / 1.01 % | 1.62 % / 0.82 % | 0.94 % / 0.27 % |\n\
+            "| ehlmap fit, held out | 2.62 % / 0.88 % | 2.35 % / 0.78 % | 0.98 % / 0.28 % |\n\
              | Moes 1992 | 5.86 % / 2.75 % | 5.86 % / 2.53 % | - |\n\
              | Dowson-Toyoda 1979 (skipped: dataset has no G) | - | - | - |"
         ),

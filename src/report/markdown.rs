@@ -43,7 +43,8 @@ H_EP^-q)^(-s/q) ]^(1/s), s = s0 + s1 exp(-s2 H_EI/H_RI), p = p0 + p1 exp(-s2 H_E
 H_RI = 2.4475/M (exact, fixed), H_EI = a M^-1/5 (held at the solver's limit: a = 2.488, 1.984 \
 for H_min, from L = 0 solves up to M = 1e4), H_RP = b L^(2/3) (held at the solver's \
 rigid-piezoviscous limit b = 1.0496, times 3/2.4475 for H_pm), H_EP = d M^(-1/8) L^(3/4) (the \
-exponents of asymptotic theory; d fitted). p, q, the s-law and p1 start from Moes' (7/3, 7/2, 7/5 + 8/5 \
+exponents of asymptotic theory; held at the solver's limit d = 1.307, 0.978 for H_min, from \
+solves at M = 1e4 and L up to 80 extrapolated in L). p, q, the s-law and p1 start from Moes' (7/3, 7/2, 7/5 + 8/5 \
 exp(-2 H_EI/H_RI), 0) and are fitted too with 40 or more converged cases (a 1 sigma of 0 marks a \
 parameter held fixed). H_pm, the film at the pressure maximum (Moes' central film), is fitted \
 with the same form and its own exact H_RI = 3/M (the flux thickness); H_min with \

@@ -41,7 +41,8 @@ use crate::model::formulas::{
 use crate::report::checks::{line_checks, point_checks, AsymptoteCheck};
 use crate::report::recipe::{line_recipe, point_recipe, Recipe};
 pub use crate::report::recipe::{
-    A_EI_CENTRAL, A_EI_MIN, B_RP_CENTRAL, C_RI_CENTRAL, LINE_RIDGES, MIN_CASES, POINT_RIDGES,
+    A_EI_CENTRAL, A_EI_MIN, B_RP_CENTRAL, C_RI_CENTRAL, D_EP_CENTRAL, D_EP_MIN, LINE_RIDGES,
+    MIN_CASES, POINT_RIDGES,
 };
 use crate::report::side_lobes::{composed, side_lobes};
 pub use crate::solve::film::Film;
