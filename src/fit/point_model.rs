@@ -31,8 +31,8 @@
 //! rigid-isoviscous regime; the fits hold the exponents of H_EI and H_EP at asymptotic theory's
 //! (NVM's), and H_RP at the solver's rigid-piezoviscous limit, beta = 2/3,
 //! b = c_RI pi(1), f_RP = f_RI(D) D psi(D), e_RP = 0 ([`crate::limits::rigid_rp`]). (Fit
-//! figures behind these choices: docs/validation.md, "Fit: the nightly sweeps" and "The
-//! rigid-piezoviscous D factor".)
+//! figures behind these choices: docs/validation.md, "Fit: the nightly sweeps" and "The held
+//! asymptotes".)
 
 use crate::fit::model::FilmModel;
 use crate::limits::rigid_rp::psi;

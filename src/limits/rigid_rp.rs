@@ -23,7 +23,7 @@
 //! with q fixed by the slender limit (psi(0) = (1 + a)^-q) and (a, p) = [`SHAPE`] a
 //! least-squares fit in log to far-field rigid solves at 14 values of D in [0.005, 1] (257^2,
 //! 513^2 and 1025^2, Richardson over the two finer grids, tight convergence): within 0.06 % of
-//! every solve (docs/validation.md, "The rigid-piezoviscous D factor"). So the point RP law is
+//! every solve (docs/validation.md, "The held asymptotes"). So the point RP law is
 //!
 //! H_RP = c_RI [`PI_CIRCULAR`] f_RI(D) D psi(D) L^(2/3)
 //!

@@ -43,7 +43,7 @@ pub const A_EI_MIN: f64 = 1.984;
 /// times per doubling of L, so Aitken's extrapolation gives 1.3072), +-0.004 (the same from
 /// M = 3000, L = 20 and 40, at the ratio seen at M = 1e4: 1.3034; at L = 40 the constant moves by
 /// 0.5 % over M = 1e3-3e4). Solves at L >= 120 fail on the fine grids they need (issue 22).
-/// docs/validation.md, "The line elastic-piezoviscous limit".
+/// docs/validation.md, "The held asymptotes".
 pub const D_EP_CENTRAL: f64 = 1.307;
 
 /// The elastic-piezoviscous constant of the line minimum film, from the same solves (0.99432,
