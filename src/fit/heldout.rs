@@ -212,17 +212,7 @@ pub fn joint<Mo: FilmModel>(
     if basis.terms.is_empty() {
         return Some((blend, c, sigma));
     }
-    let rms = |b: &Mo, c: &Correction| {
-        let f = Corrected {
-            blend: b.clone(),
-            correction: c,
-        };
-        let ss: f64 = data
-            .iter()
-            .map(|s| (f.film(s.m, s.l, s.d) / s.h).ln().powi(2))
-            .sum();
-        (ss / data.len() as f64).sqrt()
-    };
+    let rms = |b: &Mo, c: &Correction| rms_log(data, b, c);
     for _ in 0..JOINT_ROUNDS {
         let start = Corrected {
             blend: blend.clone(),
@@ -244,6 +234,19 @@ pub fn joint<Mo: FilmModel>(
     Some((blend, c, sigma))
 }
 
+/// The RMS log error of `blend` times `correction` on `data`.
+fn rms_log<Mo: FilmModel>(data: &[Sample], blend: &Mo, correction: &Correction) -> f64 {
+    let f = Corrected {
+        blend: blend.clone(),
+        correction,
+    };
+    let ss: f64 = data
+        .iter()
+        .map(|s| (f.film(s.m, s.l, s.d) / s.h).ln().powi(2))
+        .sum();
+    (ss / data.len() as f64).sqrt()
+}
+
 /// A [`joint`] fit: the blend, the correction and the blend's one-sigma uncertainties.
 pub type JointFit<Mo> = (Mo, Correction, Option<Vec<f64>>);
 
@@ -257,17 +260,7 @@ pub fn joint_best<Mo: FilmModel>(
     basis: &Basis,
     refit: &Refit<Mo>,
 ) -> Option<JointFit<Mo>> {
-    let rms = |(b, c, _): &JointFit<Mo>| {
-        let f = Corrected {
-            blend: b.clone(),
-            correction: c,
-        };
-        let ss: f64 = data
-            .iter()
-            .map(|s| (f.film(s.m, s.l, s.d) / s.h).ln().powi(2))
-            .sum();
-        ss / data.len() as f64
-    };
+    let rms = |(b, c, _): &JointFit<Mo>| rms_log(data, b, c);
     let mut best: Option<(JointFit<Mo>, f64)> = None;
     for &start in starts {
         let Some(fit) = joint(data, start, basis, refit) else {

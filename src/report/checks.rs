@@ -347,35 +347,19 @@ fn d_factor_row(
     far: &[FarFieldRigid],
     factor: &dyn Fn(f64, f64, f64) -> f64,
 ) -> Option<AsymptoteCheck> {
-    let last = far.last()?;
-    let ri = |d: f64| fit.asymptotes(1.0, 0.0, d)[0] * factor(1.0, 0.0, d);
-    let ratio = |r: &FarFieldRigid| r.converged().then(|| r.constant(film) / ri(r.d));
-    let fitted = ri(last.d);
     let [a, p, q] = fit.ri_shape;
-    Some(AsymptoteCheck {
-        quantity: film.name().to_string(),
-        asymptote: "rigid-isoviscous".to_string(),
-        law: format!(
-            "{:.3} [(1 + {a:.5} D^{p:.5})/(1 + {a:.5})]^({q:.5}) D^{:.3} / D M^-2",
-            fit.x[0].exp(),
-            fit.x[1]
-        ),
-        m: 1.0,
-        l: 0.0,
-        d: Some(last.d),
-        elasticity: "rigid".to_string(),
-        grid: last.converged().then_some(CHECK_GRIDS[1]),
-        solver: last.converged().then(|| last.constant(film)),
-        fitted,
-        ratio: ratio(last),
-        note: D_FACTOR_NOTE.to_string(),
-        trend: far
-            .iter()
-            .filter_map(|r| ratio(r).map(|x| (r.d, x)))
-            .collect(),
-        trend_over: "D".to_string(),
-        beyond: None,
-    })
+    let law = format!(
+        "{:.3} [(1 + {a:.5} D^{p:.5})/(1 + {a:.5})]^({q:.5}) D^{:.3} / D M^-2",
+        fit.x[0].exp(),
+        fit.x[1]
+    );
+    far_row(
+        (film, "rigid-isoviscous", law, 1.0, 0.0),
+        far,
+        &|r| r.converged().then(|| r.constant(film)),
+        &|d| fit.asymptotes(1.0, 0.0, d)[0] * factor(1.0, 0.0, d),
+        D_FACTOR_NOTE,
+    )
 }
 
 /// The rigid-piezoviscous row of the D factor at the largest L of the data: like
@@ -387,24 +371,38 @@ fn rp_factor_row(
     far: &[FarFieldRigid],
     l: f64,
 ) -> Option<AsymptoteCheck> {
-    let last = far.last()?;
+    let x = &fit.x;
+    let law = format!("{:.4} f_RP(D) D^{:.3} L^{:.4}", x[5].exp(), x[7], x[6]);
     let l23 = l.powf(2.0 / 3.0);
-    let solver = |r: &FarFieldRigid| {
-        let ab1 = point_alpha_bar_1(1.0, r.d, Elasticity::Rigid)?;
-        r.converged().then(|| r.rp_constant(film, ab1) * l23)
-    };
-    let rp = |d: f64| fit.asymptotes(1.0, l, d)[2];
-    let fitted = rp(last.d);
+    far_row(
+        (film, "rigid-piezoviscous", law, f64::INFINITY, l),
+        far,
+        &|r| {
+            let ab1 = point_alpha_bar_1(1.0, r.d, Elasticity::Rigid)?;
+            r.converged().then(|| r.rp_constant(film, ab1) * l23)
+        },
+        &|d| fit.asymptotes(1.0, l, d)[2],
+        RP_FACTOR_NOTE,
+    )
+}
+
+/// A D-factor row (film, asymptote, law text, M, L) at the last of the far-field solves `far`:
+/// `solver` the solver's value of a solve, `law` the fitted law at D; its trend the ratio at each
+/// D. None without solves.
+fn far_row(
+    (film, asymptote, law_text, m, l): (Film, &str, String, f64, f64),
+    far: &[FarFieldRigid],
+    solver: &dyn Fn(&FarFieldRigid) -> Option<f64>,
+    law: &dyn Fn(f64) -> f64,
+    note: &str,
+) -> Option<AsymptoteCheck> {
+    let last = far.last()?;
+    let fitted = law(last.d);
     Some(AsymptoteCheck {
         quantity: film.name().to_string(),
-        asymptote: "rigid-piezoviscous".to_string(),
-        law: format!(
-            "{:.4} f_RP(D) D^{:.3} L^{:.4}",
-            fit.x[5].exp(),
-            fit.x[7],
-            fit.x[6]
-        ),
-        m: f64::INFINITY,
+        asymptote: asymptote.to_string(),
+        law: law_text,
+        m,
         l,
         d: Some(last.d),
         elasticity: "rigid".to_string(),
@@ -412,10 +410,10 @@ fn rp_factor_row(
         solver: solver(last),
         fitted,
         ratio: solver(last).map(|v| v / fitted),
-        note: RP_FACTOR_NOTE.to_string(),
+        note: note.to_string(),
         trend: far
             .iter()
-            .filter_map(|r| solver(r).map(|v| (r.d, v / rp(r.d))))
+            .filter_map(|r| solver(r).map(|v| (r.d, v / law(r.d))))
             .collect(),
         trend_over: "D".to_string(),
         beyond: None,
