@@ -27,6 +27,7 @@ use crate::fit::model::LineModel;
 use crate::fit::point_model::PointModel;
 use crate::fit::side::SideLobe;
 use crate::fit::stats::null_as_nan;
+use crate::limits::line_ep::{LineEpLimit, EP_L, EP_M};
 use crate::limits::rigid_d_factor::{FarFieldRigid, CHECK_GRIDS};
 use crate::limits::rigid_point::{extrapolate, RigidPointSolves, DOMAIN_SCALES};
 use crate::limits::solves::{
@@ -76,10 +77,12 @@ pub struct AsymptoteCheck {
     pub note: String,
     /// (M, solver / fitted asymptote) as M grows to the largest M of the data (elastic rows), or
     /// (domain scale, ratio) as the domain grows (point rigid row), or (D, ratio) as D falls
-    /// (the D factor's rigid row): how the ratio approaches its limit.
+    /// (the D factors' rigid rows), or (L, ratio) as L grows (the line elastic-piezoviscous
+    /// limit row): how the ratio approaches its limit.
     #[serde(default)]
     pub trend: Vec<(f64, f64)>,
-    /// What the trend's first entry is: "M", "domain scale" or "D".
+    /// What the trend's first entry is: "M", "domain scale", "D" or "L" (the line
+    /// elastic-piezoviscous limit row).
     #[serde(default = "m_name")]
     pub trend_over: String,
     /// Elastic-piezoviscous row: (L, solver / fitted law) at the largest M and twice the largest
@@ -187,10 +190,15 @@ const RP_NOTE: &str =
     "limit alpha q_max = 1 from the rigid L = 0 solve (direct Barus solves diverge)";
 
 /// The line checks (seven solves at 4097 points, or 2049 should 4097 fail; a few seconds) of
-/// each fitted film.
+/// each fitted film; with L > 0 data also the elastic-piezoviscous limit itself
+/// ([`LineEpLimit`]: three solves at M = 1e4 up to 65537 points, about 15 s).
 pub fn line_checks(fits: &[(Film, LineModel)], pts: &[FitPoint]) -> Vec<AsymptoteCheck> {
     let cases: Vec<(f64, f64)> = pts.iter().map(|p| (p.m, p.l)).collect();
-    let s = LimitSolves::new(&cases, line_solve(1.0, 0.0, Elasticity::Rigid), line_solve);
+    let piezo = cases.iter().any(|c| c.1 > 0.0);
+    let (s, ep) = rayon::join(
+        || LimitSolves::new(&cases, line_solve(1.0, 0.0, Elasticity::Rigid), line_solve),
+        || piezo.then(LineEpLimit::run),
+    );
     let mut out = vec![];
     for (film, fit) in fits {
         let x = &fit.x;
@@ -211,9 +219,56 @@ pub fn line_checks(fits: &[(Film, LineModel)], pts: &[FitPoint]) -> Vec<Asymptot
             at: &|m, l| fit.asymptotes(m, l),
         };
         out.extend(film_checks(*film, &s, None, laws));
+        if let Some(ep) = &ep {
+            out.push(ep_limit_row(*film, fit, ep));
+        }
     }
     out
 }
+
+/// The elastic-piezoviscous row of the limit itself: the law's constant H_EP M^(1/8) L^(-3/4)
+/// against the solver's c(L) = H M^(1/8) L^(-3/4) at M = [`EP_M`] extrapolated to L -> infinity
+/// ([`LineEpLimit::limit`]); its trend the ratio at each L solved.
+fn ep_limit_row(film: Film, fit: &LineModel, ep: &LineEpLimit) -> AsymptoteCheck {
+    let x = &fit.x;
+    let law = |l: f64| fit.asymptotes(EP_M, l)[3] * EP_M.powf(0.125) / l.powf(0.75);
+    let fitted = law(EP_L[EP_L.len() - 1]);
+    let solver = ep.limit(film);
+    AsymptoteCheck {
+        quantity: film.name().to_string(),
+        asymptote: "elastic-piezoviscous".to_string(),
+        law: format!(
+            "{:.4} M^{:.4} L^{:.4} (its constant)",
+            x[4].exp(),
+            x[5],
+            x[6]
+        ),
+        m: EP_M,
+        l: f64::INFINITY,
+        d: None,
+        elasticity: "elastic".to_string(),
+        grid: ep
+            .solves
+            .iter()
+            .filter_map(|(_, o)| o.as_ref().map(|o| o.grid))
+            .max(),
+        solver,
+        fitted,
+        ratio: solver.map(|v| v / fitted),
+        note: EP_LIMIT_NOTE.to_string(),
+        trend: ep
+            .constants(film)
+            .into_iter()
+            .map(|(l, c)| (l, c / law(l)))
+            .collect(),
+        trend_over: "L".to_string(),
+        beyond: None,
+    }
+}
+
+const EP_LIMIT_NOTE: &str = "the limit L -> infinity of H M^(1/8) L^(-3/4) at M = 1e4: solves at \
+     L = 20, 40, 80 (on 65537 points, each within 0.3 %), Aitken's extrapolation \
+     (src/limits/line_ep.rs); solver and law are the constant d itself";
 
 /// The point checks of each fitted film, at D = 1 (else the largest D of the data): seven
 /// elastic solves at 257 x 257 points, or the data's finer grid, and the rigid solves on

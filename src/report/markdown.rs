@@ -452,7 +452,7 @@ fn contact(md: &mut String, c: &ContactReport) {
         );
         let _ = writeln!(
             md,
-            "| film | asymptote | fitted law | at | solver | asymptote | ratio | ratio toward the limit (M, domain scale or D: ratio) | note |\n|---|---|---|---|---|---|---|---|---|"
+            "| film | asymptote | fitted law | at | solver | asymptote | ratio | ratio toward the limit (M, domain scale, D or L: ratio) | note |\n|---|---|---|---|---|---|---|---|---|"
         );
         for a in &c.asymptotes {
             let d = a.d.map_or(String::new(), |d| format!(", D = {d}"));

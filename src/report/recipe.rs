@@ -47,7 +47,9 @@ pub const A_EI_MIN: f64 = 1.984;
 pub const D_EP_CENTRAL: f64 = 1.307;
 
 /// The elastic-piezoviscous constant of the line minimum film, from the same solves (0.99432,
-/// 0.98497, 0.98095; Aitken 0.9779; from M = 3000 0.9745), held like [`D_EP_CENTRAL`].
+/// 0.98497, 0.98095; Aitken 0.9779; from M = 3000 0.9745), held like [`D_EP_CENTRAL`]; +-0.01
+/// (the extrapolation amplifies grid differences: from the grids a 0.3 % target stops at it is
+/// 0.968). The report re-derives both constants ([`crate::limits::line_ep`]).
 pub const D_EP_MIN: f64 = 0.978;
 
 /// The line free sets. Every asymptote is held: RI fixed by theory ([`C_RI_CENTRAL`]), EI at
