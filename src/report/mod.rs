@@ -154,10 +154,10 @@ fn samples(pts: &[FitPoint], film: Film) -> Vec<Sample> {
 
 /// Fit the `r.stage1` parameters from `start`; with at least [`FULL_FIT_MIN_POINTS`] samples
 /// refit all of `r.stage2` from there and keep it when it stays physical, identified (every sigma
-/// finite: J^T J not singular) and fits better (lower RMS log error). If it does not, try in turn
-/// with the rigid-piezoviscous law (`r.rp`) held at its stage-1 fit (a freed RP law can run off
-/// when the data hardly see it; docs/validation.md, "Earlier fit changes"), with the `r.late`
-/// parameters held at their start, and with both held; the first kept try wins, else stage 1.
+/// finite: J^T J not singular) and fits better (lower RMS log error). If it does not, try again
+/// with the `r.late` parameters held at their start; the first kept try wins, else stage 1.
+/// (Every rigid-piezoviscous law is held at the solver's limit, so none can run off when the
+/// data hardly see it: docs/validation.md, "Earlier fit changes".)
 fn staged<Mo: FilmModel>(
     data: &[Sample],
     start: &Mo,
@@ -174,13 +174,9 @@ fn staged<Mo: FilmModel>(
             .filter(|k| !out.contains(k))
             .collect()
     };
-    let both: Vec<usize> = r.rp.iter().chain(r.late).copied().collect();
     let mut tries = vec![r.stage2.clone()];
-    if !r.rp.is_empty() {
-        tries.push(without(r.rp));
-    }
     if !r.late.is_empty() {
-        tries.extend([without(r.late), without(&both)]);
+        tries.push(without(r.late));
     }
     for free in &tries {
         if let Ok(g) = fit(data, &f.model, free) {

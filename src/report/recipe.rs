@@ -113,8 +113,6 @@ pub(super) struct Recipe<Mo> {
     pub(super) start: fn(Film) -> Mo,
     pub(super) stage1: Vec<usize>,
     pub(super) stage2: Vec<usize>,
-    /// The rigid-piezoviscous law's parameters (held in the fallback of [`super::staged`]).
-    pub(super) rp: &'static [usize],
     /// Blend parameters held at their start in the later fallbacks of [`super::staged`].
     pub(super) late: &'static [usize],
     pub(super) physical: fn(&Mo) -> bool,
@@ -198,7 +196,6 @@ pub(super) fn line_recipe() -> Recipe<LineModel> {
         start: line_start,
         stage1: LINE_STAGE1.to_vec(),
         stage2: LINE_STAGE2.to_vec(),
-        rp: &[],
         late: &[],
         physical: line_physical,
         names: &PARAM_NAMES,
@@ -229,7 +226,6 @@ pub(super) fn point_recipe(pts: &[FitPoint]) -> Recipe<PointModel> {
         start: point_start,
         stage1: free,
         stage2: all,
-        rp: &[],
         late: &[14, 15],
         physical: PointModel::physical,
         names: &POINT_PARAM_NAMES,
