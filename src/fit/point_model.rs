@@ -123,20 +123,15 @@ impl PointModel {
         }
     }
 
-    /// f_RP(D): NVM's, or the solver's f_RI(D) D psi(D) when `rp_shape` is set.
-    pub fn rp_d_factor(&self, d: f64) -> f64 {
-        match self.rp_shape {
-            Some(s) => ri_d_factor(self.ri_shape, d) * d * psi(s, d),
-            None => nvm_d_factors(d)[2],
-        }
-    }
-
     /// The four asymptotes [H_RI, H_EI, H_RP, H_EP] at (M, L, D).
     pub fn asymptotes(&self, m: f64, l: f64, d: f64) -> [f64; 4] {
         let x = &self.x;
         let mut f = nvm_d_factors(d);
         f[0] = ri_d_factor(self.ri_shape, d);
-        f[2] = self.rp_d_factor(d);
+        // f_RP: NVM's, or the solver's f_RI(D) D psi(D) when `rp_shape` is set.
+        if let Some(s) = self.rp_shape {
+            f[2] = f[0] * d * psi(s, d);
+        }
         [
             x[0].exp() * f[0] * d.powf(x[1]) / (m * m),
             x[2].exp() * m.powf(x[3]) * f[1] * d.powf(x[4]),

@@ -5,19 +5,17 @@
 //! share of the film fading (like L^(-3/4) against the EP law): [`LineEpLimit::run`] solves
 //! M = [`EP_M`] at each L of [`EP_L`] (each twice the last) on the finest grid the accuracy
 //! ladder reaches ([`EP_TARGET`]: 65537 points), each kept when its estimate is within
-//! [`EP_ACCURACY`], and
-//! [`LineEpLimit::limit`] extrapolates c(L) by Aitken's delta-squared (the differences shrink
-//! geometrically, about 0.46 times per doubling of L). Larger L fail on the fine grids they need
-//! (the Barus spike; docs/known-limits.md), so three L values are what the solver gives.
-//! The fits hold d at the extrapolation of these solves
-//! (`crate::report::recipe::D_EP_CENTRAL`, `D_EP_MIN`); the report re-derives it from fresh solves.
+//! [`EP_ACCURACY`], and [`LineEpLimit::limit`] extrapolates c(L) by Aitken's delta-squared (the
+//! differences shrink geometrically, about 0.46 times per doubling of L). Larger L fail on the
+//! fine grids they need (the Barus spike; docs/known-limits.md), so three L values are what the
+//! solver gives. The fits hold d at the extrapolation of these solves
+//! (`crate::report::recipe::D_EP_CENTRAL`, `D_EP_MIN`); the report re-derives it from fresh
+//! solves.
 
-use crate::model::case::{Elasticity, LineCase};
+use crate::limits::solves::line_solve_to;
+use crate::model::case::Elasticity;
 use crate::solve::film::Film;
-use crate::solve::line::LineSolveParams;
 use crate::solve::solution::Outputs;
-use crate::solve::Status;
-use crate::strategy::accuracy::solve_line_to_accuracy;
 use rayon::prelude::*;
 
 /// M of the solves.
@@ -25,13 +23,12 @@ pub const EP_M: f64 = 1e4;
 /// L of the solves.
 pub const EP_L: [f64; 3] = [20.0, 40.0, 80.0];
 /// The accuracy ladder's target: finer than the finest grid meets, so every solve ends on
-/// [`EP_MAX_GRID`] (the extrapolation amplifies differences between grids: H_min at L = 80 is
-/// 0.2 % lower on the grid a 0.3 % target stops at, and its limit 1 % lower).
+/// [`crate::limits::solves::LINE_LIMIT_MAX_GRID`] (the extrapolation amplifies differences
+/// between grids: H_min at L = 80 is 0.2 % lower on the grid a 0.3 % target stops at, and its
+/// limit 1 % lower).
 pub const EP_TARGET: f64 = 0.001;
 /// The relative accuracy each solve must reach (its Richardson estimate of H_c and H_min).
 pub const EP_ACCURACY: f64 = 0.003;
-/// The finest grid the solves may refine to.
-pub const EP_MAX_GRID: usize = 65537;
 
 /// The line elastic-piezoviscous limit solves at M = [`EP_M`], L = [`EP_L`].
 pub struct LineEpLimit {
@@ -45,21 +42,8 @@ impl LineEpLimit {
         let solves = EP_L
             .par_iter()
             .map(|&l| {
-                let models = crate::limits::solves::models(Elasticity::Elastic);
-                let out = LineCase::with_models(EP_M, l, models)
-                    .ok()
-                    .and_then(|case| {
-                        let o = solve_line_to_accuracy(
-                            &case,
-                            &LineSolveParams::default(),
-                            EP_TARGET,
-                            EP_MAX_GRID,
-                        )
-                        .outputs;
-                        let met = o.error_estimate.is_some_and(|e| e <= EP_ACCURACY);
-                        (o.status == Status::Converged && met).then_some(o)
-                    });
-                (l, out)
+                let o = line_solve_to(EP_M, l, Elasticity::Elastic, EP_TARGET, EP_ACCURACY);
+                (l, o)
             })
             .collect();
         LineEpLimit { solves }

@@ -89,7 +89,12 @@ impl FarFieldRigid {
 
     /// M^2 H of `film`: the two grids extrapolated with order 2 (their spacing halves).
     pub fn constant(&self, film: Film) -> f64 {
-        let [a, b] = [0, 1].map(|k| film.of_outputs(&self.solves[k]));
+        self.extrapolated(|o| film.of_outputs(o))
+    }
+
+    /// `value` of each solve, the two grids extrapolated with order 2 (their spacing halves).
+    pub fn extrapolated(&self, value: impl Fn(&Outputs) -> f64) -> f64 {
+        let [a, b] = [0, 1].map(|k| value(&self.solves[k]));
         b + (b - a) / 3.0
     }
 }

@@ -70,11 +70,7 @@ impl FarFieldRigid {
     /// H_RP / L^(2/3) of `film` from these solves: pi(D) H of each grid, extrapolated with
     /// order 2 (the spacing halves); `alpha_bar_1` is alpha_bar at M = 1, L = 1 and this D.
     pub fn rp_constant(&self, film: Film, alpha_bar_1: f64) -> f64 {
-        let [a, b] = [0, 1].map(|k| {
-            let o = &self.solves[k];
-            (alpha_bar_1 * o.p_max).powf(2.0 / 3.0) * film.of_outputs(o)
-        });
-        b + (b - a) / 3.0
+        self.extrapolated(|o| (alpha_bar_1 * o.p_max).powf(2.0 / 3.0) * film.of_outputs(o))
     }
 }
 

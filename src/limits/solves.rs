@@ -36,22 +36,28 @@ pub const LINE_LIMIT_MAX_GRID: usize = 65537;
 /// (for [`rp_from_rigid`]); None for an invalid case, a solve that does not converge or one
 /// whose estimate stays above the target.
 pub fn line_solve(m: f64, l: f64, el: Elasticity) -> Option<(Outputs, f64)> {
-    let case = LineCase::with_models(m, l, models(el)).ok()?;
     let ab1 = LineCase::with_models(m, 1.0, models(el))
         .ok()?
         .venner()
         .alpha_bar;
-    let s = solve_line_to_accuracy(
+    let o = line_solve_to(m, l, el, LINE_LIMIT_ACCURACY, LINE_LIMIT_ACCURACY)?;
+    Some((o, ab1))
+}
+
+/// A line limit solve at (M, L) by the accuracy ladder with the target `target` (up to
+/// [`LINE_LIMIT_MAX_GRID`]), kept when it converged with an error estimate within `accept`;
+/// None for an invalid case or a solve not kept.
+pub fn line_solve_to(m: f64, l: f64, el: Elasticity, target: f64, accept: f64) -> Option<Outputs> {
+    let case = LineCase::with_models(m, l, models(el)).ok()?;
+    let o = solve_line_to_accuracy(
         &case,
         &LineSolveParams::default(),
-        LINE_LIMIT_ACCURACY,
+        target,
         LINE_LIMIT_MAX_GRID,
-    );
-    let met = s
-        .outputs
-        .error_estimate
-        .is_some_and(|e| e <= LINE_LIMIT_ACCURACY);
-    (s.outputs.status == Status::Converged && met).then_some((s.outputs, ab1))
+    )
+    .outputs;
+    let met = o.error_estimate.is_some_and(|e| e <= accept);
+    (o.status == Status::Converged && met).then_some(o)
 }
 
 /// Smallest point limit grid; the checks solve on the data's finest grid when that is finer.
