@@ -10,9 +10,11 @@
 //!   0.5 %, RMS below 0.1 %, half-spacing lattice (0.25 % / 0.04 %; before 0.85 % / 0.12 %). Rows whose maximum is the outlet spike or whose P_max estimate
 //!   (`P_max_err`) exceeds 2 % are not fitted (Barus spikes at L >= 8 that grow with the grid;
 //!   the film under them is where the grid puts them).
-//! * H_c: the film at X = 0 jumps where the pressure peak crosses X = 0 (M about 1.8 at L = 20:
-//!   9.27 to 9.90 between M = 1.7 and 1.8, both converged to 3e-4): the cases above 1 % lie in
-//!   M 0.3 ... 10 at L >= 2, and its RMS is below 0.5 % (0.36 %; with W = 0.75 only, 0.57 %).
+//! * H_c meets it through its corner law (`ehlmap::fit::corner`): the film at X = 0 rises ever
+//!   faster with M until it meets the film at the pressure maximum (M about 1.8 at L = 20) and
+//!   follows it from there, a corner no smooth correction follows (the smooth lattice alone:
+//!   held-out max 4.08 %, RMS 0.36 %). With the corner law: held-out max below 1 %, RMS below
+//!   0.15 % (measured 2026-12-06: 0.73 % / 0.080 %, at M = 1.97, L = 20, just past the corner).
 //! * For every line film the lattice is chosen and beats the blend alone by more than a factor
 //!   of 2 in held-out RMS.
 //!
@@ -76,7 +78,7 @@ fn lattice_beats_the_blend_by(q: &QuantityFit, factor: f64) -> (f64, f64) {
 }
 
 #[test]
-fn the_lattice_correction_meets_the_held_out_targets_where_the_films_are_smooth() {
+fn the_line_fit_meets_the_held_out_targets_for_every_film() {
     let r = fitted();
     let (h_c, h_pm, h_min) = (
         r.h_c.as_ref().unwrap(),
@@ -123,22 +125,25 @@ fn the_lattice_correction_meets_the_held_out_targets_where_the_films_are_smooth(
         rows.iter().filter(resolved).count()
     );
     assert!(unresolved_only >= 20, "{unresolved_only}");
-    let (_, rms, ..) = held_out(h_c);
-    assert!(rms < 0.005, "H_c: {rms}");
-    let above: Vec<_> = h_c
-        .heldout
-        .as_ref()
-        .unwrap()
-        .cases
-        .iter()
-        .filter(|c| c.error.abs() > 0.01)
-        .collect();
-    for c in &above {
-        assert!(
-            (0.3..10.0).contains(&c.m) && c.l >= 2.0,
-            "H_c above 1 % outside the jump region: {c:?}"
-        );
-    }
+    // H_c through its corner: kept over the smooth law, within issue 24's 1 % held out.
+    let corner = h_c.corner.as_ref().expect("the corner law is kept for H_c");
+    assert!(h_c.model.corner.is_some());
+    let (max, rms, ..) = held_out(h_c);
+    eprintln!(
+        "H_c with its corner: held-out max {:.2} %, RMS {:.3} %, ridges {:?}, {} of {} cases follow H_pm",
+        100.0 * max,
+        100.0 * rms,
+        corner.ridges,
+        corner.follows[0],
+        corner.follows[1]
+    );
+    assert!(max < 0.01 && rms < 0.0015, "H_c: {max} {rms}");
+    // Both sides of the corner are populated, and the corner sits where the data put it: at
+    // L = 20, H_c follows H_pm from M = 1.97 on and not below M = 1.56.
+    assert!(corner.follows[0] > 300 && corner.follows[1] - corner.follows[0] > 150);
+    let law = h_c.model.corner.as_ref().unwrap();
+    assert!(law.h(1.56, 20.0) > 0.02, "{}", law.h(1.56, 20.0));
+    assert!(law.h(1.97, 20.0) <= 0.0, "{}", law.h(1.97, 20.0));
 }
 
 #[test]

@@ -3,12 +3,14 @@
 //! points; `tests/data/point-257`, 51 point cases on 257^2).
 //!
 //! * `formula.py` (standard-library Python) reproduces the Rust evaluation to 1e-12 relative for
-//!   every film of both contacts, inside and far outside the data (python3 runs it).
+//!   every film of both contacts, inside and far outside the data (python3 runs it), with every
+//!   kind of correction term, a side-lobe factor and a corner law in play.
 //! * The held-out procedure: every size it tries predicts each case by a fit that did not see
 //!   it, so its held-out errors are never below the fitted ones; and the formula's asymptotes are
 //!   the blend's, so far into each asymptotic corner the formula equals its asymptote.
 
-use ehlmap::fit::correction::{lattice_terms, Coordinates, TAIL};
+use ehlmap::fit::corner::Corner;
+use ehlmap::fit::correction::{lattice_terms, Coordinates, Correction, TAIL};
 use ehlmap::fit::dataset::load_fit_input;
 use ehlmap::fit::side::{tensor_powers, SideLobe};
 use ehlmap::report::formula_py::formula_py;
@@ -51,11 +53,43 @@ fn with_lattice(mut r: FitReport) -> FitReport {
     assert_eq!(levels.len(), 2, "both lattice levels: {levels:?}");
     let kinds: std::collections::HashSet<_> = lattice.iter().map(|t| t.transition).collect();
     assert_eq!(kinds.len(), 2, "both lattice kinds: {kinds:?}");
+    let pm_blend = q.model.blend.clone();
     let c = &mut q.model.correction;
-    for (k, t) in lattice.into_iter().enumerate() {
+    for (k, t) in lattice.clone().into_iter().enumerate() {
         c.terms.push(t);
         c.coef.push(0.01 * ((k % 7) as f64 - 3.0));
     }
+    // The line H_c gets a corner law on the H_pm blend, both corrections on the same lattice,
+    // its hinge active at some cases and not at others.
+    let q = r.line.h_c.as_mut().expect("line H_c fitted");
+    let n_terms = lattice.len();
+    let coef = |scale: f64, n: usize| -> Vec<f64> {
+        (0..n_terms)
+            .map(|k| scale * ((k % n) as f64 - 1.0))
+            .collect()
+    };
+    let corner = Corner::new(
+        pm_blend,
+        &q.model.blend,
+        Correction {
+            terms: lattice.clone(),
+            coef: coef(0.005, 3),
+        },
+        Correction {
+            terms: lattice,
+            coef: vec![-0.01; n_terms],
+        },
+    )
+    .expect("the H_c and H_pm blends share their asymptotes");
+    let h: Vec<f64> = [(0.1, 0.0), (1.0, 4.0), (3.0, 20.0), (50.0, 2.0), (1e4, 0.0)]
+        .iter()
+        .map(|&(m, l)| corner.h(m, l))
+        .collect();
+    assert!(
+        h.iter().any(|v| *v > 0.0) && h.iter().any(|v| *v < 0.0),
+        "{h:?}"
+    );
+    q.model.corner = Some(corner);
     // The point H_min gets a side-lobe factor (the committed point data predate H_min,cl), over
     // M 10 ... 1000, D 0.1 ... 1, L 0 ... 20, lifting nothing and 1 in part of the box
     // and below the ramp's start, M = 20.

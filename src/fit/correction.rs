@@ -314,10 +314,29 @@ impl Correction {
 /// Relative size of the smallest singular value kept by the least-squares solve.
 const SVD_EPS: f64 = 1e-10;
 
+/// The c minimising |Phi c - r|^2 + ridge |c|^2: with ridge = 0 by SVD (singular values below
+/// 1e-10 of the largest are dropped), else by the Cholesky factor of Phi^T Phi + ridge I (of
+/// Phi Phi^T + ridge I when Phi has more columns than rows). None when the solve fails.
+pub fn solve_ridge(phi: &DMatrix<f64>, rhs: &DVector<f64>, ridge: f64) -> Option<DVector<f64>> {
+    let (cases, n) = phi.shape();
+    if ridge > 0.0 && n > cases {
+        // More terms than cases: the same minimiser from the smaller system,
+        // c = Phi^T (Phi Phi^T + ridge I)^-1 r.
+        let gram = phi * phi.transpose() + DMatrix::<f64>::identity(cases, cases) * ridge;
+        Some(phi.tr_mul(&gram.cholesky()?.solve(rhs)))
+    } else if ridge > 0.0 {
+        let normal = phi.tr_mul(phi) + DMatrix::<f64>::identity(n, n) * ridge;
+        Some(normal.cholesky()?.solve(&phi.tr_mul(rhs)))
+    } else {
+        let svd = phi.clone().svd(true, true);
+        let tol = SVD_EPS * svd.singular_values.max();
+        svd.solve(rhs, tol).ok()
+    }
+}
+
 /// The coefficients of `terms` that fit the log residuals `r` (ln H_data - ln H_blend) at the
-/// coordinates `z`: min |Phi c - r|^2 + ridge |c|^2; with ridge = 0 by SVD (singular values
-/// below 1e-10 of the largest are dropped), else by the Cholesky factor of Phi^T Phi + ridge I.
-/// None when the solve fails or gives a non-finite coefficient.
+/// coordinates `z`: min |Phi c - r|^2 + ridge |c|^2 ([`solve_ridge`]). None when the solve fails
+/// or gives a non-finite coefficient.
 pub fn fit_correction(
     z: &[Coordinates],
     r: &[f64],
@@ -328,21 +347,7 @@ pub fn fit_correction(
         return Some(Correction::default());
     }
     let phi = DMatrix::from_fn(z.len(), terms.len(), |i, k| terms[k].eval(&z[i]));
-    let rhs = DVector::from_column_slice(r);
-    let (cases, n) = phi.shape();
-    let c = if ridge > 0.0 && n > cases {
-        // More terms than cases: the same minimiser from the smaller system,
-        // c = Phi^T (Phi Phi^T + ridge I)^-1 r.
-        let gram = &phi * phi.transpose() + DMatrix::<f64>::identity(cases, cases) * ridge;
-        phi.tr_mul(&gram.cholesky()?.solve(&rhs))
-    } else if ridge > 0.0 {
-        let normal = phi.tr_mul(&phi) + DMatrix::<f64>::identity(n, n) * ridge;
-        normal.cholesky()?.solve(&phi.tr_mul(&rhs))
-    } else {
-        let svd = phi.svd(true, true);
-        let tol = SVD_EPS * svd.singular_values.max();
-        svd.solve(&rhs, tol).ok()?
-    };
+    let c = solve_ridge(&phi, &DVector::from_column_slice(r), ridge)?;
     c.iter().all(|v| v.is_finite()).then(|| Correction {
         terms: terms.to_vec(),
         coef: c.iter().copied().collect(),

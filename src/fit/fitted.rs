@@ -1,6 +1,7 @@
 //! What a fit returns: each film's fitted law with its parameters and their uncertainties, and
 //! its error statistics against the data.
 
+use crate::fit::corner::{Corner, CornerChoice};
 use crate::fit::correction::Correction;
 use crate::fit::dataset::FitPoint;
 use crate::fit::heldout::{CaseError, HeldOut};
@@ -71,11 +72,19 @@ pub struct FittedModel {
     /// the blend was fitted to H_min itself).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub side: Option<SideLobe>,
+    /// The line H_c law through its corner ([`crate::fit::corner`]; None: the corrected blend).
+    /// When present it is the formula, and `blend` and `correction` are the smooth H_c law whose
+    /// asymptotes it keeps.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub corner: Option<Corner>,
 }
 
 impl FittedModel {
     /// The fitted film H at (M, L, D) in Moes units; a line law ignores D.
     pub fn eval(&self, m: f64, l: f64, d: f64) -> f64 {
+        if let Some(c) = &self.corner {
+            return c.eval(m, l);
+        }
         let b = &self.blend;
         let h = self
             .correction
@@ -143,4 +152,7 @@ pub struct QuantityFit {
     /// line's minimum; None otherwise).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub side: Option<SideChoice>,
+    /// The held-out choice of the corner law (line H_c with a corner; None otherwise).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub corner: Option<CornerChoice>,
 }

@@ -2,11 +2,13 @@
 //! `H(M, L, D=None, film="H_c")` reproduces [`FittedModel::eval`] operation by operation (the
 //! blend of [`crate::fit::model`] / [`crate::fit::point_model`] times the correction of
 //! [`crate::fit::correction`], for the point H_min times the side-lobe factor of
-//! [`crate::fit::side`]); `D=None` is the line formula, a number the point formula. Every
-//! parameter is written with the shortest decimal that reads back to the same f64, so Python and
-//! Rust agree to rounding (tests/formula_py.rs: 1e-12 relative). Overflow in Python (which raises
-//! where Rust gives infinity) is caught and mapped to infinity, as in the Rust evaluation.
+//! [`crate::fit::side`], for a line H_c with a corner the law of [`crate::fit::corner`]);
+//! `D=None` is the line formula, a number the point formula. Every parameter is written with the
+//! shortest decimal that reads back to the same f64, so Python and Rust agree to rounding
+//! (tests/formula_py.rs: 1e-12 relative). Overflow in Python (which raises where Rust gives
+//! infinity) is caught and mapped to infinity, as in the Rust evaluation.
 
+use crate::fit::corner::{Corner, DEFICIT_POWER};
 use crate::fit::correction::{Correction, Transition, LATTICE, TAIL};
 use crate::fit::fitted::{Blend, FittedModel};
 use crate::fit::side::SideLobe;
@@ -118,10 +120,8 @@ def _tail(a):
     return _exp(-a / TAIL) / (1.0 + _exp(-a))
 
 
-def _correction(terms, asym, D):
-    """sum c_k phi_k; terms = [(transition, (i, j, k, l, n), c, (lattice i, j, level)), ...]."""
-    if not terms:
-        return 0.0
+def _coords(asym, D):
+    """The coordinates (a, b, c, ln D, w) of the blend's asymptotes."""
     ri, ei, rp, ep = asym
     hi, lo = max(ri, ei), min(ri, ei)
     iso = hi * _pow(1.0 + _pow(lo / hi, 4), 0.25)
@@ -133,7 +133,15 @@ def _correction(terms, asym, D):
         b, c = float("nan"), -INF
     a = math.log(ei / ri)
     w = 1.0 / (1.0 + _exp(-c))
-    variables = (a, b, c, math.log(D), w)
+    return (a, b, c, math.log(D), w)
+
+
+def _correction(terms, asym, D):
+    """sum c_k phi_k; terms = [(transition, (i, j, k, l, n), c, (lattice i, j, level)), ...]."""
+    if not terms:
+        return 0.0
+    variables = _coords(asym, D)
+    a, b, c, _, w = variables
     total = 0.0
     for transition, powers, coef, at in terms:
         lw = LATTICE * 0.5 ** at[2]
@@ -157,6 +165,27 @@ def _correction(terms, asym, D):
                     base *= v ** k
         total += coef * base
     return total
+
+
+def _logistic(t):
+    if t >= 0.0:
+        return 1.0 / (1.0 + _exp(-t))
+    e = _exp(t)
+    return e / (1.0 + e)
+
+
+def _corner(k, M, L):
+    """The line H_c through its corner: R exp(-rho (max(0, h) / rho)^power) (ehlmap
+    src/fit/corner.rs)."""
+    x, c_ri = k["x"], k["c_ri"]
+    asym = _line_asymptotes(x, c_ri, M, L)
+    a, b, _, _, w = _coords(asym, 1.0)
+    r = _logistic(-a)
+    if w > 0.0 and math.isfinite(b):
+        r = (1.0 - w) * r + w * _logistic(b)
+    right = _line_blend(x, c_ri, M, L) * _exp(_correction(k["branch"], asym, 1.0))
+    h = k["rho"] * r + _correction(k["deficit"], asym, 1.0)
+    return right * _exp(-(k["rho"] * (max(0.0, h) / k["rho"]) ** k["power"]))
 
 
 def _side(side, M, L, D):
@@ -249,13 +278,33 @@ fn side(s: Option<&SideLobe>) -> String {
     )
 }
 
+/// The corner law of a line H_c (None without one).
+fn corner(c: Option<&Corner>) -> String {
+    let Some(c) = c else {
+        return "None".to_string();
+    };
+    let Blend::Line(x) = &c.base else {
+        return "None".to_string();
+    };
+    format!(
+        "{{\"c_ri\": {}, \"x\": [{}], \"branch\": {}, \"deficit\": {}, \"rho\": {}, \"power\": {}}}",
+        f(x.c_ri),
+        list(&x.x),
+        terms(&c.branch),
+        terms(&c.deficit),
+        f(c.rho),
+        f(DEFICIT_POWER)
+    )
+}
+
 fn entry(m: &FittedModel) -> String {
     match &m.blend {
         Blend::Line(x) => format!(
-            "{{\"c_ri\": {}, \"x\": [{}], \"terms\": {}}}",
+            "{{\"c_ri\": {}, \"x\": [{}], \"terms\": {}, \"corner\": {}}}",
             f(x.c_ri),
             x.x.iter().map(|v| f(*v)).collect::<Vec<_>>().join(", "),
-            terms(&m.correction)
+            terms(&m.correction),
+            corner(m.corner.as_ref())
         ),
         Blend::Point(x) => format!(
             "{{\"x\": [{}], \"ri_shape\": [{}], \"rp_shape\": {}, \"terms\": {}, \"side\": {}}}",
@@ -286,6 +335,8 @@ def H(M, L, D=None, film="H_c"):
         if film not in LINE:
             raise ValueError(f"no line formula for {film} (fitted: {sorted(LINE)})")
         e = LINE[film]
+        if e.get("corner") is not None:
+            return _corner(e["corner"], M, L)
         asym = _line_asymptotes(e["x"], e["c_ri"], M, L)
         return _line_blend(e["x"], e["c_ri"], M, L) * _exp(_correction(e["terms"], asym, 1.0))
     if film not in POINT:

@@ -55,7 +55,9 @@ isoviscous g(a)(1 - w), piezoviscous g(b) w, outer g(c)), or a lattice of bumps 
 g(a/W - i)(1 - w) and g(a/W - i) g(c/W - j) (W = 0.75 or 0.375) over the data, fitted with a ridge weight; \
 the candidate (number of terms, or lattice spacing and ridge) is chosen by 5-fold held-out error, the \
 coefficients fitted on all cases. H_pm is not fitted where the pressure maximum is not \
-grid-converged (the outlet spike, or P_max_err above 2 %). formula.py evaluates H.";
+grid-converged (the outlet spike, or P_max_err above 2 %). Where the data show the corner at \
+which H_c meets H_pm, H_c is the corner law of its section (with the asymptotes of its blend). \
+formula.py evaluates H.";
 
 const POINT_FORM: &str = "Formula (Moes point units, NVM 1994 form): H = H_blend exp(C). \
 H_blend = { [H_RI^r + (H_EI^-4 + H_00^-4)^(-r/4)]^(s/r) + (H_RP^-8 + H_EP^-8)^(-s/8) }^(1/s), \
@@ -159,6 +161,21 @@ pub fn candidate_name(s: &SizeScore) -> String {
     }
 }
 
+/// The formula kept for `q`, in words: its corner law ([`crate::fit::corner`]) or the
+/// correction candidate `chosen`.
+fn kept_name(q: &QuantityFit, chosen: &SizeScore) -> String {
+    match &q.corner {
+        Some(c) => format!(
+            "its corner law: 2 x {} lattice terms (W = {}), ridges {:.0e} / {:.0e}",
+            c.terms,
+            LATTICE * 0.5f64.powi(i32::from(crate::fit::corner::LEVEL)),
+            c.ridges[0],
+            c.ridges[1]
+        ),
+        None => candidate_name(chosen),
+    }
+}
+
 fn heldout(md: &mut String, q: &QuantityFit) {
     let c = &q.model.correction;
     match &q.heldout {
@@ -171,7 +188,7 @@ fn heldout(md: &mut String, q: &QuantityFit) {
                 md,
                 "Held-out errors ({}-fold, each case predicted by a fit that never saw it): with {} max {}, RMS {:.2} % (worst at M = {:.4}, L = {:.3}, D = {}); the blend alone max {}, RMS {:.2} %. Tried (terms: RMS / max): {}.\n",
                 h.folds,
-                candidate_name(&h.chosen),
+                kept_name(q, &h.chosen),
                 pct(h.chosen.max),
                 100.0 * h.chosen.rms,
                 h.chosen.worst.0,
@@ -253,6 +270,51 @@ fn side_lobe(md: &mut String, q: &QuantityFit) {
     md.push('\n');
 }
 
+/// The corner law of the line H_c (src/fit/corner.rs), when it has one.
+fn corner_law(md: &mut String, q: &QuantityFit) {
+    let (Some(law), Some(c)) = (&q.model.corner, &q.corner) else {
+        return;
+    };
+    let _ = writeln!(
+        md,
+        "H_c through its corner (where the film at X = 0 meets the film at the pressure maximum): \
+         H_c = R exp(-rho (max(0, h) / rho)^{}), R = H_pm,blend exp(C_R), h = rho r + C_h, with \
+         H_pm,blend the H_pm law's blend (its parameters in the H_pm section), rho = \
+         ln(H_RI,pm / H_RI,c) = {}, \
+         r = (1 - w)/(1 + e^a) + w/(1 + e^-b) in that blend's coordinates (1 in the rigid limits, \
+         0 in the elastic ones), and C_R, C_h on the same {} lattice bumps. C_R is fitted to H_c \
+         where it follows H_pm (H_c >= {} H_pm: {} of {} cases) and held from below elsewhere, C_h \
+         to the h of the data's deficit elsewhere and held from above where H_c follows H_pm. The H_c asymptotes \
+         are the blend's above, exactly. The held-out errors above are of this law (the \
+         candidates listed: of the smooth law, whose blend and correction are given here). Ridges \
+         (R / h) tried, held-out RMS / max: {}.\n",
+        crate::fit::corner::DEFICIT_POWER,
+        sig5(law.rho),
+        c.terms,
+        crate::fit::corner::FOLLOWS,
+        c.follows[0],
+        c.follows[1],
+        c.tried
+            .iter()
+            .map(|(r, rms, max)| format!(
+                "{:.0e} / {:.0e}: {:.3} / {:.2} %",
+                r[0],
+                r[1],
+                100.0 * rms,
+                100.0 * max.abs()
+            ))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    for (name, corr) in [("C_R", &law.branch), ("C_h", &law.deficit)] {
+        let _ = writeln!(md, "| {name} term phi_k | c_k |\n|---|---|");
+        for (t, k) in corr.terms.iter().zip(&corr.coef) {
+            let _ = writeln!(md, "| {} | {} |", term_name(t), sig5(*k));
+        }
+        md.push('\n');
+    }
+}
+
 fn quantity(md: &mut String, q: &QuantityFit) {
     let _ = writeln!(
         md,
@@ -279,6 +341,7 @@ fn quantity(md: &mut String, q: &QuantityFit) {
     }
     heldout(md, q);
     side_lobe(md, q);
+    corner_law(md, q);
     table(md, &q.overall, &q.regions);
     if !q.per_d.is_empty() {
         let _ = writeln!(md, "Per ellipticity:\n");
@@ -325,7 +388,7 @@ fn summary(md: &mut String, c: &ContactReport) {
                 "; held-out max {:.2} %, RMS {:.2} % ({})",
                 100.0 * h.chosen.max.abs(),
                 100.0 * h.chosen.rms,
-                candidate_name(&h.chosen)
+                kept_name(q, &h.chosen)
             );
         }
         for p in c.published.iter().filter(|p| p.against == q.quantity) {

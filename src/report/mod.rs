@@ -19,6 +19,7 @@
 //! need at least K"; [`fit_report`] fails only when no contact could be fitted.
 
 pub mod checks;
+mod corner;
 pub mod formula_py;
 pub mod markdown;
 pub mod mixed;
@@ -39,6 +40,7 @@ use crate::model::formulas::{
     dowson_toyoda_line_hc_moes, hamrock_dowson_hc_moes, moes_line_hc, nvm_point_hc,
 };
 use crate::report::checks::{line_checks, point_checks, AsymptoteCheck};
+use crate::report::corner::{corner_fit, CornerFit};
 use crate::report::recipe::{line_recipe, point_recipe, Recipe};
 pub use crate::report::recipe::{
     A_EI_CENTRAL, A_EI_MIN, B_RP_CENTRAL, C_RI_CENTRAL, D_EP_CENTRAL, D_EP_MIN, LINE_RIDGES,
@@ -196,14 +198,17 @@ fn quantity<Mo: FilmModel>(
     f: LsqFit<Mo>,
     correction: (Correction, Option<HeldOut>),
     side: Option<(SideLobe, SideChoice)>,
-    names: &[&str],
-    wrap: fn(Mo) -> Blend,
+    corner: Option<CornerFit>,
+    r: &Recipe<Mo>,
 ) -> QuantityFit {
+    let (names, wrap) = (r.names, r.wrap);
     let (lobe, choice) = side.unzip();
+    let (corner, corner_choice) = corner.map(|c| (c.law, c.choice)).unzip();
     let model = FittedModel {
         blend: wrap(f.model.clone()),
         correction: correction.0,
         side: lobe,
+        corner,
     };
     let data: Vec<_> = pts
         .iter()
@@ -242,6 +247,7 @@ fn quantity<Mo: FilmModel>(
         heldout: correction.1,
         check: vec![],
         side: choice,
+        corner: corner_choice,
     }
 }
 
@@ -347,8 +353,14 @@ fn fit_films<Mo: FilmModel>(
         failed_cases: failed,
         ..ContactReport::default()
     };
-    let mut models = vec![];
-    for film in Film::ALL {
+    let mut models: Vec<(Film, Mo)> = vec![];
+    // With a corner law H_c is fitted after H_pm, on whose blend it builds.
+    let order = if r.corner {
+        [Film::PressureMax, Film::Centre, Film::Minimum]
+    } else {
+        Film::ALL
+    };
+    for film in order {
         // The point H_min through the centre line: when the data carry it with side lobes and
         // the side-lobe factor can be cross-validated (else H_min is fitted directly).
         let side = (r.side_lobes && film == Film::Minimum)
@@ -374,6 +386,17 @@ fn fit_films<Mo: FilmModel>(
             source: Box::new(e),
         })?;
         let (correction, heldout) = corrected(&data, &mut f, &start, r);
+        // The line H_c through its corner, kept when its held-out RMS is the lower.
+        let pm = models.iter().find(|(g, _)| *g == Film::PressureMax);
+        let corner = match (r.corner && film == Film::Centre, pm, &heldout) {
+            (true, Some((_, pm)), Some(plain)) => corner_fit(pts, &data, &f.model, pm, r, plain)
+                .filter(|c| c.heldout.chosen.rms < plain.chosen.rms),
+            _ => None,
+        };
+        let heldout = match &corner {
+            Some(c) => Some(c.heldout.clone()),
+            None => heldout,
+        };
         let estimates: Vec<Option<f64>> = pts
             .iter()
             .filter(|p| p.film(film).is_some())
@@ -390,8 +413,8 @@ fn fit_films<Mo: FilmModel>(
             f,
             (correction, heldout),
             side,
-            r.names,
-            r.wrap,
+            corner,
+            r,
         ));
         match film {
             Film::Centre => report.h_c = q,
@@ -399,6 +422,7 @@ fn fit_films<Mo: FilmModel>(
             Film::Minimum => report.h_min = q,
         }
     }
+    models.sort_by_key(|(f, _)| Film::ALL.iter().position(|g| g == f));
     Ok((report, models))
 }
 

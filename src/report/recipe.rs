@@ -123,6 +123,9 @@ pub(super) struct Recipe<Mo> {
     /// Whether H_min is fitted as the centre line's minimum times the side-lobe factor
     /// ([`crate::fit::side`]) when the data carry H_min,cl (point contacts).
     pub(super) side_lobes: bool,
+    /// Whether H_c is fitted through its corner with H_pm ([`crate::fit::corner`]) when the
+    /// data allow it (line contacts).
+    pub(super) corner: bool,
 }
 
 /// Ridge weights of the line lattice candidates ([`line_bases`]).
@@ -202,6 +205,7 @@ pub(super) fn line_recipe() -> Recipe<LineModel> {
         wrap: Blend::Line,
         bases: line_bases,
         side_lobes: false,
+        corner: true,
     }
 }
 
@@ -232,5 +236,6 @@ pub(super) fn point_recipe(pts: &[FitPoint]) -> Recipe<PointModel> {
         wrap: Blend::Point,
         bases: point_bases,
         side_lobes: true,
+        corner: false,
     }
 }

@@ -392,6 +392,7 @@ mod tests {
             blend: crate::fit::fitted::Blend::Line(crate::fit::model::LineModel::moes()),
             correction: Default::default(),
             side: None,
+            corner: None,
         }
     }
 
@@ -442,6 +443,7 @@ mod tests {
                 per_d: vec![],
                 within_target: None,
                 side: None,
+                corner: None,
                 check: [20.0, 50.0]
                     .map(|m| CaseError {
                         m,
