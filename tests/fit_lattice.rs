@@ -14,7 +14,7 @@
 //!   faster with M until it meets the film at the pressure maximum (M about 1.8 at L = 20) and
 //!   follows it from there, a corner no smooth correction follows (the smooth lattice alone:
 //!   held-out max 4.08 %, RMS 0.36 %). With the corner law: held-out max below 1 %, RMS below
-//!   0.15 % (measured 2026-12-06: 0.73 % / 0.080 %, at M = 1.97, L = 20, just past the corner).
+//!   0.15 % (measured 2026-12-06: 0.68 % / 0.076 %, at M = 1.97, L = 4, just past the corner).
 //! * For every line film the lattice is chosen and beats the blend alone by more than a factor
 //!   of 2 in held-out RMS.
 //!

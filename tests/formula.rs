@@ -14,7 +14,7 @@ use ehlmap::fit::correction::{lattice_terms, Coordinates, Correction, TAIL};
 use ehlmap::fit::dataset::load_fit_input;
 use ehlmap::fit::side::{tensor_powers, SideLobe};
 use ehlmap::report::formula_py::formula_py;
-use ehlmap::report::{fit_report, FitReport, QuantityFit};
+use ehlmap::report::{fit_report, Blend, FitReport, QuantityFit};
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::{Command, Stdio};
@@ -68,9 +68,13 @@ fn with_lattice(mut r: FitReport) -> FitReport {
             .map(|k| scale * ((k % n) as f64 - 1.0))
             .collect()
     };
+    let line = |b: &Blend| match b {
+        Blend::Line(x) => x.clone(),
+        Blend::Point(_) => panic!("a line blend"),
+    };
     let corner = Corner::new(
-        pm_blend,
-        &q.model.blend,
+        line(&pm_blend),
+        &line(&q.model.blend),
         Correction {
             terms: lattice.clone(),
             coef: coef(0.005, 3),

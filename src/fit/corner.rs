@@ -31,8 +31,8 @@
 //! by held-out error ([`select_corner`]).
 
 use crate::fit::correction::{lattice_terms, solve_ridge, Coordinates, Correction, Term};
-use crate::fit::fitted::Blend;
 use crate::fit::heldout::{worst_and_rms, RMS_SLACK};
+use crate::fit::model::LineModel;
 use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 
@@ -63,7 +63,7 @@ pub const CORNER_RIDGES: [[f64; 2]; 6] = [
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Corner {
     /// The blend of the right branch R: the H_pm law's.
-    pub base: Blend,
+    pub base: LineModel,
     /// C_R, R's interior correction.
     pub branch: Correction,
     /// C_h, the deficit's interior part.
@@ -94,9 +94,13 @@ impl Corner {
     /// A corner law on `base` (the H_pm blend) for the H_c blend `own`: None unless the two
     /// blends' asymptotes have the ratios of the module doc (rigid: a common e^rho > 1;
     /// elastic: 1), each to 1e-9.
-    pub fn new(base: Blend, own: &Blend, branch: Correction, deficit: Correction) -> Option<Self> {
-        let ratio =
-            |m: f64, l: f64, k: usize| base.asymptotes(m, l, 1.0)[k] / own.asymptotes(m, l, 1.0)[k];
+    pub fn new(
+        base: LineModel,
+        own: &LineModel,
+        branch: Correction,
+        deficit: Correction,
+    ) -> Option<Self> {
+        let ratio = |m: f64, l: f64, k: usize| base.asymptotes(m, l)[k] / own.asymptotes(m, l)[k];
         let rigid = ratio(1.0, 1.0, 0);
         let same = |a: f64, b: f64| (a / b - 1.0).abs() < 1e-9;
         (rigid > 1.0
@@ -112,12 +116,12 @@ impl Corner {
     }
 
     fn coords(&self, m: f64, l: f64) -> Coordinates {
-        Coordinates::new(self.base.asymptotes(m, l, 1.0), 1.0)
+        Coordinates::new(self.base.asymptotes(m, l), 1.0)
     }
 
     /// The right branch R at (M, L).
     pub fn right(&self, m: f64, l: f64) -> f64 {
-        self.base.eval(m, l, 1.0) * self.branch.log_factor_at(&self.coords(m, l)).exp()
+        self.base.eval(m, l) * self.branch.log_factor_at(&self.coords(m, l)).exp()
     }
 
     /// h at (M, L) (before the hinge).
@@ -195,8 +199,8 @@ pub fn one_sided(
 /// share their asymptotes as [`Corner::new`] needs, a class of cases is empty or a solve fails.
 pub fn fit_corner(
     cases: &[CornerCase],
-    base: &Blend,
-    own: &Blend,
+    base: &LineModel,
+    own: &LineModel,
     terms: &[Term],
     ridges: [f64; 2],
 ) -> Option<Corner> {
@@ -210,7 +214,7 @@ pub fn fit_corner(
     let phi = DMatrix::from_fn(z.len(), terms.len(), |i, k| terms[k].eval(&z[i]));
     let y: Vec<f64> = cases
         .iter()
-        .map(|c| (c.h / base.eval(c.m, c.l, 1.0)).ln())
+        .map(|c| (c.h / base.eval(c.m, c.l)).ln())
         .collect();
     let (coef, _) = one_sided(&phi, &y, &follows, ridges[0], true)?;
     corner.branch = Correction {
@@ -258,13 +262,13 @@ pub struct CornerChoice {
 pub fn select_corner(
     cases: &[CornerCase],
     fold: &[usize],
-    bases: &[Blend],
-    base: &Blend,
-    own: &Blend,
+    bases: &[LineModel],
+    base: &LineModel,
+    own: &LineModel,
 ) -> Option<(Corner, CornerChoice)> {
     let z: Vec<Coordinates> = cases
         .iter()
-        .map(|c| Coordinates::new(base.asymptotes(c.m, c.l, 1.0), 1.0))
+        .map(|c| Coordinates::new(base.asymptotes(c.m, c.l), 1.0))
         .collect();
     let terms = lattice_terms(&z, LEVEL);
     let mut scored = vec![];
@@ -304,28 +308,27 @@ pub fn select_corner(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fit::model::LineModel;
 
     /// Moes' blend as the H_pm law, and the same with the H_c rigid constants (2.4475/3 times
     /// Moes' RI and RP laws) as the H_c law.
-    fn blends() -> (Blend, Blend) {
+    fn blends() -> (LineModel, LineModel) {
         let base = LineModel::moes();
         let mut own = base.clone();
         own.c_ri = 2.4475;
         own.x[2] += (2.4475f64 / 3.0).ln();
-        (Blend::Line(base), Blend::Line(own))
+        (base, own)
     }
 
     /// Cases M = 0.1 ... 3000 (46, log) x L in {0, 1, 2, 4, 8, 12, 16, 20} whose H_c is the H_pm
     /// blend times exp(-max(0, rho r(z) - 0.05 - 0.002 ln(1 + L))): a corner where rho r(z)
     /// crosses 0.05 + 0.002 ln(1 + L), H_c following H_pm past it.
-    fn cases(base: &Blend, rho: f64) -> Vec<CornerCase> {
+    fn cases(base: &LineModel, rho: f64) -> Vec<CornerCase> {
         let mut out = vec![];
         for i in 0..46 {
             let m = 10f64.powf(-1.0 + f64::from(i) / 10.0);
             for l in [0.0, 1.0, 2.0, 4.0, 8.0, 12.0, 16.0, 20.0] {
-                let z = Coordinates::new(base.asymptotes(m, l, 1.0), 1.0);
-                let h_pm = base.eval(m, l, 1.0);
+                let z = Coordinates::new(base.asymptotes(m, l), 1.0);
+                let h_pm = base.eval(m, l);
                 let h = h_pm * (-(rho * rigidity(&z) - 0.05 - 0.002 * l.ln_1p()).max(0.0)).exp();
                 out.push(CornerCase {
                     m,
@@ -353,16 +356,9 @@ mod tests {
         );
         assert!((c.expect("shared asymptotes").rho - rho()).abs() < 1e-15);
         // An H_c law whose EI constant differs from H_pm's has no corner law.
-        let Blend::Line(mut other) = own.clone() else {
-            unreachable!()
-        };
+        let mut other = own.clone();
         other.x[0] += 0.01;
-        let none = Corner::new(
-            base,
-            &Blend::Line(other),
-            Correction::default(),
-            Correction::default(),
-        );
+        let none = Corner::new(base, &other, Correction::default(), Correction::default());
         assert!(none.is_none());
     }
 
@@ -434,7 +430,7 @@ mod tests {
         let terms = lattice_terms(
             &cases
                 .iter()
-                .map(|c| Coordinates::new(base.asymptotes(c.m, c.l, 1.0), 1.0))
+                .map(|c| Coordinates::new(base.asymptotes(c.m, c.l), 1.0))
                 .collect::<Vec<_>>(),
             LEVEL,
         );
@@ -446,7 +442,7 @@ mod tests {
             ("RP", 1.0, 1e120),
             ("EP", 1e60, 1e12),
         ] {
-            let ratio = law.eval(m, l) / own.eval(m, l, 1.0);
+            let ratio = law.eval(m, l) / own.eval(m, l);
             assert!((ratio - 1.0).abs() < 1e-3, "{name}: {ratio}");
         }
     }

@@ -9,11 +9,11 @@
 
 use crate::fit::corner::{select_corner, Corner, CornerCase, CornerChoice, FOLLOWS};
 use crate::fit::dataset::FitPoint;
+use crate::fit::fitted::Blend;
 use crate::fit::heldout::{folds_of, worst_and_rms, HeldOut, FOLDS, LATTICE_MIN_CASES};
 use crate::fit::lsq::Sample;
-use crate::fit::model::FilmModel;
-use crate::report::recipe::{Recipe, MIN_CASES};
-use crate::report::{samples, staged};
+use crate::fit::model::{FilmModel, LineModel};
+use crate::report::recipe::MIN_CASES;
 use crate::solve::film::Film;
 
 /// The corner law of H_c and its held-out errors.
@@ -27,15 +27,35 @@ pub(super) struct CornerFit {
     pub(super) heldout: HeldOut,
 }
 
+/// How the H_pm blend is had: its samples, its fit on a training set (None: failed), and the
+/// wrapping of a fitted model into a [`Blend`] (a line blend has a corner law, others none).
+pub(super) struct PmBlends<'a, Mo> {
+    /// The H_pm samples.
+    pub(super) data: &'a [Sample],
+    /// The H_pm blend fitted on a training set.
+    pub(super) fit: &'a dyn Fn(&[Sample]) -> Option<Mo>,
+    /// The fitted model as a blend.
+    pub(super) wrap: fn(Mo) -> Blend,
+}
+
+/// The line blend of a model (None for a point model).
+fn line_of<Mo>(wrap: fn(Mo) -> Blend, m: Mo) -> Option<LineModel> {
+    match wrap(m) {
+        Blend::Line(x) => Some(x),
+        Blend::Point(_) => None,
+    }
+}
+
 /// The corner fit of H_c (`data`: its samples, `own`: its blend, `plain`: its held-out errors
-/// without a corner) on the H_pm blend `pm`, when the data have [`LATTICE_MIN_CASES`] cases and
-/// [`MIN_CASES`] on each side of the corner. None otherwise, or when a fit fails.
+/// without a corner) on the H_pm blend `pm`, whose refit without each fold `pms` gives, when the
+/// data have [`LATTICE_MIN_CASES`] cases and [`MIN_CASES`] on each side of the corner. None
+/// otherwise, for a point contact, or when a fit fails.
 pub(super) fn corner_fit<Mo: FilmModel>(
     pts: &[FitPoint],
     data: &[Sample],
     own: &Mo,
     pm: &Mo,
-    r: &Recipe<Mo>,
+    pms: &PmBlends<Mo>,
     plain: &HeldOut,
 ) -> Option<CornerFit> {
     let cases: Vec<CornerCase> = pts
@@ -61,23 +81,21 @@ pub(super) fn corner_fit<Mo: FilmModel>(
         return None;
     }
     let fold = folds_of(data);
-    let pm_data = samples(pts, Film::PressureMax);
-    let start = (r.start)(Film::PressureMax);
     let bases = (0..FOLDS)
         .map(|f| {
             let held = |s: &Sample| {
                 (0..data.len()).any(|i| fold[i] == f && data[i].m == s.m && data[i].l == s.l)
             };
-            let train: Vec<Sample> = pm_data.iter().copied().filter(|s| !held(s)).collect();
-            staged(&train, &start, r).ok().map(|f| (r.wrap)(f.model))
+            let train: Vec<Sample> = pms.data.iter().copied().filter(|s| !held(s)).collect();
+            line_of(pms.wrap, (pms.fit)(&train)?)
         })
         .collect::<Option<Vec<_>>>()?;
     let (law, choice) = select_corner(
         &cases,
         &fold,
         &bases,
-        &(r.wrap)(pm.clone()),
-        &(r.wrap)(own.clone()),
+        &line_of(pms.wrap, pm.clone())?,
+        &line_of(pms.wrap, own.clone())?,
     )?;
     let mut heldout = plain.clone();
     for (c, e) in heldout.cases.iter_mut().zip(&choice.heldout) {

@@ -283,9 +283,7 @@ fn corner(c: Option<&Corner>) -> String {
     let Some(c) = c else {
         return "None".to_string();
     };
-    let Blend::Line(x) = &c.base else {
-        return "None".to_string();
-    };
+    let x = &c.base;
     format!(
         "{{\"c_ri\": {}, \"x\": [{}], \"branch\": {}, \"deficit\": {}, \"rho\": {}, \"power\": {}}}",
         f(x.c_ri),

@@ -40,7 +40,7 @@ use crate::model::formulas::{
     dowson_toyoda_line_hc_moes, hamrock_dowson_hc_moes, moes_line_hc, nvm_point_hc,
 };
 use crate::report::checks::{line_checks, point_checks, AsymptoteCheck};
-use crate::report::corner::{corner_fit, CornerFit};
+use crate::report::corner::{corner_fit, CornerFit, PmBlends};
 use crate::report::recipe::{line_recipe, point_recipe, Recipe};
 pub use crate::report::recipe::{
     A_EI_CENTRAL, A_EI_MIN, B_RP_CENTRAL, C_RI_CENTRAL, D_EP_CENTRAL, D_EP_MIN, LINE_RIDGES,
@@ -389,8 +389,16 @@ fn fit_films<Mo: FilmModel>(
         // The line H_c through its corner, kept when its held-out RMS is the lower.
         let pm = models.iter().find(|(g, _)| *g == Film::PressureMax);
         let corner = match (r.corner && film == Film::Centre, pm, &heldout) {
-            (true, Some((_, pm)), Some(plain)) => corner_fit(pts, &data, &f.model, pm, r, plain)
-                .filter(|c| c.heldout.chosen.rms < plain.chosen.rms),
+            (true, Some((_, pm)), Some(plain)) => {
+                let start_pm = (r.start)(Film::PressureMax);
+                let pms = PmBlends {
+                    data: &samples(pts, Film::PressureMax),
+                    fit: &|train: &[Sample]| staged(train, &start_pm, r).ok().map(|f| f.model),
+                    wrap: r.wrap,
+                };
+                corner_fit(pts, &data, &f.model, pm, &pms, plain)
+                    .filter(|c| c.heldout.chosen.rms < plain.chosen.rms)
+            }
             _ => None,
         };
         let heldout = match &corner {
