@@ -2,7 +2,7 @@
 //! maximum.
 //!
 //! At L >= 8 the line H_c rises ever faster with M until it meets H_pm (near M = 1.8) and
-//! follows it from there (H_c / H_pm within 1.00-1.01): a corner between two smooth branches
+//! follows it from there (H_c / H_pm within 1.000-1.02): a corner between two smooth branches
 //! that no smooth correction follows (docs/validation.md). The law of H_c is therefore
 //!
 //! H_c = R exp(-delta),  delta = rho (max(0, h) / rho)^k,  R = H_pm,blend exp(C_R),
@@ -48,8 +48,8 @@ pub const DEFICIT_POWER: f64 = 0.75;
 /// The lattice level of both corrections (spacing [`crate::fit::correction::LATTICE`] / 2).
 pub const LEVEL: u8 = 1;
 
-/// The ridge weights (R, h) tried, most regularised first: the held-out error of the committed
-/// line data chooses (docs/validation.md).
+/// The ridge weights (R, h) tried, in this order: the first whose held-out RMS is within
+/// [`RMS_SLACK`] of the best is kept (on the committed line data 1e-3 / 3e-5; docs/validation.md).
 pub const CORNER_RIDGES: [[f64; 2]; 6] = [
     [1e-3, 1e-5],
     [3e-4, 1e-5],
