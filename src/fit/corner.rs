@@ -217,16 +217,17 @@ pub fn fit_corner(
         .map(|c| (c.h / base.eval(c.m, c.l)).ln())
         .collect();
     let (coef, _) = one_sided(&phi, &y, &follows, ridges[0], true)?;
+    // ln(R / H_c) = C_R - ln(H_c / H_pm,blend) at each case.
+    let c_r = &phi * DVector::from_column_slice(&coef);
     corner.branch = Correction {
         terms: terms.to_vec(),
         coef,
     };
-    let y: Vec<f64> = cases
-        .iter()
-        .zip(&z)
-        .map(|(c, zi)| {
-            let gap = (corner.right(c.m, c.l) / c.h).ln().max(0.0);
-            corner.rho * (gap / corner.rho).powf(1.0 / DEFICIT_POWER) - corner.rho * rigidity(zi)
+    let rho = corner.rho;
+    let y: Vec<f64> = (0..cases.len())
+        .map(|i| {
+            let gap = (c_r[i] - y[i]).max(0.0);
+            rho * (gap / rho).powf(1.0 / DEFICIT_POWER) - rho * rigidity(&z[i])
         })
         .collect();
     let rest: Vec<bool> = follows.iter().map(|f| !f).collect();
@@ -250,22 +251,20 @@ pub struct CornerChoice {
     pub terms: usize,
     /// The cases following H_pm, of all.
     pub follows: [usize; 2],
-    /// Each case's held-out relative error formula / data - 1 with the ridges kept, in the
-    /// cases' order.
-    pub heldout: Vec<f64>,
 }
 
 /// Cross-validate [`CORNER_RIDGES`] on `cases` (fold of case i: `fold[i]`, the base blend of
 /// fold f: `bases[f]`, fitted without it) and fit the ridges kept on all cases with `base`.
-/// The lattice is that of `base`'s coordinates over all cases. None when a candidate cannot be
-/// fitted on every fold or the final fit fails.
+/// The lattice is that of `base`'s coordinates over all cases. Returns the law, the choice and
+/// each case's held-out relative error formula / data - 1 with the ridges kept (in the cases'
+/// order). None when a candidate cannot be fitted on every fold or the final fit fails.
 pub fn select_corner(
     cases: &[CornerCase],
     fold: &[usize],
     bases: &[LineModel],
     base: &LineModel,
     own: &LineModel,
-) -> Option<(Corner, CornerChoice)> {
+) -> Option<(Corner, CornerChoice, Vec<f64>)> {
     let z: Vec<Coordinates> = cases
         .iter()
         .map(|c| Coordinates::new(base.asymptotes(c.m, c.l), 1.0))
@@ -300,9 +299,8 @@ pub fn select_corner(
         tried: scored.iter().map(|s| (s.0, s.1, s.2)).collect(),
         terms: terms.len(),
         follows: [n_follow, cases.len()],
-        heldout: scored.swap_remove(kept).3,
     };
-    Some((law, choice))
+    Some((law, choice, scored.swap_remove(kept).3))
 }
 
 #[cfg(test)]
@@ -405,12 +403,13 @@ mod tests {
         );
         let fold: Vec<usize> = (0..cases.len()).map(|i| i % 5).collect();
         let bases = vec![base.clone(); 5];
-        let (law, choice) = select_corner(&cases, &fold, &bases, &base, &own).expect("fits");
+        let (law, choice, heldout) =
+            select_corner(&cases, &fold, &bases, &base, &own).expect("fits");
         let worst_in = cases
             .iter()
             .map(|c| (law.eval(c.m, c.l) / c.h - 1.0).abs())
             .fold(0.0, f64::max);
-        let worst_out = choice.heldout.iter().fold(0.0f64, |a, e| a.max(e.abs()));
+        let worst_out = heldout.iter().fold(0.0f64, |a, e| a.max(e.abs()));
         eprintln!(
             "in sample {worst_in:e}, held out {worst_out:e}, ridges {:?}",
             choice.ridges

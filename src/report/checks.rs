@@ -453,6 +453,7 @@ fn far_row(
 ) -> Option<AsymptoteCheck> {
     let last = far.last()?;
     let fitted = law(last.d);
+    let value = solver(last);
     Some(AsymptoteCheck {
         quantity: film.name().to_string(),
         asymptote: asymptote.to_string(),
@@ -462,9 +463,9 @@ fn far_row(
         d: Some(last.d),
         elasticity: "rigid".to_string(),
         grid: last.converged().then_some(CHECK_GRIDS[1]),
-        solver: solver(last),
+        solver: value,
         fitted,
-        ratio: solver(last).map(|v| v / fitted),
+        ratio: value.map(|v| v / fitted),
         note: note.to_string(),
         trend: far
             .iter()

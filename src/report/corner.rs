@@ -90,7 +90,7 @@ pub(super) fn corner_fit<Mo: FilmModel>(
             line_of(pms.wrap, (pms.fit)(&train)?)
         })
         .collect::<Option<Vec<_>>>()?;
-    let (law, choice) = select_corner(
+    let (law, choice, errors) = select_corner(
         &cases,
         &fold,
         &bases,
@@ -98,13 +98,13 @@ pub(super) fn corner_fit<Mo: FilmModel>(
         &line_of(pms.wrap, own.clone())?,
     )?;
     let mut heldout = plain.clone();
-    for (c, e) in heldout.cases.iter_mut().zip(&choice.heldout) {
+    for (c, e) in heldout.cases.iter_mut().zip(&errors) {
         c.error = *e;
     }
-    let (worst, rms) = worst_and_rms(&choice.heldout);
+    let (worst, rms) = worst_and_rms(&errors);
     let w = &heldout.cases[worst];
     heldout.chosen.rms = rms;
-    heldout.chosen.max = choice.heldout[worst];
+    heldout.chosen.max = errors[worst];
     heldout.chosen.worst = (w.m, w.l, w.d);
     Some(CornerFit {
         law,

@@ -27,6 +27,7 @@ mod recipe;
 mod side_lobes;
 pub mod surrogate;
 
+use crate::fit::corner::{Corner, CornerChoice};
 use crate::fit::correction::{Coordinates, Correction};
 pub use crate::fit::dataset::{FitInput, FitPoint};
 use crate::fit::error::FitError;
@@ -198,12 +199,12 @@ fn quantity<Mo: FilmModel>(
     f: LsqFit<Mo>,
     correction: (Correction, Option<HeldOut>),
     side: Option<(SideLobe, SideChoice)>,
-    corner: Option<CornerFit>,
+    corner: Option<(Corner, CornerChoice)>,
     r: &Recipe<Mo>,
 ) -> QuantityFit {
     let (names, wrap) = (r.names, r.wrap);
     let (lobe, choice) = side.unzip();
-    let (corner, corner_choice) = corner.map(|c| (c.law, c.choice)).unzip();
+    let (corner, corner_choice) = corner.unzip();
     let model = FittedModel {
         blend: wrap(f.model.clone()),
         correction: correction.0,
@@ -401,9 +402,13 @@ fn fit_films<Mo: FilmModel>(
             }
             _ => None,
         };
-        let heldout = match &corner {
-            Some(c) => Some(c.heldout.clone()),
-            None => heldout,
+        let (heldout, corner) = match corner {
+            Some(CornerFit {
+                law,
+                choice,
+                heldout,
+            }) => (Some(heldout), Some((law, choice))),
+            None => (heldout, None),
         };
         let estimates: Vec<Option<f64>> = pts
             .iter()
