@@ -10,11 +10,11 @@
 //!   the blend's, so far into each asymptotic corner the formula equals its asymptote.
 
 use ehlmap::fit::corner::Corner;
-use ehlmap::fit::correction::{lattice_terms, Coordinates, Correction, TAIL};
+use ehlmap::fit::correction::{lattice_terms, Coordinates, Correction, Term, TAIL};
 use ehlmap::fit::dataset::load_fit_input;
 use ehlmap::fit::side::{tensor_powers, SideLobe};
 use ehlmap::report::formula_py::formula_py;
-use ehlmap::report::{fit_report, Blend, FitReport, QuantityFit};
+use ehlmap::report::{fit_report, FitReport, QuantityFit};
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::{Command, Stdio};
@@ -53,47 +53,58 @@ fn with_lattice(mut r: FitReport) -> FitReport {
     assert_eq!(levels.len(), 2, "both lattice levels: {levels:?}");
     let kinds: std::collections::HashSet<_> = lattice.iter().map(|t| t.transition).collect();
     assert_eq!(kinds.len(), 2, "both lattice kinds: {kinds:?}");
-    let pm_blend = q.model.blend.clone();
     let c = &mut q.model.correction;
     for (k, t) in lattice.clone().into_iter().enumerate() {
         c.terms.push(t);
         c.coef.push(0.01 * ((k % 7) as f64 - 3.0));
     }
-    // The line H_c gets a corner law on the H_pm blend, both corrections on the same lattice,
-    // its hinge active at some cases and not at others.
-    let q = r.line.h_c.as_mut().expect("line H_c fitted");
+    // The line H_c gets a corner law on its blend, both corrections on the same lattice, its
+    // hinge active at some cases and not at others; so does the point H_c, with its bumps also
+    // times ln D and (ln D)^2.
     let n_terms = lattice.len();
-    let coef = |scale: f64, n: usize| -> Vec<f64> {
-        (0..n_terms)
-            .map(|k| scale * ((k % n) as f64 - 1.0))
-            .collect()
+    let coef = |scale: f64, n: usize, terms: usize| -> Vec<f64> {
+        (0..terms).map(|k| scale * ((k % n) as f64 - 1.0)).collect()
     };
-    let line = |b: &Blend| match b {
-        Blend::Line(x) => x.clone(),
-        Blend::Point(_) => panic!("a line blend"),
-    };
-    let corner = Corner::new(
-        line(&pm_blend),
-        &line(&q.model.blend),
-        Correction {
-            terms: lattice.clone(),
-            coef: coef(0.005, 3),
-        },
-        Correction {
-            terms: lattice,
-            coef: vec![-0.01; n_terms],
-        },
-    )
-    .expect("the H_c and H_pm blends share their asymptotes");
-    let h: Vec<f64> = [(0.1, 0.0), (1.0, 4.0), (3.0, 20.0), (50.0, 2.0), (1e4, 0.0)]
-        .iter()
-        .map(|&(m, l)| corner.h(m, l))
+    let with_d: Vec<Term> = (0..3u8)
+        .flat_map(|n| {
+            lattice.iter().map(move |t| Term {
+                powers: [0, 0, 0, n, 0],
+                ..*t
+            })
+        })
         .collect();
-    assert!(
-        h.iter().any(|v| *v > 0.0) && h.iter().any(|v| *v < 0.0),
-        "{h:?}"
-    );
-    q.model.corner = Some(corner);
+    for (q, terms, d) in [
+        (r.line.h_c.as_mut().expect("line H_c fitted"), &lattice, 1.0),
+        (
+            r.point.h_c.as_mut().expect("point H_c fitted"),
+            &with_d,
+            0.3,
+        ),
+    ] {
+        let n = terms.len();
+        let corner = Corner {
+            branch: Correction {
+                terms: terms.clone(),
+                coef: coef(0.005, 3, n),
+            },
+            deficit: Correction {
+                terms: terms.clone(),
+                coef: vec![-0.01; n],
+            },
+            rho: 0.2,
+        };
+        let b = &q.model.blend;
+        let h: Vec<f64> = [(0.1, 0.0), (1.0, 4.0), (3.0, 20.0), (50.0, 2.0), (1e4, 0.0)]
+            .iter()
+            .map(|&(m, l)| corner.h(b.asymptotes(m, l, d), d))
+            .collect();
+        assert!(
+            h.iter().any(|v| *v > 0.0) && h.iter().any(|v| *v < 0.0),
+            "{h:?}"
+        );
+        q.model.corner = Some(corner);
+    }
+    assert!(n_terms > 0);
     // The point H_min gets a side-lobe factor (the committed point data predate H_min,cl), over
     // M 10 ... 1000, D 0.1 ... 1, L 0 ... 20, lifting nothing and 1 in part of the box
     // and below the ramp's start, M = 20.

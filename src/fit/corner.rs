@@ -1,43 +1,44 @@
-//! The corner of the line central film: where the film at X = 0 meets the film at the pressure
-//! maximum.
+//! The corner of the central film: where the film at X = 0 meets the film at the pressure
+//! maximum, for line and point contacts alike.
 //!
-//! At L >= 8 the line H_c rises ever faster with M until it meets H_pm (near M = 1.8) and
-//! follows it from there (H_c / H_pm within 1.000-1.02): a corner between two smooth branches
-//! that no smooth correction follows (docs/validation.md). The law of H_c is therefore
+//! At high L the line H_c rises ever faster with M until it meets H_pm (near M = 1.8 at L >= 8)
+//! and follows it from there (H_c / H_pm within 1.000-1.02); the point H_c does the same (H_c /
+//! H_pm 0.79-0.81 one M step before, 1 after: M about 4-7 at D = 1 up to 20-50 at D = 0.1): a
+//! corner between two smooth branches that no smooth correction follows (docs/validation.md).
+//! The law of H_c is therefore, on its own blend B (the smooth H_c law's),
 //!
-//! H_c = R exp(-delta),  delta = rho (max(0, h) / rho)^k,  R = H_pm,blend exp(C_R),
+//! H_c = R exp(-delta),  R = B exp(rho r(z) + C_R),  delta = rho (max(0, h) / rho)^k,
 //! h = rho r(z) + C_h,
 //!
-//! with H_pm,blend the blend of the H_pm law, C_R and C_h interior corrections
-//! ([`crate::fit::correction`], lattice bumps in the coordinates z of that blend), rho =
-//! ln(H_RI,pm / H_RI,c) (the rigid films' ratio: ln(3/2.4475)) and r(z) = (1 - w) / (1 + e^a) +
-//! w / (1 + e^-b) the blend's rigidity (1 in both rigid limits, 0 in both elastic ones), and k =
-//! [`DEFICIT_POWER`]. R is the branch that follows H_pm, exp(-delta) the deficit of the branch
-//! that rises to it, and the corner is where h crosses 0; with k < 1 the deficit closes faster
-//! than linearly there, as the data do (H_c rises ever faster until it meets H_pm).
+//! with z the coordinates of B's asymptotes ([`crate::fit::correction`]), r(z) = (1 - w) / (1 +
+//! e^a) + w / (1 + e^-b) the blend's rigidity (1 in both rigid limits, 0 in both elastic ones),
+//! rho = ln(H_RI,pm / H_RI,c) at D = 1 (the rigid films' ratio: ln(3/2.4475) for the line,
+//! ln(45.0/35.5) for the circular point), C_R and C_h interior corrections (lattice bumps in z,
+//! for point contacts also times powers of ln D: [`CornerParams`]) and k = [`DEFICIT_POWER`].
+//! R is the branch that follows H_pm, exp(-delta) the deficit of the branch that rises to it, and
+//! the corner is where h crosses 0; with k < 1 the deficit closes faster than linearly there, as
+//! the data do (H_c rises ever faster until it meets H_pm).
 //!
-//! Invariants: H_c <= R everywhere. Each asymptote of H_c is the H_c blend's, exactly: the bumps
-//! vanish in every limit, so h -> rho and H_c -> H_pm,blend exp(-rho) in the rigid limits (the
-//! H_pm rigid laws are the H_c ones times e^rho: 3/M against 2.4475/M, and the same ratio for
-//! the rigid-piezoviscous constants) and H_c -> H_pm,blend in the elastic ones (the two films
-//! share their elastic constants). [`Corner::new`] checks those ratios.
+//! Invariants: H_c <= R everywhere. Each asymptote of H_c is B's, exactly, whatever rho: the
+//! bumps vanish in every limit, so in the rigid ones (r -> 1) h -> rho, delta -> rho and H_c ->
+//! B e^rho e^-rho, and in the elastic ones (r -> 0) H_c -> B.
 //!
 //! Fit ([`fit_corner`]): the cases are split by the data into those where H_c follows H_pm
-//! (H_c at least [`FOLLOWS`] H_pm) and the rest. C_R fits ln(H_c / H_pm,blend) on the first,
-//! and on the rest is only held from below the data (R at least H_c; a one-sided row is added
-//! while it is violated, [`one_sided`]); C_h then fits h to rho (y / rho)^(1/k), y = max(0,
-//! ln(R / H_c)), on the rest and is held from above by it on the first (h at most 0 where R is at
-//! least H_c there). Both are ridge least squares ([`solve_ridge`]); the ridge weights are chosen
-//! by held-out error ([`select_corner`]).
+//! (H_c at least [`FOLLOWS`] H_pm) and the rest. C_R fits ln(H_c / B) - rho r on the first, and
+//! on the rest is only held from below the data (R at least H_c; a one-sided row is added while
+//! it is violated, [`one_sided`]); C_h then fits h to rho (y / rho)^(1/k), y = max(0, ln(R /
+//! H_c)), on the rest and is held from above by it on the first (h at most 0 where R is at least
+//! H_c there). Both are ridge least squares ([`solve_ridge`]); the ridge weights are chosen by
+//! held-out error ([`select_corner`]).
 
+use crate::fit::blend::Blend;
 use crate::fit::correction::{lattice_terms, solve_ridge, Coordinates, Correction, Term};
 use crate::fit::heldout::{worst_and_rms, RMS_SLACK};
-use crate::fit::model::LineModel;
 use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 
 /// H_c follows H_pm at a case where H_c >= FOLLOWS H_pm (the data's H_pm): past the corner the
-/// ratio is 1.000-1.019, before it 0.82-0.96 in the data.
+/// line ratio is 1.000-1.019, before it 0.82-0.96 in the data.
 pub const FOLLOWS: f64 = 0.995;
 
 /// The power k of the deficit (module doc): chosen by held-out error on the committed line data
@@ -45,30 +46,52 @@ pub const FOLLOWS: f64 = 0.995;
 /// hinge itself, 0.5 follows the smooth part worse).
 pub const DEFICIT_POWER: f64 = 0.75;
 
-/// The lattice level of both corrections (spacing [`crate::fit::correction::LATTICE`] / 2).
-pub const LEVEL: u8 = 1;
+/// The lattice and ridge weights of a contact's corner law.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CornerParams {
+    /// The lattice level of both corrections (spacing [`crate::fit::correction::LATTICE`] /
+    /// 2^level).
+    pub level: u8,
+    /// Each lattice bump is also taken times (ln D)^n for n = 1 ..= this (0: a line contact).
+    pub ln_d_powers: u8,
+    /// The ridge weights (R, h) tried, in this order: the first whose held-out RMS is within
+    /// [`RMS_SLACK`] of the best is kept.
+    pub ridges: &'static [[f64; 2]],
+}
 
-/// The ridge weights (R, h) tried, in this order: the first whose held-out RMS is within
-/// [`RMS_SLACK`] of the best is kept (on the committed line data 1e-3 / 3e-5; docs/validation.md).
-pub const CORNER_RIDGES: [[f64; 2]; 6] = [
-    [1e-3, 1e-5],
-    [3e-4, 1e-5],
-    [1e-4, 1e-5],
-    [1e-3, 3e-5],
-    [3e-4, 3e-5],
-    [1e-4, 3e-5],
-];
+/// The line corner law: level 1 (the corner is sharp in M), ridges chosen on the committed line
+/// data (docs/validation.md).
+pub const LINE: CornerParams = CornerParams {
+    level: 1,
+    ln_d_powers: 0,
+    ridges: &[
+        [1e-3, 1e-5],
+        [3e-4, 1e-5],
+        [1e-4, 1e-5],
+        [1e-3, 3e-5],
+        [3e-4, 3e-5],
+        [1e-4, 3e-5],
+    ],
+};
 
-/// The H_c law with its corner (module doc).
+/// The point corner law: level 0 bumps times 1, ln D and (ln D)^2 (the corner moves with D),
+/// ridges chosen on the point fit data (docs/validation.md).
+pub const POINT: CornerParams = CornerParams {
+    level: 0,
+    ln_d_powers: 2,
+    ridges: &[[1e-2, 1e-3], [1e-3, 1e-4], [1e-2, 1e-4], [1e-1, 1e-3]],
+};
+
+/// The H_c law with its corner (module doc), on the H_c blend B that the fitted formula carries
+/// ([`crate::fit::fitted::FittedModel`]).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Corner {
-    /// The blend of the right branch R: the H_pm law's.
-    pub base: LineModel,
     /// C_R, R's interior correction.
     pub branch: Correction,
     /// C_h, the deficit's interior part.
     pub deficit: Correction,
-    /// rho = ln(H_RI,pm / H_RI,c).
+    /// rho = ln(H_RI,pm / H_RI,c) at D = 1 (> 0).
     pub rho: f64,
 }
 
@@ -90,64 +113,55 @@ pub fn rigidity(z: &Coordinates) -> f64 {
     }
 }
 
+/// rho = ln(H_RI,pm / H_RI,c) at (M, L, D) = (1, 0, 1) of the H_pm blend `pm` and the H_c blend
+/// `own`: None unless finite and positive.
+pub fn rigid_ratio(pm: &Blend, own: &Blend) -> Option<f64> {
+    let rho = (pm.asymptotes(1.0, 0.0, 1.0)[0] / own.asymptotes(1.0, 0.0, 1.0)[0]).ln();
+    (rho.is_finite() && rho > 0.0).then_some(rho)
+}
+
 impl Corner {
-    /// A corner law on `base` (the H_pm blend) for the H_c blend `own`: None unless the two
-    /// blends' asymptotes have the ratios of the module doc (rigid: a common e^rho > 1;
-    /// elastic: 1), each to 1e-9.
-    pub fn new(
-        base: LineModel,
-        own: &LineModel,
-        branch: Correction,
-        deficit: Correction,
-    ) -> Option<Self> {
-        let ratio = |m: f64, l: f64, k: usize| base.asymptotes(m, l)[k] / own.asymptotes(m, l)[k];
-        let rigid = ratio(1.0, 1.0, 0);
-        let same = |a: f64, b: f64| (a / b - 1.0).abs() < 1e-9;
-        (rigid > 1.0
-            && same(ratio(1.0, 1.0, 2), rigid)
-            && same(ratio(1.0, 1.0, 1), 1.0)
-            && same(ratio(1.0, 1.0, 3), 1.0))
-        .then(|| Corner {
-            base,
-            branch,
-            deficit,
-            rho: rigid.ln(),
-        })
+    /// The logarithms (ln(R / B), h) at coordinates z.
+    fn parts(&self, z: &Coordinates) -> (f64, f64) {
+        let rigid = self.rho * rigidity(z);
+        (
+            rigid + self.branch.log_factor_at(z),
+            rigid + self.deficit.log_factor_at(z),
+        )
     }
 
-    fn coords(&self, m: f64, l: f64) -> Coordinates {
-        Coordinates::new(self.base.asymptotes(m, l), 1.0)
+    /// The deficit delta = rho (max(0, h) / rho)^k of h.
+    fn delta(&self, h: f64) -> f64 {
+        self.rho * (h.max(0.0) / self.rho).powf(DEFICIT_POWER)
     }
 
-    /// The right branch R at (M, L).
-    pub fn right(&self, m: f64, l: f64) -> f64 {
-        self.base.eval(m, l) * self.branch.log_factor_at(&self.coords(m, l)).exp()
+    /// (R, H_c) for the blend's film `blend` and asymptotes `asym` at D = `d`.
+    pub fn branches(&self, blend: f64, asym: [f64; 4], d: f64) -> (f64, f64) {
+        let (ln_r, h) = self.parts(&Coordinates::new(asym, d));
+        let right = blend * ln_r.exp();
+        (right, right * (-self.delta(h)).exp())
     }
 
-    /// h at (M, L) (before the hinge).
-    pub fn h(&self, m: f64, l: f64) -> f64 {
-        let z = self.coords(m, l);
-        self.rho * rigidity(&z) + self.deficit.log_factor_at(&z)
+    /// H_c = R exp(-delta) for the blend's film `blend` and asymptotes `asym` at D = `d`.
+    pub fn apply(&self, blend: f64, asym: [f64; 4], d: f64) -> f64 {
+        self.branches(blend, asym, d).1
     }
 
-    /// The deficit delta = rho (max(0, h) / rho)^k at (M, L).
-    pub fn deficit(&self, m: f64, l: f64) -> f64 {
-        self.rho * (self.h(m, l).max(0.0) / self.rho).powf(DEFICIT_POWER)
-    }
-
-    /// H_c = R exp(-delta) at (M, L).
-    pub fn eval(&self, m: f64, l: f64) -> f64 {
-        self.right(m, l) * (-self.deficit(m, l)).exp()
+    /// h (before the hinge) at the blend's asymptotes `asym` and D = `d`.
+    pub fn h(&self, asym: [f64; 4], d: f64) -> f64 {
+        self.parts(&Coordinates::new(asym, d)).1
     }
 }
 
-/// One case of the corner fit: M, L, the data's H_c and whether H_c follows H_pm there.
+/// One case of the corner fit: M, L, D, the data's H_c and whether H_c follows H_pm there.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CornerCase {
     /// Moes' M.
     pub m: f64,
     /// Moes' L.
     pub l: f64,
+    /// D (1 for a line contact).
+    pub d: f64,
     /// The data's H_c.
     pub h: f64,
     /// H_c >= [`FOLLOWS`] H_pm at this case.
@@ -194,36 +208,52 @@ pub fn one_sided(
     None
 }
 
-/// The corner law on `base` (the H_pm blend, with the H_c blend `own`) fitted to `cases` with
-/// the lattice `terms` and the ridge weights (R, h) (module doc). None when the blends do not
-/// share their asymptotes as [`Corner::new`] needs, a class of cases is empty or a solve fails.
+/// The corner's terms over coordinates `z`: the lattice bumps of `params.level` some case sees
+/// ([`lattice_terms`]), then each times ln D, (ln D)^2, ... up to `params.ln_d_powers`.
+pub fn corner_terms(z: &[Coordinates], params: &CornerParams) -> Vec<Term> {
+    let bumps = lattice_terms(z, params.level);
+    (0..=params.ln_d_powers)
+        .flat_map(|n| {
+            bumps.iter().map(move |t| Term {
+                powers: [0, 0, 0, n, 0],
+                ..*t
+            })
+        })
+        .collect()
+}
+
+/// The corner law on the H_c blend `base` fitted to `cases` with the `terms` and the ridge
+/// weights (R, h) (module doc). None when rho is not positive, a class of cases is empty or a
+/// solve fails.
 pub fn fit_corner(
     cases: &[CornerCase],
-    base: &LineModel,
-    own: &LineModel,
+    base: &Blend,
+    rho: f64,
     terms: &[Term],
     ridges: [f64; 2],
 ) -> Option<Corner> {
     let follows: Vec<bool> = cases.iter().map(|c| c.follows).collect();
-    if follows.iter().all(|&f| f) || !follows.iter().any(|&f| f) {
+    if follows.iter().all(|&f| f) || !follows.iter().any(|&f| f) || rho.is_nan() || rho <= 0.0 {
         return None;
     }
-    let empty = Correction::default();
-    let mut corner = Corner::new(base.clone(), own, empty.clone(), empty)?;
-    let z: Vec<Coordinates> = cases.iter().map(|c| corner.coords(c.m, c.l)).collect();
+    let z: Vec<Coordinates> = cases
+        .iter()
+        .map(|c| Coordinates::new(base.asymptotes(c.m, c.l, c.d), c.d))
+        .collect();
     let phi = DMatrix::from_fn(z.len(), terms.len(), |i, k| terms[k].eval(&z[i]));
+    // ln(H_c / B) - rho r: C_R's target where H_c follows H_pm, its floor elsewhere.
     let y: Vec<f64> = cases
         .iter()
-        .map(|c| (c.h / base.eval(c.m, c.l)).ln())
+        .zip(&z)
+        .map(|(c, zi)| (c.h / base.eval(c.m, c.l, c.d)).ln() - rho * rigidity(zi))
         .collect();
     let (coef, _) = one_sided(&phi, &y, &follows, ridges[0], true)?;
-    // ln(R / H_c) = C_R - ln(H_c / H_pm,blend) at each case.
+    // ln(R / H_c) = C_R - y at each case.
     let c_r = &phi * DVector::from_column_slice(&coef);
-    corner.branch = Correction {
+    let branch = Correction {
         terms: terms.to_vec(),
         coef,
     };
-    let rho = corner.rho;
     let y: Vec<f64> = (0..cases.len())
         .map(|i| {
             let gap = (c_r[i] - y[i]).max(0.0);
@@ -232,55 +262,68 @@ pub fn fit_corner(
         .collect();
     let rest: Vec<bool> = follows.iter().map(|f| !f).collect();
     let (coef, _) = one_sided(&phi, &y, &rest, ridges[1], false)?;
-    corner.deficit = Correction {
-        terms: terms.to_vec(),
-        coef,
-    };
-    Some(corner)
+    Some(Corner {
+        branch,
+        deficit: Correction {
+            terms: terms.to_vec(),
+            coef,
+        },
+        rho,
+    })
 }
 
 /// The held-out choice of the corner law's ridge weights.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CornerChoice {
-    /// The ridge weights (R, h) kept: the first of [`CORNER_RIDGES`] whose held-out RMS is within
-    /// [`RMS_SLACK`] of the best.
+    /// The ridge weights (R, h) kept: the first of the contact's [`CornerParams::ridges`] whose
+    /// held-out RMS is within [`RMS_SLACK`] of the best.
     pub ridges: [f64; 2],
     /// Each candidate tried: its ridges, held-out RMS and largest |error| (sign kept).
     pub tried: Vec<([f64; 2], f64, f64)>,
     /// Lattice terms of each correction.
     pub terms: usize,
+    /// The lattice spacing W of the bumps.
+    #[serde(default)]
+    pub width: f64,
+    /// The highest power of ln D the bumps are taken times (0: none).
+    #[serde(default)]
+    pub ln_d_powers: u8,
     /// The cases following H_pm, of all.
     pub follows: [usize; 2],
 }
 
-/// Cross-validate [`CORNER_RIDGES`] on `cases` (fold of case i: `fold[i]`, the base blend of
-/// fold f: `bases[f]`, fitted without it) and fit the ridges kept on all cases with `base`.
-/// The lattice is that of `base`'s coordinates over all cases. Returns the law, the choice and
-/// each case's held-out relative error formula / data - 1 with the ridges kept (in the cases'
-/// order). None when a candidate cannot be fitted on every fold or the final fit fails.
+/// Cross-validate the ridges of `params` on `cases` (fold of case i: `fold[i]`, the H_c blend of
+/// fold f: `bases[f]`, fitted without it) and fit the ridges kept on all cases on the H_c blend
+/// `base`. The terms are those of `base`'s coordinates over all cases ([`corner_terms`]).
+/// Returns the law, the choice and each case's held-out relative error formula / data - 1 with
+/// the ridges kept (in the cases' order). None when a candidate cannot be fitted on every fold
+/// or the final fit fails.
 pub fn select_corner(
     cases: &[CornerCase],
     fold: &[usize],
-    bases: &[LineModel],
-    base: &LineModel,
-    own: &LineModel,
+    bases: &[Blend],
+    base: &Blend,
+    rho: f64,
+    params: &CornerParams,
 ) -> Option<(Corner, CornerChoice, Vec<f64>)> {
     let z: Vec<Coordinates> = cases
         .iter()
-        .map(|c| Coordinates::new(base.asymptotes(c.m, c.l), 1.0))
+        .map(|c| Coordinates::new(base.asymptotes(c.m, c.l, c.d), c.d))
         .collect();
-    let terms = lattice_terms(&z, LEVEL);
+    let terms = corner_terms(&z, params);
     let mut scored = vec![];
-    for ridges in CORNER_RIDGES {
+    for &ridges in params.ridges {
         let mut e = vec![f64::NAN; cases.len()];
         for (f, b) in bases.iter().enumerate() {
             let train: Vec<CornerCase> = (0..cases.len())
                 .filter(|&i| fold[i] != f)
                 .map(|i| cases[i])
                 .collect();
-            let law = fit_corner(&train, b, own, &terms, ridges)?;
+            let law = fit_corner(&train, b, rho, &terms, ridges)?;
             for i in (0..cases.len()).filter(|&i| fold[i] == f) {
-                e[i] = law.eval(cases[i].m, cases[i].l) / cases[i].h - 1.0;
+                let c = &cases[i];
+                let h = law.apply(b.eval(c.m, c.l, c.d), b.asymptotes(c.m, c.l, c.d), c.d);
+                e[i] = h / c.h - 1.0;
             }
         }
         if !e.iter().all(|v| v.is_finite()) {
@@ -292,12 +335,14 @@ pub fn select_corner(
     let best = scored.iter().map(|s| s.1).fold(f64::INFINITY, f64::min);
     let kept = scored.iter().position(|s| s.1 <= RMS_SLACK * best)?;
     let ridges = scored[kept].0;
-    let law = fit_corner(cases, base, own, &terms, ridges)?;
+    let law = fit_corner(cases, base, rho, &terms, ridges)?;
     let n_follow = cases.iter().filter(|c| c.follows).count();
     let choice = CornerChoice {
         ridges,
         tried: scored.iter().map(|s| (s.0, s.1, s.2)).collect(),
         terms: terms.len(),
+        width: terms.first().map_or(0.0, Term::width),
+        ln_d_powers: params.ln_d_powers,
         follows: [n_follow, cases.len()],
     };
     Some((law, choice, scored.swap_remove(kept).3))
@@ -306,34 +351,42 @@ pub fn select_corner(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fit::model::LineModel;
+    use crate::fit::point_model::PointModel;
 
     /// Moes' blend as the H_pm law, and the same with the H_c rigid constants (2.4475/3 times
     /// Moes' RI and RP laws) as the H_c law.
-    fn blends() -> (LineModel, LineModel) {
-        let base = LineModel::moes();
-        let mut own = base.clone();
+    fn blends() -> (Blend, Blend) {
+        let pm = LineModel::moes();
+        let mut own = pm.clone();
         own.c_ri = 2.4475;
         own.x[2] += (2.4475f64 / 3.0).ln();
-        (base, own)
+        (Blend::Line(pm), Blend::Line(own))
     }
 
-    /// Cases M = 0.1 ... 3000 (46, log) x L in {0, 1, 2, 4, 8, 12, 16, 20} whose H_c is the H_pm
-    /// blend times exp(-max(0, rho r(z) - 0.05 - 0.002 ln(1 + L))): a corner where rho r(z)
-    /// crosses 0.05 + 0.002 ln(1 + L), H_c following H_pm past it.
-    fn cases(base: &LineModel, rho: f64) -> Vec<CornerCase> {
+    /// The synthetic H_pm = B exp(rho r(z)) and H_c = H_pm exp(-max(0, rho r(z) - g)) on the H_c
+    /// blend B: a corner where rho r(z) crosses g, H_c following H_pm past it.
+    fn case(own: &Blend, rho: f64, m: f64, l: f64, d: f64, g: f64) -> CornerCase {
+        let z = Coordinates::new(own.asymptotes(m, l, d), d);
+        let h_pm = own.eval(m, l, d) * (rho * rigidity(&z)).exp();
+        let h = h_pm * (-(rho * rigidity(&z) - g).max(0.0)).exp();
+        CornerCase {
+            m,
+            l,
+            d,
+            h,
+            follows: h >= FOLLOWS * h_pm,
+        }
+    }
+
+    /// Line cases M = 0.1 ... 3000 (46, log) x L in {0, 1, 2, 4, 8, 12, 16, 20}, the corner at
+    /// g = 0.05 + 0.002 ln(1 + L).
+    fn cases(own: &Blend, rho: f64) -> Vec<CornerCase> {
         let mut out = vec![];
         for i in 0..46 {
             let m = 10f64.powf(-1.0 + f64::from(i) / 10.0);
             for l in [0.0, 1.0, 2.0, 4.0, 8.0, 12.0, 16.0, 20.0] {
-                let z = Coordinates::new(base.asymptotes(m, l), 1.0);
-                let h_pm = base.eval(m, l);
-                let h = h_pm * (-(rho * rigidity(&z) - 0.05 - 0.002 * l.ln_1p()).max(0.0)).exp();
-                out.push(CornerCase {
-                    m,
-                    l,
-                    h,
-                    follows: h >= FOLLOWS * h_pm,
-                });
+                out.push(case(own, rho, m, l, 1.0, 0.05 + 0.002 * l.ln_1p()));
             }
         }
         out
@@ -343,21 +396,24 @@ mod tests {
         (3.0f64 / 2.4475).ln()
     }
 
+    fn eval(law: &Corner, own: &Blend, c: &CornerCase) -> f64 {
+        law.apply(own.eval(c.m, c.l, c.d), own.asymptotes(c.m, c.l, c.d), c.d)
+    }
+
     #[test]
-    fn the_blends_fix_rho_and_unrelated_blends_are_refused() {
-        let (base, own) = blends();
-        let c = Corner::new(
-            base.clone(),
-            &own,
-            Correction::default(),
-            Correction::default(),
-        );
-        assert!((c.expect("shared asymptotes").rho - rho()).abs() < 1e-15);
-        // An H_c law whose EI constant differs from H_pm's has no corner law.
-        let mut other = own.clone();
-        other.x[0] += 0.01;
-        let none = Corner::new(base, &other, Correction::default(), Correction::default());
-        assert!(none.is_none());
+    fn rho_is_the_rigid_ratio_and_unrelated_blends_have_none() {
+        let (pm, own) = blends();
+        let line = rigid_ratio(&pm, &own).expect("H_pm above H_c when rigid");
+        assert!((line - rho()).abs() < 1e-15);
+        assert!(rigid_ratio(&own, &pm).is_none());
+        assert!(rigid_ratio(&own, &own).is_none());
+        // The circular point: ln(45.0 / 35.5) from the two rigid constants.
+        let mut p_pm = PointModel::nvm();
+        let mut p_c = p_pm.clone();
+        p_pm.x[0] = 45.0f64.ln();
+        p_c.x[0] = 35.5f64.ln();
+        let point = rigid_ratio(&Blend::Point(p_pm), &Blend::Point(p_c)).expect("positive");
+        assert!((point - (45.0f64 / 35.5).ln()).abs() < 1e-14);
     }
 
     #[test]
@@ -391,10 +447,9 @@ mod tests {
         }
     }
 
-    #[test]
-    fn a_synthetic_corner_is_followed_in_and_out_of_sample() {
-        let (base, own) = blends();
-        let cases = cases(&base, rho());
+    /// Cross-validate `cases` (5 folds, the same blend on each) and return the law, the largest
+    /// error in sample and held out.
+    fn followed(cases: &[CornerCase], own: &Blend, params: &CornerParams) -> (Corner, f64, f64) {
         let follows = cases.iter().filter(|c| c.follows).count();
         assert!(
             follows > 50 && cases.len() - follows > 50,
@@ -402,38 +457,72 @@ mod tests {
             cases.len()
         );
         let fold: Vec<usize> = (0..cases.len()).map(|i| i % 5).collect();
-        let bases = vec![base.clone(); 5];
+        let bases = vec![own.clone(); 5];
         let (law, choice, heldout) =
-            select_corner(&cases, &fold, &bases, &base, &own).expect("fits");
+            select_corner(cases, &fold, &bases, own, rho(), params).expect("fits");
         let worst_in = cases
             .iter()
-            .map(|c| (law.eval(c.m, c.l) / c.h - 1.0).abs())
+            .map(|c| (eval(&law, own, c) / c.h - 1.0).abs())
             .fold(0.0, f64::max);
         let worst_out = heldout.iter().fold(0.0f64, |a, e| a.max(e.abs()));
         eprintln!(
-            "in sample {worst_in:e}, held out {worst_out:e}, ridges {:?}",
-            choice.ridges
+            "in sample {worst_in:e}, held out {worst_out:e}, ridges {:?}, {} terms",
+            choice.ridges, choice.terms
         );
+        // H_c never exceeds the right branch.
+        for c in cases {
+            let asym = own.asymptotes(c.m, c.l, c.d);
+            let (right, h) = law.branches(own.eval(c.m, c.l, c.d), asym, c.d);
+            assert!(h <= right);
+        }
+        (law, worst_in, worst_out)
+    }
+
+    #[test]
+    fn a_synthetic_line_corner_is_followed_in_and_out_of_sample() {
+        let (_, own) = blends();
+        let (_, worst_in, worst_out) = followed(&cases(&own, rho()), &own, &LINE);
         assert!(worst_in < 2e-3, "{worst_in}");
         assert!(worst_out < 5e-3, "{worst_out}");
-        // H_c never exceeds the right branch.
-        for c in &cases {
-            assert!(law.eval(c.m, c.l) <= law.right(c.m, c.l));
+    }
+
+    #[test]
+    fn a_synthetic_point_corner_moving_with_d_is_followed_in_and_out_of_sample() {
+        // NVM's point blend, the corner at g = 0.04 - 0.01 ln D (nearer the rigid side, at
+        // lower M, for slender contacts: the opposite of the data, so that the ln D terms must
+        // carry it), M = 1 ... 1000 (16, log) x L {0, 2, 5, 10, 20} x D {0.1, 0.25, 0.5, 1}.
+        let own = Blend::Point(PointModel::nvm());
+        let mut cases = vec![];
+        for i in 0..16 {
+            let m = 10f64.powf(f64::from(i) / 5.0);
+            for l in [0.0, 2.0, 5.0, 10.0, 20.0] {
+                for d in [0.1, 0.25, 0.5, 1.0] {
+                    cases.push(case(&own, rho(), m, l, d, 0.04 - 0.01 * f64::ln(d)));
+                }
+            }
         }
+        let (_, worst_in, worst_out) = followed(&cases, &own, &POINT);
+        assert!(worst_in < 5e-3, "{worst_in}");
+        assert!(worst_out < 1e-2, "{worst_out}");
+        // Without the ln D terms the moving corner is not followed as well.
+        let flat = CornerParams {
+            ln_d_powers: 0,
+            ..POINT
+        };
+        let (_, flat_in, _) = followed(&cases, &own, &flat);
+        assert!(flat_in > 2.0 * worst_in, "{flat_in} against {worst_in}");
     }
 
     #[test]
     fn the_corner_law_keeps_the_h_c_asymptotes() {
-        let (base, own) = blends();
-        let cases = cases(&base, rho());
-        let terms = lattice_terms(
-            &cases
-                .iter()
-                .map(|c| Coordinates::new(base.asymptotes(c.m, c.l), 1.0))
-                .collect::<Vec<_>>(),
-            LEVEL,
-        );
-        let law = fit_corner(&cases, &base, &own, &terms, CORNER_RIDGES[0]).expect("fits");
+        let (_, own) = blends();
+        let cases = cases(&own, rho());
+        let z: Vec<Coordinates> = cases
+            .iter()
+            .map(|c| Coordinates::new(own.asymptotes(c.m, c.l, 1.0), 1.0))
+            .collect();
+        let terms = corner_terms(&z, &LINE);
+        let law = fit_corner(&cases, &own, rho(), &terms, LINE.ridges[0]).expect("fits");
         for (name, m, l) in [
             ("RI", 1e-12, 0.0),
             ("RI, L > 0", 1e-12, 1e-3),
@@ -441,7 +530,14 @@ mod tests {
             ("RP", 1.0, 1e120),
             ("EP", 1e60, 1e12),
         ] {
-            let ratio = law.eval(m, l) / own.eval(m, l);
+            let c = CornerCase {
+                m,
+                l,
+                d: 1.0,
+                h: 1.0,
+                follows: false,
+            };
+            let ratio = eval(&law, &own, &c) / own.eval(m, l, 1.0);
             assert!((ratio - 1.0).abs() < 1e-3, "{name}: {ratio}");
         }
     }

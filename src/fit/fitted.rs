@@ -1,12 +1,11 @@
 //! What a fit returns: each film's fitted law with its parameters and their uncertainties, and
 //! its error statistics against the data.
 
+pub use crate::fit::blend::Blend;
 use crate::fit::corner::{Corner, CornerChoice};
 use crate::fit::correction::Correction;
 use crate::fit::dataset::FitPoint;
 use crate::fit::heldout::{CaseError, HeldOut};
-use crate::fit::model::LineModel;
-use crate::fit::point_model::PointModel;
 use crate::fit::side::{SideChoice, SideLobe};
 use crate::fit::stats::{ErrStats, RegionStats, TargetRange};
 use crate::solve::film::Film;
@@ -29,34 +28,6 @@ pub struct Param {
     pub sigma: f64,
 }
 
-/// The blended-asymptote law of either contact.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "kind", rename_all = "lowercase")]
-pub enum Blend {
-    /// A line-contact law (Moes 1992 form).
-    Line(LineModel),
-    /// A point-contact law (Nijenbanning-Venner-Moes 1994 form).
-    Point(PointModel),
-}
-
-impl Blend {
-    /// The blended film at (M, L, D) in Moes units; a line law ignores D.
-    pub fn eval(&self, m: f64, l: f64, d: f64) -> f64 {
-        match self {
-            Blend::Line(x) => x.eval(m, l),
-            Blend::Point(x) => x.eval(m, l, d),
-        }
-    }
-
-    /// The four asymptotes [H_RI, H_EI, H_RP, H_EP] at (M, L, D) (the last two 0 at L = 0).
-    pub fn asymptotes(&self, m: f64, l: f64, d: f64) -> [f64; 4] {
-        match self {
-            Blend::Line(x) => x.asymptotes(m, l),
-            Blend::Point(x) => x.asymptotes(m, l, d),
-        }
-    }
-}
-
 /// A fitted formula: the blend times its interior correction
 /// ([`crate::fit::correction`]), H = H_blend exp(correction), for the point minimum film times
 /// the side-lobe factor ([`crate::fit::side`]) when the data carry the centre line's minimum.
@@ -72,9 +43,9 @@ pub struct FittedModel {
     /// the blend was fitted to H_min itself).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub side: Option<SideLobe>,
-    /// The line H_c law through its corner ([`crate::fit::corner`]; None: the corrected blend).
-    /// When present it is the formula, and `blend` and `correction` are the smooth H_c law whose
-    /// asymptotes it keeps.
+    /// The H_c law through its corner ([`crate::fit::corner`]; None: the corrected blend). When
+    /// present it is the formula on `blend` in place of `correction` (then the smooth H_c law's
+    /// correction, kept for the report).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub corner: Option<Corner>,
 }
@@ -82,13 +53,12 @@ pub struct FittedModel {
 impl FittedModel {
     /// The fitted film H at (M, L, D) in Moes units; a line law ignores D.
     pub fn eval(&self, m: f64, l: f64, d: f64) -> f64 {
-        if let Some(c) = &self.corner {
-            return c.eval(m, l);
-        }
         let b = &self.blend;
-        let h = self
-            .correction
-            .apply(b.eval(m, l, d), b.asymptotes(m, l, d), d);
+        let (blend, asym) = (b.eval(m, l, d), b.asymptotes(m, l, d));
+        let h = match &self.corner {
+            Some(c) => c.apply(blend, asym, d),
+            None => self.correction.apply(blend, asym, d),
+        };
         self.side.as_ref().map_or(h, |s| h * s.factor(m, l, d))
     }
 
@@ -152,7 +122,7 @@ pub struct QuantityFit {
     /// line's minimum; None otherwise).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub side: Option<SideChoice>,
-    /// The held-out choice of the corner law (line H_c with a corner; None otherwise).
+    /// The held-out choice of the corner law (H_c with a corner; None otherwise).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub corner: Option<CornerChoice>,
 }

@@ -1,18 +1,21 @@
-//! The line H_c through its corner ([`crate::fit::corner`]): which cases follow H_pm, the base
-//! blend of each held-out fold, and the held-out errors of the H_c law with its corner.
+//! H_c through its corner ([`crate::fit::corner`]): which cases follow H_pm, the H_c blend of
+//! each held-out fold, and the held-out errors of the H_c law with its corner.
 //!
 //! Inputs: the cases of a fit ([`FitPoint`], carrying H_c and, where the solve resolved it,
-//! H_pm), the H_c samples (their folds are the H_c fit's), the fitted H_c and H_pm blends.
-//! Output: the corner law fitted on all cases with the ridges the held-out error chose, and the
-//! H_c held-out errors of the formula with its corner, each case predicted by a law (its base
-//! blend included) fitted without that case's fold.
+//! H_pm), the H_c samples (their folds are the H_c fit's), the fitted H_c and H_pm blends, how
+//! the H_c blend is refitted on a training set, and the contact's [`CornerParams`]. Output: the
+//! corner law fitted on all cases with the ridges the held-out error chose, and the H_c held-out
+//! errors of the formula with its corner, each case predicted by a law (its blend included)
+//! fitted without that case's fold.
 
-use crate::fit::corner::{select_corner, Corner, CornerCase, CornerChoice, FOLLOWS};
+use crate::fit::corner::{
+    rigid_ratio, select_corner, Corner, CornerCase, CornerChoice, CornerParams, FOLLOWS,
+};
 use crate::fit::dataset::FitPoint;
 use crate::fit::fitted::Blend;
 use crate::fit::heldout::{folds_of, worst_and_rms, HeldOut, FOLDS, LATTICE_MIN_CASES};
 use crate::fit::lsq::Sample;
-use crate::fit::model::{FilmModel, LineModel};
+use crate::fit::model::FilmModel;
 use crate::report::recipe::MIN_CASES;
 use crate::solve::film::Film;
 
@@ -27,45 +30,39 @@ pub(super) struct CornerFit {
     pub(super) heldout: HeldOut,
 }
 
-/// How the H_pm blend is had: its samples, its fit on a training set (None: failed), and the
-/// wrapping of a fitted model into a [`Blend`] (a line blend has a corner law, others none).
-pub(super) struct PmBlends<'a, Mo> {
-    /// The H_pm samples.
-    pub(super) data: &'a [Sample],
-    /// The H_pm blend fitted on a training set.
-    pub(super) fit: &'a dyn Fn(&[Sample]) -> Option<Mo>,
+/// The blends of a corner fit: the fitted H_c and H_pm blends, the H_c blend's refit on a
+/// training set (None: failed), and the wrapping of a fitted model into a [`Blend`].
+pub(super) struct Blends<'a, Mo> {
+    /// The H_c blend fitted on all cases.
+    pub(super) own: &'a Mo,
+    /// The H_pm blend fitted on all cases (its rigid law sets rho; it judges the cases whose
+    /// solve did not resolve H_pm).
+    pub(super) pm: &'a Mo,
+    /// The H_c blend fitted on a training set.
+    pub(super) refit: &'a dyn Fn(&[Sample]) -> Option<Mo>,
     /// The fitted model as a blend.
     pub(super) wrap: fn(Mo) -> Blend,
 }
 
-/// The line blend of a model (None for a point model).
-fn line_of<Mo>(wrap: fn(Mo) -> Blend, m: Mo) -> Option<LineModel> {
-    match wrap(m) {
-        Blend::Line(x) => Some(x),
-        Blend::Point(_) => None,
-    }
-}
-
-/// The corner fit of H_c (`data`: its samples, `own`: its blend, `plain`: its held-out errors
-/// without a corner) on the H_pm blend `pm`, whose refit without each fold `pms` gives, when the
-/// data have [`LATTICE_MIN_CASES`] cases and [`MIN_CASES`] on each side of the corner. None
-/// otherwise, for a point contact, or when a fit fails.
+/// The corner fit of H_c (`data`: its samples, `plain`: its held-out errors without a corner)
+/// with the contact's `params`, when the data have [`LATTICE_MIN_CASES`] cases and
+/// [`MIN_CASES`] on each side of the corner. None otherwise or when a fit fails.
 pub(super) fn corner_fit<Mo: FilmModel>(
     pts: &[FitPoint],
     data: &[Sample],
-    own: &Mo,
-    pm: &Mo,
-    pms: &PmBlends<Mo>,
+    blends: &Blends<Mo>,
+    params: &CornerParams,
     plain: &HeldOut,
 ) -> Option<CornerFit> {
     let cases: Vec<CornerCase> = pts
         .iter()
         .filter_map(|p| {
             let h = p.film(Film::Centre)?;
-            let h_pm = p.h_pm.unwrap_or_else(|| pm.film(p.m, p.l, p.dd()));
+            let h_pm = p.h_pm.unwrap_or_else(|| blends.pm.film(p.m, p.l, p.dd()));
             Some(CornerCase {
                 m: p.m,
                 l: p.l,
+                d: p.dd(),
                 h,
                 follows: h >= FOLLOWS * h_pm,
             })
@@ -80,23 +77,20 @@ pub(super) fn corner_fit<Mo: FilmModel>(
     {
         return None;
     }
+    let wrap = blends.wrap;
+    let own = wrap(blends.own.clone());
+    let rho = rigid_ratio(&wrap(blends.pm.clone()), &own)?;
     let fold = folds_of(data);
     let bases = (0..FOLDS)
         .map(|f| {
-            let held = |s: &Sample| {
-                (0..data.len()).any(|i| fold[i] == f && data[i].m == s.m && data[i].l == s.l)
-            };
-            let train: Vec<Sample> = pms.data.iter().copied().filter(|s| !held(s)).collect();
-            line_of(pms.wrap, (pms.fit)(&train)?)
+            let train: Vec<Sample> = (0..data.len())
+                .filter(|&i| fold[i] != f)
+                .map(|i| data[i])
+                .collect();
+            (blends.refit)(&train).map(wrap)
         })
         .collect::<Option<Vec<_>>>()?;
-    let (law, choice, errors) = select_corner(
-        &cases,
-        &fold,
-        &bases,
-        &line_of(pms.wrap, pm.clone())?,
-        &line_of(pms.wrap, own.clone())?,
-    )?;
+    let (law, choice, errors) = select_corner(&cases, &fold, &bases, &own, rho, params)?;
     let mut heldout = plain.clone();
     for (c, e) in heldout.cases.iter_mut().zip(&errors) {
         c.error = *e;

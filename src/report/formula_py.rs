@@ -2,7 +2,8 @@
 //! `H(M, L, D=None, film="H_c")` reproduces [`FittedModel::eval`] operation by operation (the
 //! blend of [`crate::fit::model`] / [`crate::fit::point_model`] times the correction of
 //! [`crate::fit::correction`], for the point H_min times the side-lobe factor of
-//! [`crate::fit::side`], for a line H_c with a corner the law of [`crate::fit::corner`]);
+//! [`crate::fit::side`], for an H_c with a corner the law of [`crate::fit::corner`] in place of
+//! the correction);
 //! `D=None` is the line formula, a number the point formula. Every parameter is written with the
 //! shortest decimal that reads back to the same f64, so Python and Rust agree to rounding
 //! (tests/formula_py.rs: 1e-12 relative). Overflow in Python (which raises where Rust gives
@@ -174,18 +175,18 @@ def _logistic(t):
     return e / (1.0 + e)
 
 
-def _corner(k, M, L):
-    """The line H_c through its corner: R exp(-rho (max(0, h) / rho)^power) (ehlmap
-    src/fit/corner.rs)."""
-    x, c_ri = k["x"], k["c_ri"]
-    asym = _line_asymptotes(x, c_ri, M, L)
-    a, b, _, _, w = _coords(asym, 1.0)
+def _corner(k, blend, asym, D):
+    """H_c through its corner on its blend: R exp(-rho (max(0, h) / rho)^power), R = blend
+    exp(rho r + C_R), h = rho r + C_h (ehlmap src/fit/corner.rs)."""
+    a, b, _, _, w = _coords(asym, D)
     r = _logistic(-a)
     if w > 0.0 and math.isfinite(b):
         r = (1.0 - w) * r + w * _logistic(b)
-    right = _line_blend(x, c_ri, M, L) * _exp(_correction(k["branch"], asym, 1.0))
-    h = k["rho"] * r + _correction(k["deficit"], asym, 1.0)
-    return right * _exp(-(k["rho"] * (max(0.0, h) / k["rho"]) ** k["power"]))
+    rho = k["rho"]
+    ln_r = rho * r + _correction(k["branch"], asym, D)
+    h = rho * r + _correction(k["deficit"], asym, D)
+    right = blend * _exp(ln_r)
+    return right * _exp(-(rho * (max(0.0, h) / rho) ** k["power"]))
 
 
 def _side(side, M, L, D):
@@ -278,16 +279,13 @@ fn side(s: Option<&SideLobe>) -> String {
     )
 }
 
-/// The corner law of a line H_c (None without one).
+/// The corner law of an H_c (None without one).
 fn corner(c: Option<&Corner>) -> String {
     let Some(c) = c else {
         return "None".to_string();
     };
-    let x = &c.base;
     format!(
-        "{{\"c_ri\": {}, \"x\": [{}], \"branch\": {}, \"deficit\": {}, \"rho\": {}, \"power\": {}}}",
-        f(x.c_ri),
-        list(&x.x),
+        "{{\"branch\": {}, \"deficit\": {}, \"rho\": {}, \"power\": {}}}",
         terms(&c.branch),
         terms(&c.deficit),
         f(c.rho),
@@ -305,13 +303,14 @@ fn entry(m: &FittedModel) -> String {
             corner(m.corner.as_ref())
         ),
         Blend::Point(x) => format!(
-            "{{\"x\": [{}], \"ri_shape\": [{}], \"rp_shape\": {}, \"terms\": {}, \"side\": {}}}",
+            "{{\"x\": [{}], \"ri_shape\": [{}], \"rp_shape\": {}, \"terms\": {}, \"side\": {}, \"corner\": {}}}",
             list(&x.x),
             list(&x.ri_shape),
             x.rp_shape
                 .map_or("None".to_string(), |r| format!("[{}]", list(&r))),
             terms(&m.correction),
-            side(m.side.as_ref())
+            side(m.side.as_ref()),
+            corner(m.corner.as_ref())
         ),
     }
 }
@@ -333,16 +332,21 @@ def H(M, L, D=None, film="H_c"):
         if film not in LINE:
             raise ValueError(f"no line formula for {film} (fitted: {sorted(LINE)})")
         e = LINE[film]
-        if e.get("corner") is not None:
-            return _corner(e["corner"], M, L)
         asym = _line_asymptotes(e["x"], e["c_ri"], M, L)
-        return _line_blend(e["x"], e["c_ri"], M, L) * _exp(_correction(e["terms"], asym, 1.0))
+        blend = _line_blend(e["x"], e["c_ri"], M, L)
+        if e.get("corner") is not None:
+            return _corner(e["corner"], blend, asym, 1.0)
+        return blend * _exp(_correction(e["terms"], asym, 1.0))
     if film not in POINT:
         raise ValueError(f"no point formula for {film} (fitted: {sorted(POINT)})")
     e = POINT[film]
     shapes = (e["ri_shape"], e.get("rp_shape"))
     asym = _point_asymptotes(e["x"], *shapes, M, L, D)
-    h = _point_blend(e["x"], *shapes, M, L, D) * _exp(_correction(e["terms"], asym, D))
+    blend = _point_blend(e["x"], *shapes, M, L, D)
+    if e.get("corner") is not None:
+        h = _corner(e["corner"], blend, asym, D)
+    else:
+        h = blend * _exp(_correction(e["terms"], asym, D))
     return h * _side(e.get("side"), M, L, D)
 "#;
 

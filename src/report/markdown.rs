@@ -79,7 +79,8 @@ the blend (s0, s1, c_00, r: NVM's 1.5, 1.2, 1.8, 3/2) too (kept \
 only if physical, identified and better) with 40 or more converged cases. C = sum c_k phi_k is \
 the interior correction (as for line contacts, with ln D factors), its size chosen by 5-fold \
 held-out error. H_c is the film at the centre, H_pm the film at the pressure maximum on the \
-centre line, H_min the minimum film: each has its own fit.";
+centre line, H_min the minimum film: each has its own fit. Where the data show the corner at \
+which H_c meets H_pm, H_c is the corner law of its section (with the asymptotes of its blend).";
 
 /// `v` with 5 significant digits (scientific notation outside [1e-4, 1e6)).
 pub fn sig5(v: f64) -> String {
@@ -161,14 +162,24 @@ pub fn candidate_name(s: &SizeScore) -> String {
     }
 }
 
+/// How the corner's bumps are taken times powers of ln D, in words ("" for none).
+fn d_factors(powers: u8) -> String {
+    match powers {
+        0 => String::new(),
+        1 => ", each also times ln D".to_string(),
+        n => format!(", each also times (ln D)^1..{n}"),
+    }
+}
+
 /// The formula kept for `q`, in words: its corner law ([`crate::fit::corner`]) or the
 /// correction candidate `chosen`.
 fn kept_name(q: &QuantityFit, chosen: &SizeScore) -> String {
     match &q.corner {
         Some(c) => format!(
-            "its corner law: 2 x {} lattice terms (W = {}), ridges {:.0e} / {:.0e}",
+            "its corner law: 2 x {} lattice terms (W = {}{}), ridges {:.0e} / {:.0e}",
             c.terms,
-            LATTICE * 0.5f64.powi(i32::from(crate::fit::corner::LEVEL)),
+            c.width,
+            d_factors(c.ln_d_powers),
             c.ridges[0],
             c.ridges[1]
         ),
@@ -270,7 +281,7 @@ fn side_lobe(md: &mut String, q: &QuantityFit) {
     md.push('\n');
 }
 
-/// The corner law of the line H_c (src/fit/corner.rs), when it has one.
+/// The corner law of H_c (src/fit/corner.rs), when it has one.
 fn corner_law(md: &mut String, q: &QuantityFit) {
     let (Some(law), Some(c)) = (&q.model.corner, &q.corner) else {
         return;
@@ -278,19 +289,20 @@ fn corner_law(md: &mut String, q: &QuantityFit) {
     let _ = writeln!(
         md,
         "H_c through its corner (where the film at X = 0 meets the film at the pressure maximum): \
-         H_c = R exp(-rho (max(0, h) / rho)^{}), R = H_pm,blend exp(C_R), h = rho r + C_h, with \
-         H_pm,blend the H_pm law's blend (its parameters in the H_pm section), rho = \
-         ln(H_RI,pm / H_RI,c) = {}, \
+         H_c = R exp(-rho (max(0, h) / rho)^{}), R = H_c,blend exp(rho r + C_R), h = rho r + C_h, \
+         with H_c,blend the blend of this section, rho = ln(H_RI,pm / H_RI,c) at D = 1 = {}, \
          r = (1 - w)/(1 + e^a) + w/(1 + e^-b) in that blend's coordinates (1 in the rigid limits, \
-         0 in the elastic ones), and C_R, C_h on the same {} lattice bumps. C_R is fitted to H_c \
-         where it follows H_pm (H_c >= {} H_pm: {} of {} cases) and held from below elsewhere, C_h \
-         to the h of the data's deficit elsewhere and held from above where H_c follows H_pm. The H_c asymptotes \
-         are the blend's above, exactly. The held-out errors above are of this law (the \
-         candidates listed: of the smooth law, whose blend and correction are given here). Ridges \
-         (R / h) tried, held-out RMS / max: {}.\n",
+         0 in the elastic ones), and C_R, C_h on the same {} lattice bumps (W = {}{}). C_R is fitted \
+         to H_c where it follows H_pm (H_c >= {} H_pm: {} of {} cases) and held from below \
+         elsewhere, C_h to the h of the data's deficit elsewhere and held from above where H_c \
+         follows H_pm. The H_c asymptotes are the blend's above, exactly. The held-out errors \
+         above are of this law (the candidates listed: of the smooth law, whose correction is \
+         given here). Ridges (R / h) tried, held-out RMS / max: {}.\n",
         crate::fit::corner::DEFICIT_POWER,
         sig5(law.rho),
         c.terms,
+        c.width,
+        d_factors(c.ln_d_powers),
         crate::fit::corner::FOLLOWS,
         c.follows[0],
         c.follows[1],

@@ -41,7 +41,7 @@ use crate::model::formulas::{
     dowson_toyoda_line_hc_moes, hamrock_dowson_hc_moes, moes_line_hc, nvm_point_hc,
 };
 use crate::report::checks::{line_checks, point_checks, AsymptoteCheck};
-use crate::report::corner::{corner_fit, CornerFit, PmBlends};
+use crate::report::corner::{corner_fit, Blends, CornerFit};
 use crate::report::recipe::{line_recipe, point_recipe, Recipe};
 pub use crate::report::recipe::{
     A_EI_CENTRAL, A_EI_MIN, B_RP_CENTRAL, C_RI_CENTRAL, D_EP_CENTRAL, D_EP_MIN, LINE_RIDGES,
@@ -355,8 +355,8 @@ fn fit_films<Mo: FilmModel>(
         ..ContactReport::default()
     };
     let mut models: Vec<(Film, Mo)> = vec![];
-    // With a corner law H_c is fitted after H_pm, on whose blend it builds.
-    let order = if r.corner {
+    // With a corner law H_c is fitted after H_pm, whose rigid law sets its rho.
+    let order = if r.corner.is_some() {
         [Film::PressureMax, Film::Centre, Film::Minimum]
     } else {
         Film::ALL
@@ -387,17 +387,17 @@ fn fit_films<Mo: FilmModel>(
             source: Box::new(e),
         })?;
         let (correction, heldout) = corrected(&data, &mut f, &start, r);
-        // The line H_c through its corner, kept when its held-out RMS is the lower.
+        // H_c through its corner, kept when its held-out RMS is the lower.
         let pm = models.iter().find(|(g, _)| *g == Film::PressureMax);
-        let corner = match (r.corner && film == Film::Centre, pm, &heldout) {
-            (true, Some((_, pm)), Some(plain)) => {
-                let start_pm = (r.start)(Film::PressureMax);
-                let pms = PmBlends {
-                    data: &samples(pts, Film::PressureMax),
-                    fit: &|train: &[Sample]| staged(train, &start_pm, r).ok().map(|f| f.model),
+        let corner = match (r.corner, film, pm, &heldout) {
+            (Some(params), Film::Centre, Some((_, pm)), Some(plain)) => {
+                let blends = Blends {
+                    own: &f.model,
+                    pm,
+                    refit: &|train: &[Sample]| staged(train, &start, r).ok().map(|f| f.model),
                     wrap: r.wrap,
                 };
-                corner_fit(pts, &data, &f.model, pm, &pms, plain)
+                corner_fit(pts, &data, &blends, &params, plain)
                     .filter(|c| c.heldout.chosen.rms < plain.chosen.rms)
             }
             _ => None,

@@ -6,6 +6,7 @@
 //! Line: [`line_recipe`] (Moes 1992 form). Point: [`point_recipe`] (NVM 1994 form, the free set
 //! depending on the D values and the L > 0 cases in the data).
 
+use crate::fit::corner::{self, CornerParams};
 use crate::fit::correction::{line_terms, point_terms, Coordinates};
 use crate::fit::dataset::FitPoint;
 use crate::fit::fitted::Blend;
@@ -123,9 +124,9 @@ pub(super) struct Recipe<Mo> {
     /// Whether H_min is fitted as the centre line's minimum times the side-lobe factor
     /// ([`crate::fit::side`]) when the data carry H_min,cl (point contacts).
     pub(super) side_lobes: bool,
-    /// Whether H_c is fitted through its corner with H_pm ([`crate::fit::corner`]) when the
-    /// data allow it (line contacts).
-    pub(super) corner: bool,
+    /// The corner law's lattice and ridges when H_c is fitted through its corner with H_pm
+    /// ([`crate::fit::corner`]; where the data allow it).
+    pub(super) corner: Option<CornerParams>,
 }
 
 /// Ridge weights of the line lattice candidates ([`line_bases`]).
@@ -205,7 +206,7 @@ pub(super) fn line_recipe() -> Recipe<LineModel> {
         wrap: Blend::Line,
         bases: line_bases,
         side_lobes: false,
-        corner: true,
+        corner: Some(corner::LINE),
     }
 }
 
@@ -236,6 +237,6 @@ pub(super) fn point_recipe(pts: &[FitPoint]) -> Recipe<PointModel> {
         wrap: Blend::Point,
         bases: point_bases,
         side_lobes: true,
-        corner: false,
+        corner: Some(corner::POINT),
     }
 }
