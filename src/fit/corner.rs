@@ -32,7 +32,7 @@
 //! held-out error ([`select_corner`]).
 
 use crate::fit::blend::Blend;
-use crate::fit::correction::{lattice_terms, solve_ridge, Coordinates, Correction, Term};
+use crate::fit::correction::{lattice_terms_in_d, solve_ridge, Coordinates, Correction, Term};
 use crate::fit::heldout::{worst_and_rms, RMS_SLACK};
 use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
@@ -208,20 +208,6 @@ pub fn one_sided(
     None
 }
 
-/// The corner's terms over coordinates `z`: the lattice bumps of `params.level` some case sees
-/// ([`lattice_terms`]), then each times ln D, (ln D)^2, ... up to `params.ln_d_powers`.
-pub fn corner_terms(z: &[Coordinates], params: &CornerParams) -> Vec<Term> {
-    let bumps = lattice_terms(z, params.level);
-    (0..=params.ln_d_powers)
-        .flat_map(|n| {
-            bumps.iter().map(move |t| Term {
-                powers: [0, 0, 0, n, 0],
-                ..*t
-            })
-        })
-        .collect()
-}
-
 /// The corner law on the H_c blend `base` fitted to `cases` with the `terms` and the ridge
 /// weights (R, h) (module doc). None when rho is not positive, a class of cases is empty or a
 /// solve fails.
@@ -294,7 +280,7 @@ pub struct CornerChoice {
 
 /// Cross-validate the ridges of `params` on `cases` (fold of case i: `fold[i]`, the H_c blend of
 /// fold f: `bases[f]`, fitted without it) and fit the ridges kept on all cases on the H_c blend
-/// `base`. The terms are those of `base`'s coordinates over all cases ([`corner_terms`]).
+/// `base`. The terms are those of `base`'s coordinates over all cases ([`lattice_terms_in_d`]).
 /// Returns the law, the choice and each case's held-out relative error formula / data - 1 with
 /// the ridges kept (in the cases' order). None when a candidate cannot be fitted on every fold
 /// or the final fit fails.
@@ -310,7 +296,7 @@ pub fn select_corner(
         .iter()
         .map(|c| Coordinates::new(base.asymptotes(c.m, c.l, c.d), c.d))
         .collect();
-    let terms = corner_terms(&z, params);
+    let terms = lattice_terms_in_d(&z, params.level, params.ln_d_powers);
     let mut scored = vec![];
     for &ridges in params.ridges {
         let mut e = vec![f64::NAN; cases.len()];
@@ -521,7 +507,7 @@ mod tests {
             .iter()
             .map(|c| Coordinates::new(own.asymptotes(c.m, c.l, 1.0), 1.0))
             .collect();
-        let terms = corner_terms(&z, &LINE);
+        let terms = lattice_terms_in_d(&z, LINE.level, LINE.ln_d_powers);
         let law = fit_corner(&cases, &own, rho(), &terms, LINE.ridges[0]).expect("fits");
         for (name, m, l) in [
             ("RI", 1e-12, 0.0),

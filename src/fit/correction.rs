@@ -227,6 +227,20 @@ pub fn lattice_terms(z: &[Coordinates], level: u8) -> Vec<Term> {
     out
 }
 
+/// [`lattice_terms`], then each of them times ln D, (ln D)^2, ... up to (ln D)^`ln_d_powers`
+/// (0: the bumps alone), in that order.
+pub fn lattice_terms_in_d(z: &[Coordinates], level: u8, ln_d_powers: u8) -> Vec<Term> {
+    let bumps = lattice_terms(z, level);
+    (0..=ln_d_powers)
+        .flat_map(|n| {
+            bumps.iter().map(move |t| Term {
+                powers: [0, 0, 0, n, 0],
+                ..*t
+            })
+        })
+        .collect()
+}
+
 /// The line terms, in the order they are tried.
 pub fn line_terms() -> Vec<Term> {
     terms(&[

@@ -13,7 +13,7 @@
 //! candidates and how the blend is refitted ([`Refit`]); output: [`HeldOut`] (per candidate: RMS,
 //! max; the one kept; each case's held-out error with it).
 
-use crate::fit::correction::{fit_correction, lattice_terms, Coordinates, Correction, Term};
+use crate::fit::correction::{fit_correction, lattice_terms_in_d, Coordinates, Correction, Term};
 use crate::fit::lsq::{fit, Sample};
 use crate::fit::model::FilmModel;
 use serde::{Deserialize, Serialize};
@@ -56,23 +56,13 @@ pub fn nested(terms: &[Term]) -> Vec<Basis> {
 pub const LATTICE_MIN_CASES: usize = 100;
 
 /// The lattice candidates of spacing [`crate::fit::correction::LATTICE`] / 2^`level` over data at
-/// coordinates `z` ([`lattice_terms`]; with `times_ln_d` each term also times ln D), one per
-/// ridge weight; none below [`LATTICE_MIN_CASES`] cases.
-pub fn lattice(z: &[Coordinates], level: u8, ridges: &[f64], times_ln_d: bool) -> Vec<Basis> {
+/// coordinates `z` ([`lattice_terms_in_d`]: each bump also times ln D, ..., (ln D)^`ln_d_powers`),
+/// one per ridge weight; none below [`LATTICE_MIN_CASES`] cases.
+pub fn lattice(z: &[Coordinates], level: u8, ridges: &[f64], ln_d_powers: u8) -> Vec<Basis> {
     if z.len() < LATTICE_MIN_CASES {
         return vec![];
     }
-    let mut terms = lattice_terms(z, level);
-    if times_ln_d {
-        let with_d: Vec<Term> = terms
-            .iter()
-            .map(|t| Term {
-                powers: [0, 0, 0, 1, 0],
-                ..*t
-            })
-            .collect();
-        terms.extend(with_d);
-    }
+    let terms = lattice_terms_in_d(z, level, ln_d_powers);
     ridges
         .iter()
         .map(|&ridge| Basis {
