@@ -487,9 +487,29 @@ mod tests {
                 }
             }
         }
-        let (_, worst_in, worst_out) = followed(&cases, &own, &POINT);
+        let (law, worst_in, worst_out) = followed(&cases, &own, &POINT);
         assert!(worst_in < 5e-3, "{worst_in}");
         assert!(worst_out < 1e-2, "{worst_out}");
+        // Its asymptotes are the blend's at every D, the ln D factors notwithstanding.
+        for d in [0.01, 0.1, 0.5, 1.0] {
+            for (name, m, l) in [
+                ("RI", 1e-12, 0.0),
+                ("EI", 1e60, 0.0),
+                // (The point blend itself overflows beyond L of about 1e100.)
+                ("RP", 1.0, 1e30),
+                ("EP", 1e80, 1e12),
+            ] {
+                let c = CornerCase {
+                    m,
+                    l,
+                    d,
+                    h: 1.0,
+                    follows: false,
+                };
+                let ratio = eval(&law, &own, &c) / own.eval(m, l, d);
+                assert!((ratio - 1.0).abs() < 1e-3, "{name}, D = {d}: {ratio}");
+            }
+        }
         // Without the ln D terms the moving corner is not followed as well.
         let flat = CornerParams {
             ln_d_powers: 0,
