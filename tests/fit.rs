@@ -418,3 +418,27 @@ fn the_held_line_elastic_law_holds_a_decade_beyond_the_data() {
         assert!((r - 1.0).abs() <= 0.005, "{ratios:?}");
     }
 }
+
+/// The held-out folds are fitted in parallel (rayon), each on its own and collected in fold
+/// order, so the whole report (every coefficient, every held-out error) is the same on one
+/// thread as on two: checked on the committed line smoke data and the 51 point cases of
+/// `tests/data/point-257`.
+#[test]
+fn the_fit_is_the_same_at_any_thread_count() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+    let input = load_fit_input(&[dir.join("smoke-line"), dir.join("point-257")]).unwrap();
+    let on = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let r = pool.install(|| fit_report(&input, false).unwrap());
+        serde_json::to_string(&r).unwrap()
+    };
+    let (one, two) = (on(1), on(2));
+    assert!(
+        one.contains("\"heldout\""),
+        "the folds were cross-validated"
+    );
+    assert_eq!(one, two);
+}

@@ -35,6 +35,7 @@ use crate::fit::blend::Blend;
 use crate::fit::correction::{lattice_terms_in_d, solve_ridge, Coordinates, Correction, Term};
 use crate::fit::heldout::{worst_and_rms, RMS_SLACK};
 use nalgebra::{DMatrix, DVector};
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 /// H_c follows H_pm at a case where H_c >= FOLLOWS H_pm (the data's H_pm): past the corner the
@@ -300,12 +301,19 @@ pub fn select_corner(
     let mut scored = vec![];
     for &ridges in params.ridges {
         let mut e = vec![f64::NAN; cases.len()];
-        for (f, b) in bases.iter().enumerate() {
-            let train: Vec<CornerCase> = (0..cases.len())
-                .filter(|&i| fold[i] != f)
-                .map(|i| cases[i])
-                .collect();
-            let law = fit_corner(&train, b, rho, &terms, ridges)?;
+        // The folds in parallel, collected in fold order: the same at any thread count.
+        let laws: Vec<Corner> = bases
+            .par_iter()
+            .enumerate()
+            .map(|(f, b)| {
+                let train: Vec<CornerCase> = (0..cases.len())
+                    .filter(|&i| fold[i] != f)
+                    .map(|i| cases[i])
+                    .collect();
+                fit_corner(&train, b, rho, &terms, ridges)
+            })
+            .collect::<Option<_>>()?;
+        for (f, (b, law)) in bases.iter().zip(&laws).enumerate() {
             for i in (0..cases.len()).filter(|&i| fold[i] == f) {
                 let c = &cases[i];
                 let h = law.apply(b.eval(c.m, c.l, c.d), b.asymptotes(c.m, c.l, c.d), c.d);

@@ -15,7 +15,7 @@
 //! e^(-a/TAIL) into the elastic-isoviscous one, which the data approach slowly).
 //!
 //! Lattice bumps (where the data are dense enough to place them; point fits also take each one
-//! times ln D): Shifted g(a/W - i) (1 - w) and Cell g(a/W - i) g(c/W - j) (0 at L = 0), centred
+//! times powers of ln D, [`lattice_terms_in_d`]): Shifted g(a/W - i) (1 - w) and Cell g(a/W - i) g(c/W - j) (0 at L = 0), centred
 //! on the lattice (a, c) = (i W, j W), W = [`LATTICE`] / 2^level (level 0 or 1: a lattice of half
 //! the spacing follows sharper features where the data are dense, such as the line H_c where the
 //! pressure peak crosses X = 0); [`lattice_terms`] keeps those some data case sees. Each tends to 0 at every corner, since a or c goes to infinity there, and they are

@@ -16,6 +16,7 @@
 use crate::fit::correction::{fit_correction, lattice_terms_in_d, Coordinates, Correction, Term};
 use crate::fit::lsq::{fit, Sample};
 use crate::fit::model::FilmModel;
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 /// Number of cross-validation folds.
@@ -178,7 +179,7 @@ pub struct Refit<'a, Mo> {
     /// The blend parameters freed.
     pub free: &'a [usize],
     /// Whether a refitted blend is physical (else the previous one is kept).
-    pub physical: &'a dyn Fn(&Mo) -> bool,
+    pub physical: &'a (dyn Fn(&Mo) -> bool + Sync),
 }
 
 /// Rounds of the alternating fit in [`joint`].
@@ -306,7 +307,7 @@ pub fn folds_of(data: &[Sample]) -> Vec<usize> {
 pub fn select<Mo: FilmModel>(
     data: &[Sample],
     candidates: &[Basis],
-    fit_blend: &dyn Fn(&[Sample]) -> Option<Mo>,
+    fit_blend: &(dyn Fn(&[Sample]) -> Option<Mo> + Sync),
     refit: &Refit<Mo>,
 ) -> Option<(HeldOut, Vec<Mo>)> {
     if data.len() < 2 * FOLDS {
@@ -329,18 +330,28 @@ pub fn select<Mo: FilmModel>(
                 .collect()
         })
         .collect();
-    let blends: Vec<Mo> = trains.iter().map(|t| fit_blend(t)).collect::<Option<_>>()?;
+    // The folds are fitted in parallel, each on its own, and collected in fold order: the same
+    // result at any thread count.
+    let blends: Vec<Mo> = trains
+        .par_iter()
+        .map(|t| fit_blend(t))
+        .collect::<Option<_>>()?;
     // The held-out relative error of each case with candidate k; `plain`: the correction alone
     // on each fold's blend, `joint`: blend and correction fitted together.
     let held_out = |k: usize, together: bool| -> Vec<f64> {
         let mut row = vec![f64::NAN; data.len()];
         let basis = &candidates[k];
-        for f in 0..FOLDS {
-            let fitted = if together {
-                joint(&trains[f], &blends[f], basis, refit).map(|(b, c, _)| (b, c))
-            } else {
-                correction_for(&blends[f], &trains[f], basis).map(|c| (blends[f].clone(), c))
-            };
+        let fitted: Vec<_> = (0..FOLDS)
+            .into_par_iter()
+            .map(|f| {
+                if together {
+                    joint(&trains[f], &blends[f], basis, refit).map(|(b, c, _)| (b, c))
+                } else {
+                    correction_for(&blends[f], &trains[f], basis).map(|c| (blends[f].clone(), c))
+                }
+            })
+            .collect();
+        for (f, fitted) in fitted.into_iter().enumerate() {
             let Some((b, c)) = fitted else {
                 continue;
             };

@@ -18,8 +18,9 @@
 
 use serde::{Deserialize, Serialize};
 
-/// A film formula with a flat parameter vector, as the least-squares fit sees it.
-pub trait FilmModel: Clone {
+/// A film formula with a flat parameter vector, as the least-squares fit sees it (plain data,
+/// shared across the threads that fit the held-out folds).
+pub trait FilmModel: Clone + Send + Sync {
     /// All parameters (fixed and free).
     fn x(&self) -> &[f64];
     /// All parameters, mutable (the fit sets the free ones through this).

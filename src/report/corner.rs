@@ -18,6 +18,7 @@ use crate::fit::lsq::Sample;
 use crate::fit::model::FilmModel;
 use crate::report::recipe::MIN_CASES;
 use crate::solve::film::Film;
+use rayon::prelude::*;
 
 /// The corner law of H_c and its held-out errors.
 pub(super) struct CornerFit {
@@ -39,7 +40,7 @@ pub(super) struct Blends<'a, Mo> {
     /// solve did not resolve H_pm).
     pub(super) pm: &'a Mo,
     /// The H_c blend fitted on a training set.
-    pub(super) refit: &'a dyn Fn(&[Sample]) -> Option<Mo>,
+    pub(super) refit: &'a (dyn Fn(&[Sample]) -> Option<Mo> + Sync),
     /// The fitted model as a blend.
     pub(super) wrap: fn(Mo) -> Blend,
 }
@@ -82,6 +83,7 @@ pub(super) fn corner_fit<Mo: FilmModel>(
     let rho = rigid_ratio(&wrap(blends.pm.clone()), &own)?;
     let fold = folds_of(data);
     let bases = (0..FOLDS)
+        .into_par_iter()
         .map(|f| {
             let train: Vec<Sample> = (0..data.len())
                 .filter(|&i| fold[i] != f)
