@@ -252,11 +252,13 @@ pub fn joint_best<Mo: FilmModel>(
     refit: &Refit<Mo>,
 ) -> Option<JointFit<Mo>> {
     let rms = |(b, c, _): &JointFit<Mo>| rms_log(data, b, c);
+    // The starts in parallel, compared in their order: the same at any thread count.
+    let fits: Vec<Option<JointFit<Mo>>> = starts
+        .par_iter()
+        .map(|&start| joint(data, start, basis, refit))
+        .collect();
     let mut best: Option<(JointFit<Mo>, f64)> = None;
-    for &start in starts {
-        let Some(fit) = joint(data, start, basis, refit) else {
-            continue;
-        };
+    for fit in fits.into_iter().flatten() {
         let r = rms(&fit);
         if r.is_finite() && best.as_ref().is_none_or(|(_, b)| r < *b) {
             best = Some((fit, r));
