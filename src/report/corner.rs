@@ -2,8 +2,8 @@
 //! each held-out fold, and the held-out errors of the H_c law with its corner.
 //!
 //! Inputs: the cases of a fit ([`FitPoint`], carrying H_c and, where the solve resolved it,
-//! H_pm), the H_c samples (their folds are the H_c fit's), the fitted H_c and H_pm blends, how
-//! the H_c blend is refitted on a training set, and the contact's [`CornerParams`]. Output: the
+//! H_pm), the H_c samples (their folds are the H_c fit's), the fitted H_c and H_pm blends, the
+//! H_c blend fitted without each fold, and the contact's [`CornerParams`]. Output: the
 //! corner law fitted on all cases with the ridges the held-out error chose, and the H_c held-out
 //! errors of the formula with its corner, each case predicted by a law (its blend included)
 //! fitted without that case's fold.
@@ -18,7 +18,6 @@ use crate::fit::lsq::Sample;
 use crate::fit::model::FilmModel;
 use crate::report::recipe::MIN_CASES;
 use crate::solve::film::Film;
-use rayon::prelude::*;
 
 /// The corner law of H_c and its held-out errors.
 pub(super) struct CornerFit {
@@ -31,16 +30,17 @@ pub(super) struct CornerFit {
     pub(super) heldout: HeldOut,
 }
 
-/// The blends of a corner fit: the fitted H_c and H_pm blends, the H_c blend's refit on a
-/// training set (None: failed), and the wrapping of a fitted model into a [`Blend`].
+/// The blends of a corner fit: the fitted H_c and H_pm blends, the H_c blend fitted without
+/// each fold, and the wrapping of a fitted model into a [`Blend`].
 pub(super) struct Blends<'a, Mo> {
     /// The H_c blend fitted on all cases.
     pub(super) own: &'a Mo,
     /// The H_pm blend fitted on all cases (its rigid law sets rho; it judges the cases whose
     /// solve did not resolve H_pm).
     pub(super) pm: &'a Mo,
-    /// The H_c blend fitted on a training set.
-    pub(super) refit: &'a (dyn Fn(&[Sample]) -> Option<Mo> + Sync),
+    /// The H_c blend fitted without each fold of [`folds_of`] the H_c samples, in fold order
+    /// (the smooth law's cross-validation fits).
+    pub(super) folds: &'a [Mo],
     /// The fitted model as a blend.
     pub(super) wrap: fn(Mo) -> Blend,
 }
@@ -81,17 +81,11 @@ pub(super) fn corner_fit<Mo: FilmModel>(
     let wrap = blends.wrap;
     let own = wrap(blends.own.clone());
     let rho = rigid_ratio(&wrap(blends.pm.clone()), &own)?;
+    if blends.folds.len() != FOLDS {
+        return None;
+    }
     let fold = folds_of(data);
-    let bases = (0..FOLDS)
-        .into_par_iter()
-        .map(|f| {
-            let train: Vec<Sample> = (0..data.len())
-                .filter(|&i| fold[i] != f)
-                .map(|i| data[i])
-                .collect();
-            (blends.refit)(&train).map(wrap)
-        })
-        .collect::<Option<Vec<_>>>()?;
+    let bases: Vec<Blend> = blends.folds.iter().cloned().map(wrap).collect();
     let (law, choice, errors) = select_corner(&cases, &fold, &bases, &own, rho, params)?;
     let mut heldout = plain.clone();
     for (c, e) in heldout.cases.iter_mut().zip(&errors) {

@@ -300,14 +300,15 @@ fn skipped(contact: &str, n: usize, failed: usize, need: usize) -> ContactReport
 /// The interior correction of the blend fitted in `f`: its size chosen by held-out error
 /// ([`crate::fit::heldout`], the blend refitted per fold by [`staged`]), then blend and
 /// correction fitted together on all of `data` ([`joint_best`], the parameters of the last stage
-/// freed, from `f`'s blend and from each fold's): `f` takes the refitted blend and its sigmas. No correction when the cross-validation
-/// could not be made.
+/// freed, from `f`'s blend and from each fold's): `f` takes the refitted blend and its sigmas.
+/// Returns the correction and, when the cross-validation could be made, its held-out errors
+/// with the blend fitted without each fold (in fold order); no correction when it could not.
 fn corrected<Mo: FilmModel>(
     data: &[Sample],
     f: &mut LsqFit<Mo>,
     start: &Mo,
     r: &Recipe<Mo>,
-) -> (Correction, Option<HeldOut>) {
+) -> (Correction, Option<(HeldOut, Vec<Mo>)>) {
     let z: Vec<Coordinates> = data
         .iter()
         .map(|s| Coordinates::new(f.model.asymptotes(s.m, s.l, s.d), s.d))
@@ -333,9 +334,9 @@ fn corrected<Mo: FilmModel>(
             if let Some(sigma) = sigma {
                 f.sigma = sigma;
             }
-            (c, Some(h))
+            (c, Some((h, folds)))
         }
-        None => (Correction::default(), Some(h)),
+        None => (Correction::default(), Some((h, folds))),
     }
 }
 
@@ -386,15 +387,16 @@ fn fit_films<Mo: FilmModel>(
             film: film.name(),
             source: Box::new(e),
         })?;
-        let (correction, heldout) = corrected(&data, &mut f, &start, r);
+        let (correction, cv) = corrected(&data, &mut f, &start, r);
+        let (heldout, folds) = cv.unzip();
         // H_c through its corner, kept when its held-out RMS is the lower.
         let pm = models.iter().find(|(g, _)| *g == Film::PressureMax);
-        let corner = match (r.corner, film, pm, &heldout) {
-            (Some(params), Film::Centre, Some((_, pm)), Some(plain)) => {
+        let corner = match (r.corner, film, pm, &heldout, &folds) {
+            (Some(params), Film::Centre, Some((_, pm)), Some(plain), Some(folds)) => {
                 let blends = Blends {
                     own: &f.model,
                     pm,
-                    refit: &|train: &[Sample]| staged(train, &start, r).ok().map(|f| f.model),
+                    folds,
                     wrap: r.wrap,
                 };
                 corner_fit(pts, &data, &blends, &params, plain)
