@@ -4,7 +4,7 @@
 //!
 //! * `formula.py` (standard-library Python) reproduces the Rust evaluation to 1e-12 relative for
 //!   every film of both contacts, inside and far outside the data (python3 runs it), with every
-//!   kind of correction term, a side-lobe factor and a corner law in play.
+//!   kind of correction term, a side-lobe factor, a corner law and kriging residuals in play.
 //! * The held-out procedure: every size it tries predicts each case by a fit that did not see
 //!   it, so its held-out errors are never below the fitted ones; and the formula's asymptotes are
 //!   the blend's, so far into each asymptotic corner the formula equals its asymptote.
@@ -12,6 +12,7 @@
 use ehlmap::fit::corner::Corner;
 use ehlmap::fit::correction::{lattice_terms, Coordinates, Correction, Term, TAIL};
 use ehlmap::fit::dataset::load_fit_input;
+use ehlmap::fit::kriging::{self, Kriging};
 use ehlmap::fit::side::{tensor_powers, SideLobe};
 use ehlmap::report::formula_py::formula_py;
 use ehlmap::report::{fit_report, FitReport, QuantityFit};
@@ -130,6 +131,43 @@ fn with_lattice(mut r: FitReport) -> FitReport {
     .collect();
     assert!(f.contains(&1.0) && f.iter().any(|v| *v < 0.99), "{f:?}");
     q.model.side = Some(side);
+    // The point H_pm and the line H_min get kriging residuals, centred at cases over the data's
+    // box, weights of both signs (the point one with the isoviscous plane at its c floor).
+    for (q, ds) in [
+        (
+            r.point.h_pm.as_mut().expect("point H_pm fitted"),
+            &[0.1, 0.3, 1.0][..],
+        ),
+        (
+            r.line.h_min.as_mut().expect("line H_min fitted"),
+            &[1.0][..],
+        ),
+    ] {
+        let mut z = vec![];
+        for i in 0..12 {
+            for l in [0.0, 1.0, 5.0, 20.0] {
+                for &d in ds {
+                    let m = 10f64.powf(0.25 * f64::from(i));
+                    z.push(Coordinates::new(q.model.blend.asymptotes(m, l, d), d));
+                }
+            }
+        }
+        let floor = kriging::c_floor(&z);
+        let centres: Vec<[f64; 3]> = z.iter().map(|z| kriging::point(z, floor)).collect();
+        let weights = (0..centres.len())
+            .map(|k| 0.004 * ((k % 5) as f64 - 2.0))
+            .collect();
+        let k = Kriging {
+            scales: [2.0, 1.0, 2.0],
+            c_floor: floor,
+            nugget: 1e-3,
+            centres,
+            weights,
+        };
+        let b = &q.model.blend;
+        assert!(k.log_factor(b.asymptotes(10.0, 1.0, ds[0]), ds[0]).abs() > 1e-4);
+        q.model.kriging = Some(k);
+    }
     r
 }
 
@@ -213,7 +251,18 @@ fn held_out_errors_are_not_below_the_fitted_ones_and_choose_a_size() {
         assert_eq!(h.sizes[0].terms, 0, "the blend alone is scored");
         assert_eq!(h.joint[0].terms, 0, "the blend alone is scored jointly too");
         assert!(h.joint.len() >= 2 && h.joint.len() <= 5, "{:?}", h.joint);
-        assert!(h.joint.iter().any(|s| s == &h.chosen));
+        // The candidate kept is a joint one; its figures are its own unless a corner law or a
+        // kriging residual was kept on top of it, and then lower.
+        let plain = h
+            .joint
+            .iter()
+            .find(|s| s.candidate == h.chosen.candidate)
+            .expect("the candidate kept is a joint one");
+        if q.corner.is_none() && q.kriging.is_none() {
+            assert_eq!(plain, &h.chosen);
+        } else {
+            assert!(h.chosen.rms < plain.rms, "{:?} vs {plain:?}", h.chosen);
+        }
         assert_eq!(q.model.correction.terms.len(), h.chosen.terms);
         let best = h.joint.iter().map(|s| s.rms).fold(f64::INFINITY, f64::min);
         assert!(h.chosen.rms <= 1.02 * best);

@@ -6,6 +6,7 @@ use crate::fit::corner::{Corner, CornerChoice};
 use crate::fit::correction::Correction;
 use crate::fit::dataset::FitPoint;
 use crate::fit::heldout::{CaseError, HeldOut};
+use crate::fit::kriging::{Kriging, KrigingChoice};
 use crate::fit::side::{SideChoice, SideLobe};
 use crate::fit::stats::{ErrStats, RegionStats, TargetRange};
 use crate::solve::film::Film;
@@ -48,6 +49,10 @@ pub struct FittedModel {
     /// correction, kept for the report).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub corner: Option<Corner>,
+    /// The kriging residual of the corrected blend ([`crate::fit::kriging`]; None: none, and
+    /// always None with a corner law).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kriging: Option<Kriging>,
 }
 
 impl FittedModel {
@@ -59,6 +64,10 @@ impl FittedModel {
             Some(c) => c.apply(blend, asym, d),
             None => self.correction.apply(blend, asym, d),
         };
+        let h = self
+            .kriging
+            .as_ref()
+            .map_or(h, |k| h * k.log_factor(asym, d).exp());
         self.side.as_ref().map_or(h, |s| h * s.factor(m, l, d))
     }
 
@@ -125,4 +134,7 @@ pub struct QuantityFit {
     /// The held-out choice of the corner law (H_c with a corner; None otherwise).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub corner: Option<CornerChoice>,
+    /// The held-out choice of the kriging residual (None: not offered, or not kept).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kriging: Option<KrigingChoice>,
 }

@@ -311,7 +311,7 @@ pub fn select<Mo: FilmModel>(
     candidates: &[Basis],
     fit_blend: &(dyn Fn(&[Sample]) -> Option<Mo> + Sync),
     refit: &Refit<Mo>,
-) -> Option<(HeldOut, Vec<Mo>)> {
+) -> Option<Selected<Mo>> {
     if data.len() < 2 * FOLDS {
         return None;
     }
@@ -340,7 +340,8 @@ pub fn select<Mo: FilmModel>(
         .collect::<Option<_>>()?;
     // The held-out relative error of each case with candidate k; `plain`: the correction alone
     // on each fold's blend, `joint`: blend and correction fitted together.
-    let held_out = |k: usize, together: bool| -> Vec<f64> {
+    type FoldFit<Mo> = Option<(Mo, Correction)>;
+    let held_out = |k: usize, together: bool| -> (Vec<f64>, Vec<FoldFit<Mo>>) {
         let mut row = vec![f64::NAN; data.len()];
         let basis = &candidates[k];
         let fitted: Vec<_> = (0..FOLDS)
@@ -353,24 +354,29 @@ pub fn select<Mo: FilmModel>(
                 }
             })
             .collect();
-        for (f, fitted) in fitted.into_iter().enumerate() {
+        for (f, fitted) in fitted.iter().enumerate() {
             let Some((b, c)) = fitted else {
                 continue;
             };
             let formula = Corrected {
-                blend: b,
-                correction: &c,
+                blend: b.clone(),
+                correction: c,
             };
             for i in (0..data.len()).filter(|&i| fold[i] == f) {
                 let s = &data[i];
                 row[i] = formula.film(s.m, s.l, s.d) / s.h - 1.0;
             }
         }
-        row
+        (row, fitted)
     };
-    let scored = |k: usize, together: bool| score(data, &candidates[k], k, held_out(k, together));
-    let plain: Vec<(SizeScore, Vec<f64>)> =
-        usable.iter().filter_map(|&k| scored(k, false)).collect();
+    let scored = |k: usize, together: bool| {
+        let (row, fits) = held_out(k, together);
+        score(data, &candidates[k], k, row).map(|(s, e)| (s, e, fits))
+    };
+    let plain: Vec<(SizeScore, Vec<f64>)> = usable
+        .iter()
+        .filter_map(|&k| scored(k, false).map(|(s, e, _)| (s, e)))
+        .collect();
     // The joint fit is costly (a Levenberg-Marquardt refit per fold and candidate): it is
     // cross-validated for the blend alone and the JOINT_CANDIDATES candidates best without it.
     let mut ranked: Vec<usize> = plain.iter().map(|(s, _)| s.candidate).collect();
@@ -384,16 +390,16 @@ pub fn select<Mo: FilmModel>(
     );
     chosen_k.sort_unstable();
     chosen_k.dedup();
-    let joint_scores: Vec<(SizeScore, Vec<f64>)> =
+    let joint_scores: Vec<(SizeScore, Vec<f64>, Vec<FoldFit<Mo>>)> =
         chosen_k.iter().filter_map(|&k| scored(k, true)).collect();
     let best = joint_scores
         .iter()
-        .map(|(s, _)| s.rms)
+        .map(|(s, _, _)| s.rms)
         .fold(f64::INFINITY, f64::min);
-    let (chosen, errors) = joint_scores
+    let at = joint_scores
         .iter()
-        .find(|(s, _)| s.rms <= RMS_SLACK * best)?
-        .clone();
+        .position(|(s, _, _)| s.rms <= RMS_SLACK * best)?;
+    let (chosen, errors) = (joint_scores[at].0.clone(), joint_scores[at].1.clone());
     let cases = data
         .iter()
         .zip(&errors)
@@ -409,11 +415,28 @@ pub fn select<Mo: FilmModel>(
     let h = HeldOut {
         folds: FOLDS,
         sizes: plain.into_iter().map(|(s, _)| s).collect(),
-        joint: joint_scores.into_iter().map(|(s, _)| s).collect(),
+        joint: joint_scores.iter().map(|(s, _, _)| s.clone()).collect(),
         chosen,
         cases,
     };
-    Some((h, blends))
+    let fits = joint_scores.into_iter().nth(at)?.2;
+    Some(Selected {
+        heldout: h,
+        blends,
+        fits,
+    })
+}
+
+/// What [`select`] returns: the held-out errors, the blend fitted on each fold's training cases,
+/// and the candidate kept as fitted on each fold's training cases (blend and correction together;
+/// None where that fit failed), in fold order.
+pub struct Selected<Mo> {
+    /// The cross-validation.
+    pub heldout: HeldOut,
+    /// Each fold's blend alone.
+    pub blends: Vec<Mo>,
+    /// Each fold's formula with the candidate kept.
+    pub fits: Vec<Option<(Mo, Correction)>>,
 }
 
 /// The held-out RMS of candidate `k` among the `plain` scores.

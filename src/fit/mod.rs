@@ -3,7 +3,8 @@
 //! [`model`] (line, Moes 1992 form) and [`point_model`] (point, NVM 1994 form) define the
 //! blended-asymptote formulas ([`blend`]: either), [`lsq`] fits either in log space by Levenberg-Marquardt with
 //! parameter uncertainties, [`correction`] is the interior correction that vanishes in every
-//! asymptotic limit and [`heldout`] chooses its size by cross-validation, [`side`] is the
+//! asymptotic limit and [`heldout`] chooses its size by cross-validation, [`kriging`] is the residual's Gaussian-process
+//! posterior mean offered on top of it, [`side`] is the
 //! side-lobe factor of the point minimum film, [`corner`] the corner of the central film where it meets the
 //! film at the pressure maximum, [`stats`] turns formula-vs-data errors into tables (overall and per
 //! region of the (M, L) plane, and the M range that meets a target), [`dataset`] reads the
@@ -16,6 +17,7 @@ pub mod dataset;
 pub mod error;
 pub mod fitted;
 pub mod heldout;
+pub mod kriging;
 pub mod lsq;
 pub mod model;
 pub mod point_model;

@@ -3,7 +3,7 @@
 //! blend of [`crate::fit::model`] / [`crate::fit::point_model`] times the correction of
 //! [`crate::fit::correction`], for the point H_min times the side-lobe factor of
 //! [`crate::fit::side`], for an H_c with a corner the law of [`crate::fit::corner`] in place of
-//! the correction);
+//! the correction; times the kriging residual of [`crate::fit::kriging`] where the law has one);
 //! `D=None` is the line formula, a number the point formula. Every parameter is written with the
 //! shortest decimal that reads back to the same f64, so Python and Rust agree to rounding
 //! (tests/formula_py.rs: 1e-12 relative). Overflow in Python (which raises where Rust gives
@@ -12,6 +12,7 @@
 use crate::fit::corner::{Corner, DEFICIT_POWER};
 use crate::fit::correction::{Correction, Transition, LATTICE, TAIL};
 use crate::fit::fitted::{Blend, FittedModel};
+use crate::fit::kriging::Kriging;
 use crate::fit::side::SideLobe;
 use crate::report::{ContactReport, FitReport};
 use std::fmt::Write;
@@ -168,6 +169,28 @@ def _correction(terms, asym, D):
     return total
 
 
+def _kriging(k, asym, D):
+    """The kriging residual sum_j w_j K(|z - z_j|_s), K the Matern 5/2 kernel (ehlmap
+    src/fit/kriging.rs)."""
+    a, _, c, ln_d, _ = _coords(asym, D)
+    if math.isfinite(c):
+        c = max(c, k["c_floor"])
+    elif c < 0.0:
+        c = k["c_floor"]
+    x = (a, c, ln_d)
+    s = k["scales"]
+    total = 0.0
+    for z, w in zip(k["centres"], k["weights"]):
+        d2 = 0.0
+        for i in range(3):
+            t = (x[i] - z[i]) / s[i]
+            d2 += t * t
+        if math.isfinite(d2):
+            r = math.sqrt(5.0) * math.sqrt(d2)
+            total += w * ((1.0 + r + r * r / 3.0) * _exp(-r))
+    return total
+
+
 def _logistic(t):
     if t >= 0.0:
         return 1.0 / (1.0 + _exp(-t))
@@ -279,6 +302,21 @@ fn side(s: Option<&SideLobe>) -> String {
     )
 }
 
+/// The kriging residual of a law (None without one).
+fn kriging(k: Option<&Kriging>) -> String {
+    let Some(k) = k else {
+        return "None".to_string();
+    };
+    let centres: Vec<String> = k.centres.iter().map(|c| format!("[{}]", list(c))).collect();
+    format!(
+        "{{\"scales\": [{}], \"c_floor\": {}, \"centres\": [{}], \"weights\": [{}]}}",
+        list(&k.scales),
+        f(k.c_floor),
+        centres.join(", "),
+        list(&k.weights)
+    )
+}
+
 /// The corner law of an H_c (None without one).
 fn corner(c: Option<&Corner>) -> String {
     let Some(c) = c else {
@@ -296,21 +334,23 @@ fn corner(c: Option<&Corner>) -> String {
 fn entry(m: &FittedModel) -> String {
     match &m.blend {
         Blend::Line(x) => format!(
-            "{{\"c_ri\": {}, \"x\": [{}], \"terms\": {}, \"corner\": {}}}",
+            "{{\"c_ri\": {}, \"x\": [{}], \"terms\": {}, \"corner\": {}, \"kriging\": {}}}",
             f(x.c_ri),
             x.x.iter().map(|v| f(*v)).collect::<Vec<_>>().join(", "),
             terms(&m.correction),
-            corner(m.corner.as_ref())
+            corner(m.corner.as_ref()),
+            kriging(m.kriging.as_ref())
         ),
         Blend::Point(x) => format!(
-            "{{\"x\": [{}], \"ri_shape\": [{}], \"rp_shape\": {}, \"terms\": {}, \"side\": {}, \"corner\": {}}}",
+            "{{\"x\": [{}], \"ri_shape\": [{}], \"rp_shape\": {}, \"terms\": {}, \"side\": {}, \"corner\": {}, \"kriging\": {}}}",
             list(&x.x),
             list(&x.ri_shape),
             x.rp_shape
                 .map_or("None".to_string(), |r| format!("[{}]", list(&r))),
             terms(&m.correction),
             side(m.side.as_ref()),
-            corner(m.corner.as_ref())
+            corner(m.corner.as_ref()),
+            kriging(m.kriging.as_ref())
         ),
     }
 }
@@ -336,7 +376,10 @@ def H(M, L, D=None, film="H_c"):
         blend = _line_blend(e["x"], e["c_ri"], M, L)
         if e.get("corner") is not None:
             return _corner(e["corner"], blend, asym, 1.0)
-        return blend * _exp(_correction(e["terms"], asym, 1.0))
+        h = blend * _exp(_correction(e["terms"], asym, 1.0))
+        if e.get("kriging") is not None:
+            h = h * _exp(_kriging(e["kriging"], asym, 1.0))
+        return h
     if film not in POINT:
         raise ValueError(f"no point formula for {film} (fitted: {sorted(POINT)})")
     e = POINT[film]
@@ -347,6 +390,8 @@ def H(M, L, D=None, film="H_c"):
         h = _corner(e["corner"], blend, asym, D)
     else:
         h = blend * _exp(_correction(e["terms"], asym, D))
+    if e.get("kriging") is not None:
+        h = h * _exp(_kriging(e["kriging"], asym, D))
     return h * _side(e.get("side"), M, L, D)
 "#;
 

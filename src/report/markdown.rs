@@ -78,7 +78,11 @@ their constants and D corrections are fitted, H_EP's first held at NVM's, then a
 the blend (s0, s1, c_00, r: NVM's 1.5, 1.2, 1.8, 3/2) too (kept \
 only if physical, identified and better) with 40 or more converged cases. C = sum c_k phi_k is \
 the interior correction (as for line contacts, with ln D factors), its size chosen by 5-fold \
-held-out error. H_c is the film at the centre, H_pm the film at the pressure maximum on the \
+held-out error. Where it lowers the held-out RMS and not its max, exp(C) is also multiplied by a kriging \
+residual exp(k), k = sum_j w_j K(|z - z_j|_s): K the Matern 5/2 kernel, z = (a, max(c, c_floor), \
+ln D) of each data case, scales s and nugget chosen by the same folds, w fitted to the log \
+residuals of the corrected blend; k falls to 0 away from the data and in every asymptotic \
+limit. H_c is the film at the centre, H_pm the film at the pressure maximum on the \
 centre line, H_min the minimum film: each has its own fit. Where the data show the corner at \
 which H_c meets H_pm, H_c is the corner law of its section (with the asymptotes of its blend).";
 
@@ -183,7 +187,19 @@ fn kept_name(q: &QuantityFit, chosen: &SizeScore) -> String {
             c.ridges[0],
             c.ridges[1]
         ),
-        None => candidate_name(chosen),
+        None => match &q.kriging {
+            Some(k) => format!(
+                "{} and a kriging residual (Matern 5/2, scales {} / {} / {} in a / c / ln D, nugget {:.0e}; without it held out {:.2} % / {:.2} %)",
+                candidate_name(chosen),
+                k.scales[0],
+                k.scales[1],
+                k.scales[2],
+                k.nugget,
+                100.0 * k.without_max,
+                100.0 * k.without_rms
+            ),
+            None => candidate_name(chosen),
+        },
     }
 }
 

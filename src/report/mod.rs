@@ -21,6 +21,7 @@
 pub mod checks;
 mod corner;
 pub mod formula_py;
+mod kriging;
 pub mod markdown;
 pub mod mixed;
 mod recipe;
@@ -32,7 +33,8 @@ use crate::fit::correction::{Coordinates, Correction};
 pub use crate::fit::dataset::{FitInput, FitPoint};
 use crate::fit::error::FitError;
 pub use crate::fit::fitted::{Blend, FittedModel, Param, QuantityFit};
-use crate::fit::heldout::{joint_best, select, HeldOut, Refit};
+use crate::fit::heldout::{joint_best, select, HeldOut, Refit, Selected};
+use crate::fit::kriging::{Kriging, KrigingChoice};
 use crate::fit::lsq::{fit, LsqFit, Sample};
 use crate::fit::model::FilmModel;
 use crate::fit::side::{SideChoice, SideLobe};
@@ -42,6 +44,7 @@ use crate::model::formulas::{
 };
 use crate::report::checks::{line_checks, point_checks, AsymptoteCheck};
 use crate::report::corner::{corner_fit, Blends, CornerFit};
+use crate::report::kriging::kriged;
 use crate::report::recipe::{line_recipe, point_recipe, Recipe};
 pub use crate::report::recipe::{
     A_EI_CENTRAL, A_EI_MIN, B_RP_CENTRAL, C_RI_CENTRAL, D_EP_CENTRAL, D_EP_MIN, LINE_RIDGES,
@@ -193,23 +196,35 @@ fn staged<Mo: FilmModel>(
     Ok(f)
 }
 
+/// The laws a film's formula may carry beyond its corrected blend, each with its held-out
+/// choice.
+struct Extras {
+    /// The side-lobe factor (point H_min through the centre line).
+    side: Option<(SideLobe, SideChoice)>,
+    /// The corner law (H_c).
+    corner: Option<(Corner, CornerChoice)>,
+    /// The kriging residual of the corrected blend.
+    kriging: Option<(Kriging, KrigingChoice)>,
+}
+
 fn quantity<Mo: FilmModel>(
     film: Film,
     pts: &[FitPoint],
     f: LsqFit<Mo>,
     correction: (Correction, Option<HeldOut>),
-    side: Option<(SideLobe, SideChoice)>,
-    corner: Option<(Corner, CornerChoice)>,
+    extras: Extras,
     r: &Recipe<Mo>,
 ) -> QuantityFit {
     let (names, wrap) = (r.names, r.wrap);
-    let (lobe, choice) = side.unzip();
-    let (corner, corner_choice) = corner.unzip();
+    let (lobe, choice) = extras.side.unzip();
+    let (corner, corner_choice) = extras.corner.unzip();
+    let (kriging, kriging_choice) = extras.kriging.unzip();
     let model = FittedModel {
         blend: wrap(f.model.clone()),
         correction: correction.0,
         side: lobe,
         corner,
+        kriging,
     };
     let data: Vec<_> = pts
         .iter()
@@ -249,6 +264,7 @@ fn quantity<Mo: FilmModel>(
         check: vec![],
         side: choice,
         corner: corner_choice,
+        kriging: kriging_choice,
     }
 }
 
@@ -301,14 +317,14 @@ fn skipped(contact: &str, n: usize, failed: usize, need: usize) -> ContactReport
 /// ([`crate::fit::heldout`], the blend refitted per fold by [`staged`]), then blend and
 /// correction fitted together on all of `data` ([`joint_best`], the parameters of the last stage
 /// freed, from `f`'s blend and from each fold's): `f` takes the refitted blend and its sigmas.
-/// Returns the correction and, when the cross-validation could be made, its held-out errors
-/// with the blend fitted without each fold (in fold order); no correction when it could not.
+/// Returns the correction and, when the cross-validation could be made, the selection (held-out
+/// errors, each fold's blend and each fold's fitted formula); no correction when it could not.
 fn corrected<Mo: FilmModel>(
     data: &[Sample],
     f: &mut LsqFit<Mo>,
     start: &Mo,
     r: &Recipe<Mo>,
-) -> (Correction, Option<(HeldOut, Vec<Mo>)>) {
+) -> (Correction, Option<Selected<Mo>>) {
     let z: Vec<Coordinates> = data
         .iter()
         .map(|s| Coordinates::new(f.model.asymptotes(s.m, s.l, s.d), s.d))
@@ -324,19 +340,19 @@ fn corrected<Mo: FilmModel>(
         free,
         physical: &r.physical,
     };
-    let Some((h, folds)) = select(data, &bases, &fit_blend, &refit) else {
+    let Some(sel) = select(data, &bases, &fit_blend, &refit) else {
         return (Correction::default(), None);
     };
-    let starts: Vec<&Mo> = std::iter::once(&f.model).chain(&folds).collect();
-    match joint_best(data, &starts, &bases[h.chosen.candidate], &refit) {
+    let starts: Vec<&Mo> = std::iter::once(&f.model).chain(&sel.blends).collect();
+    match joint_best(data, &starts, &bases[sel.heldout.chosen.candidate], &refit) {
         Some((b, c, sigma)) => {
             f.model = b;
             if let Some(sigma) = sigma {
                 f.sigma = sigma;
             }
-            (c, Some((h, folds)))
+            (c, Some(sel))
         }
-        None => (Correction::default(), Some((h, folds))),
+        None => (Correction::default(), Some(sel)),
     }
 }
 
@@ -388,7 +404,16 @@ fn fit_films<Mo: FilmModel>(
             source: Box::new(e),
         })?;
         let (correction, cv) = corrected(&data, &mut f, &start, r);
-        let (heldout, folds) = cv.unzip();
+        // The kriging residual on the smooth law, kept when it lowers the held-out RMS and not its max.
+        let krig = match &cv {
+            Some(sel) if r.kriging => kriged(&data, &f.model, &correction, sel),
+            _ => None,
+        };
+        let (heldout, folds) = cv.map(|s| (s.heldout, s.blends)).unzip();
+        let smooth_rms = match (&krig, &heldout) {
+            (Some((_, _, h)), _) | (None, Some(h)) => h.chosen.rms,
+            _ => f64::INFINITY,
+        };
         // H_c through its corner, kept when its held-out RMS is the lower.
         let pm = models.iter().find(|(g, _)| *g == Film::PressureMax);
         let corner = match (r.corner, film, pm, &heldout, &folds) {
@@ -400,17 +425,21 @@ fn fit_films<Mo: FilmModel>(
                     wrap: r.wrap,
                 };
                 corner_fit(pts, &data, &blends, &params, plain)
-                    .filter(|c| c.heldout.chosen.rms < plain.chosen.rms)
+                    .filter(|c| c.heldout.chosen.rms < smooth_rms)
             }
             _ => None,
         };
-        let (heldout, corner) = match corner {
-            Some(CornerFit {
-                law,
-                choice,
-                heldout,
-            }) => (Some(heldout), Some((law, choice))),
-            None => (heldout, None),
+        let (heldout, corner, krig) = match (corner, krig) {
+            (
+                Some(CornerFit {
+                    law,
+                    choice,
+                    heldout,
+                }),
+                _,
+            ) => (Some(heldout), Some((law, choice)), None),
+            (None, Some((k, choice, h))) => (Some(h), None, Some((k, choice))),
+            (None, None) => (heldout, None, None),
         };
         let estimates: Vec<Option<f64>> = pts
             .iter()
@@ -427,8 +456,11 @@ fn fit_films<Mo: FilmModel>(
             pts,
             f,
             (correction, heldout),
-            side,
-            corner,
+            Extras {
+                side,
+                corner,
+                kriging: krig,
+            },
             r,
         ));
         match film {

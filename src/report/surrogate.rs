@@ -393,6 +393,7 @@ mod tests {
             correction: Default::default(),
             side: None,
             corner: None,
+            kriging: None,
         }
     }
 
@@ -444,6 +445,7 @@ mod tests {
                 within_target: None,
                 side: None,
                 corner: None,
+                kriging: None,
                 check: [20.0, 50.0]
                     .map(|m| CaseError {
                         m,
