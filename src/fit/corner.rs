@@ -292,7 +292,7 @@ pub fn select_corner(
     base: &Blend,
     rho: f64,
     params: &CornerParams,
-) -> Option<(Corner, CornerChoice, Vec<f64>)> {
+) -> Option<CornerSelection> {
     let z: Vec<Coordinates> = cases
         .iter()
         .map(|c| Coordinates::new(base.asymptotes(c.m, c.l, c.d), c.d))
@@ -324,7 +324,7 @@ pub fn select_corner(
             return None;
         }
         let (worst, rms) = worst_and_rms(&e);
-        scored.push((ridges, rms, e[worst], e));
+        scored.push((ridges, rms, e[worst], e, laws));
     }
     let best = scored.iter().map(|s| s.1).fold(f64::INFINITY, f64::min);
     let kept = scored.iter().position(|s| s.1 <= RMS_SLACK * best)?;
@@ -339,7 +339,27 @@ pub fn select_corner(
         ln_d_powers: params.ln_d_powers,
         follows: [n_follow, cases.len()],
     };
-    Some((law, choice, scored.swap_remove(kept).3))
+    let (_, _, _, errors, folds) = scored.swap_remove(kept);
+    Some(CornerSelection {
+        law,
+        choice,
+        errors,
+        folds,
+    })
+}
+
+/// What [`select_corner`] returns: the law fitted on all cases with the ridges kept, the choice,
+/// each case's held-out error (formula / data - 1) and the law fitted without each fold (in fold
+/// order, on that fold's blend).
+pub struct CornerSelection {
+    /// The law on all cases.
+    pub law: Corner,
+    /// How it was chosen.
+    pub choice: CornerChoice,
+    /// Held-out errors, in the cases' order.
+    pub errors: Vec<f64>,
+    /// The law fitted without each fold.
+    pub folds: Vec<Corner>,
 }
 
 #[cfg(test)]
@@ -452,8 +472,13 @@ mod tests {
         );
         let fold: Vec<usize> = (0..cases.len()).map(|i| i % 5).collect();
         let bases = vec![own.clone(); 5];
-        let (law, choice, heldout) =
-            select_corner(cases, &fold, &bases, own, rho(), params).expect("fits");
+        let CornerSelection {
+            law,
+            choice,
+            errors: heldout,
+            folds,
+        } = select_corner(cases, &fold, &bases, own, rho(), params).expect("fits");
+        assert_eq!(folds.len(), 5);
         let worst_in = cases
             .iter()
             .map(|c| (eval(&law, own, c) / c.h - 1.0).abs())

@@ -49,8 +49,8 @@ pub struct FittedModel {
     /// correction, kept for the report).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub corner: Option<Corner>,
-    /// The kriging residual of the corrected blend ([`crate::fit::kriging`]; None: none, and
-    /// always None with a corner law).
+    /// The kriging residual ([`crate::fit::kriging`]) on the corrected blend or, with a corner,
+    /// on the corner law (None: none).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub kriging: Option<Kriging>,
 }

@@ -9,7 +9,8 @@
 //! fitted without that case's fold.
 
 use crate::fit::corner::{
-    rigid_ratio, select_corner, Corner, CornerCase, CornerChoice, CornerParams, FOLLOWS,
+    rigid_ratio, select_corner, Corner, CornerCase, CornerChoice, CornerParams, CornerSelection,
+    FOLLOWS,
 };
 use crate::fit::dataset::FitPoint;
 use crate::fit::fitted::Blend;
@@ -28,6 +29,8 @@ pub(super) struct CornerFit {
     /// The held-out errors of H_c with the corner (those of the smooth law's candidates kept for
     /// the report; `chosen` and `cases` replaced).
     pub(super) heldout: HeldOut,
+    /// The law fitted without each fold (on that fold's H_c blend, [`Blends::folds`]).
+    pub(super) folds: Vec<Corner>,
 }
 
 /// The blends of a corner fit: the fitted H_c and H_pm blends, the H_c blend fitted without
@@ -86,7 +89,12 @@ pub(super) fn corner_fit<Mo: FilmModel>(
     }
     let fold = folds_of(data);
     let bases: Vec<Blend> = blends.folds.iter().cloned().map(wrap).collect();
-    let (law, choice, errors) = select_corner(&cases, &fold, &bases, &own, rho, params)?;
+    let CornerSelection {
+        law,
+        choice,
+        errors,
+        folds,
+    } = select_corner(&cases, &fold, &bases, &own, rho, params)?;
     let mut heldout = plain.clone();
     for (c, e) in heldout.cases.iter_mut().zip(&errors) {
         c.error = *e;
@@ -100,5 +108,6 @@ pub(super) fn corner_fit<Mo: FilmModel>(
         law,
         choice,
         heldout,
+        folds,
     })
 }

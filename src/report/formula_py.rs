@@ -375,8 +375,9 @@ def H(M, L, D=None, film="H_c"):
         asym = _line_asymptotes(e["x"], e["c_ri"], M, L)
         blend = _line_blend(e["x"], e["c_ri"], M, L)
         if e.get("corner") is not None:
-            return _corner(e["corner"], blend, asym, 1.0)
-        h = blend * _exp(_correction(e["terms"], asym, 1.0))
+            h = _corner(e["corner"], blend, asym, 1.0)
+        else:
+            h = blend * _exp(_correction(e["terms"], asym, 1.0))
         if e.get("kriging") is not None:
             h = h * _exp(_kriging(e["kriging"], asym, 1.0))
         return h

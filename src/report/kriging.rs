@@ -1,53 +1,64 @@
-//! The kriging stage of a smooth film law ([`crate::fit::kriging`]): cross-validated on the
-//! folds of the law's own selection (each fold's blend and correction, fitted without the fold),
-//! kept when it lowers the held-out RMS without raising the held-out max, then fitted to the
-//! final law's residuals on all cases.
+//! The kriging stage of a film law ([`crate::fit::kriging`]): cross-validated on the folds of
+//! the law's own selection (each fold's law fitted without the fold), kept when it lowers the
+//! held-out RMS without raising the held-out max, then fitted to the final law's residuals on
+//! all cases.
 
 use crate::fit::correction::{Coordinates, Correction};
-use crate::fit::heldout::{folds_of, worst_and_rms, HeldOut, Selected, FOLDS};
+use crate::fit::heldout::{folds_of, worst_and_rms, HeldOut, FOLDS};
 use crate::fit::kriging::{self, Fold, Kriging, KrigingChoice, NUGGETS, SCALES};
 use crate::fit::lsq::Sample;
 use crate::fit::model::FilmModel;
 
-/// The kriging coordinates and log residual ln(H / H_law) of `s` under `blend` x `correction`.
-fn residual<Mo: FilmModel>(
+/// A law's film at a sample, with the asymptotes of its blend (the kriging's coordinates).
+pub(super) type LawAt<'a> = dyn Fn(&Sample) -> ([f64; 4], f64) + Sync + 'a;
+
+/// A law fitted without fold f, at a sample (None: that fold's fit failed).
+pub(super) type FoldLawAt<'a> = dyn Fn(usize, &Sample) -> Option<([f64; 4], f64)> + Sync + 'a;
+
+/// The corrected blend `blend` x `correction` at `s`: [`LawAt`].
+pub(super) fn corrected_at<Mo: FilmModel>(
     blend: &Mo,
     correction: &Correction,
     s: &Sample,
-    c_floor: f64,
-) -> ([f64; 3], f64) {
+) -> ([f64; 4], f64) {
     let asym = blend.asymptotes(s.m, s.l, s.d);
-    let law = correction.apply(blend.film(s.m, s.l, s.d), asym, s.d);
+    (asym, correction.apply(blend.film(s.m, s.l, s.d), asym, s.d))
+}
+
+/// The kriging coordinates and log residual ln(H / H_law) of `s`.
+fn residual(law: ([f64; 4], f64), s: &Sample, c_floor: f64) -> ([f64; 3], f64) {
     (
-        kriging::point(&Coordinates::new(asym, s.d), c_floor),
-        (s.h / law).ln(),
+        kriging::point(&Coordinates::new(law.0, s.d), c_floor),
+        (s.h / law.1).ln(),
     )
 }
 
-/// The kriging residual of the law `blend` x `correction` fitted to `data`, with the held-out
-/// errors of the law with it (`sel`: the law's selection, whose fold fits it reuses); None when
-/// a fold has no fit, a system fails, or it does not lower the held-out RMS or raises the max.
-pub(super) fn kriged<Mo: FilmModel>(
+/// The kriging residual of the law `all` fitted to `data`, with the held-out errors of the law
+/// with it (`fold_law`: the law fitted without each fold of [`folds_of`] `data`; `plain`: the
+/// law's own held-out errors); None when a fold has no law, a system fails, or it does not lower
+/// the held-out RMS or raises the max.
+pub(super) fn kriged(
     data: &[Sample],
-    blend: &Mo,
-    correction: &Correction,
-    sel: &Selected<Mo>,
+    all: &LawAt,
+    fold_law: &FoldLawAt,
+    plain: &HeldOut,
 ) -> Option<(Kriging, KrigingChoice, HeldOut)> {
+    let laws: Vec<([f64; 4], f64)> = data.iter().map(all).collect();
     let z: Vec<Coordinates> = data
         .iter()
-        .map(|s| Coordinates::new(blend.asymptotes(s.m, s.l, s.d), s.d))
+        .zip(&laws)
+        .map(|(s, l)| Coordinates::new(l.0, s.d))
         .collect();
     let floor = kriging::c_floor(&z);
     let fold = folds_of(data);
     let folds = (0..FOLDS)
         .map(|f| {
-            let (b, c) = sel.fits.get(f)?.as_ref()?;
             let mut out = Fold {
                 train: vec![],
                 test: vec![],
             };
             for (i, s) in data.iter().enumerate() {
-                let (x, r) = residual(b, c, s, floor);
+                let (x, r) = residual(fold_law(f, s)?, s, floor);
                 if fold[i] == f {
                     out.test.push((i, x, r));
                 } else {
@@ -58,20 +69,21 @@ pub(super) fn kriged<Mo: FilmModel>(
         })
         .collect::<Option<Vec<Fold>>>()?;
     let (scales, nugget, errors) = kriging::select(&folds, floor, data.len())?;
-    if errors.iter().any(|e| e.is_nan()) {
+    if errors.iter().any(|e| e.is_nan()) || plain.cases.len() != errors.len() {
         return None;
     }
-    let plain = &sel.heldout.chosen;
+    let without = &plain.chosen;
     let (worst, rms) = worst_and_rms(&errors);
-    if rms >= plain.rms || errors[worst].abs() > plain.max.abs() {
+    if rms >= without.rms || errors[worst].abs() > without.max.abs() {
         return None;
     }
     let (x, r): (Vec<[f64; 3]>, Vec<f64>) = data
         .iter()
-        .map(|s| residual(blend, correction, s, floor))
+        .zip(&laws)
+        .map(|(s, l)| residual(*l, s, floor))
         .unzip();
     let k = kriging::fit(&x, &r, scales, nugget, floor)?;
-    let mut h = sel.heldout.clone();
+    let mut h = plain.clone();
     for (c, e) in h.cases.iter_mut().zip(&errors) {
         c.error = *e;
     }
@@ -84,8 +96,8 @@ pub(super) fn kriged<Mo: FilmModel>(
         tried: SCALES.len() * NUGGETS.len(),
         rms,
         max: errors[worst].abs(),
-        without_rms: plain.rms,
-        without_max: plain.max.abs(),
+        without_rms: without.rms,
+        without_max: without.max.abs(),
     };
     Some((k, choice, h))
 }

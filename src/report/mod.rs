@@ -22,6 +22,7 @@ pub mod checks;
 mod corner;
 pub mod formula_py;
 mod kriging;
+mod law;
 pub mod markdown;
 pub mod mixed;
 mod recipe;
@@ -43,8 +44,7 @@ use crate::model::formulas::{
     dowson_toyoda_line_hc_moes, hamrock_dowson_hc_moes, moes_line_hc, nvm_point_hc,
 };
 use crate::report::checks::{line_checks, point_checks, AsymptoteCheck};
-use crate::report::corner::{corner_fit, Blends, CornerFit};
-use crate::report::kriging::kriged;
+use crate::report::law::{kept, Kept};
 use crate::report::recipe::{line_recipe, point_recipe, Recipe};
 pub use crate::report::recipe::{
     A_EI_CENTRAL, A_EI_MIN, B_RP_CENTRAL, C_RI_CENTRAL, D_EP_CENTRAL, D_EP_MIN, LINE_RIDGES,
@@ -404,43 +404,15 @@ fn fit_films<Mo: FilmModel>(
             source: Box::new(e),
         })?;
         let (correction, cv) = corrected(&data, &mut f, &start, r);
-        // The kriging residual on the smooth law, kept when it lowers the held-out RMS and not its max.
-        let krig = match &cv {
-            Some(sel) if r.kriging => kriged(&data, &f.model, &correction, sel),
-            _ => None,
-        };
-        let (heldout, folds) = cv.map(|s| (s.heldout, s.blends)).unzip();
-        let smooth_rms = match (&krig, &heldout) {
-            (Some((_, _, h)), _) | (None, Some(h)) => h.chosen.rms,
-            _ => f64::INFINITY,
-        };
-        // H_c through its corner, kept when its held-out RMS is the lower.
-        let pm = models.iter().find(|(g, _)| *g == Film::PressureMax);
-        let corner = match (r.corner, film, pm, &heldout, &folds) {
-            (Some(params), Film::Centre, Some((_, pm)), Some(plain), Some(folds)) => {
-                let blends = Blends {
-                    own: &f.model,
-                    pm,
-                    folds,
-                    wrap: r.wrap,
-                };
-                corner_fit(pts, &data, &blends, &params, plain)
-                    .filter(|c| c.heldout.chosen.rms < smooth_rms)
-            }
-            _ => None,
-        };
-        let (heldout, corner, krig) = match (corner, krig) {
-            (
-                Some(CornerFit {
-                    law,
-                    choice,
-                    heldout,
-                }),
-                _,
-            ) => (Some(heldout), Some((law, choice)), None),
-            (None, Some((k, choice, h))) => (Some(h), None, Some((k, choice))),
-            (None, None) => (heldout, None, None),
-        };
+        let pm = models
+            .iter()
+            .find(|(g, _)| *g == Film::PressureMax)
+            .map(|(_, m)| m);
+        let Kept {
+            heldout,
+            corner,
+            kriging: krig,
+        } = kept(film, pts, &data, (&f.model, &correction), cv, pm, r);
         let estimates: Vec<Option<f64>> = pts
             .iter()
             .filter(|p| p.film(film).is_some())
