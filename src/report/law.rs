@@ -54,22 +54,20 @@ pub(super) fn kept<Mo: FilmModel>(
             *best = k;
         }
     };
-    if r.kriging {
-        let all = |s: &Sample| corrected_at(model, correction, s);
-        let fold = |f: usize, s: &Sample| {
-            let (b, c) = sel.fits.get(f)?.as_ref()?;
-            Some(corrected_at(b, c, s))
-        };
-        if let Some((k, choice, h)) = kriged(data, &all, &fold, &sel.heldout) {
-            offer(
-                Kept {
-                    heldout: Some(h),
-                    corner: None,
-                    kriging: Some((k, choice)),
-                },
-                &mut best,
-            );
-        }
+    let all = |s: &Sample| corrected_at(model, correction, s);
+    let fold = |f: usize, s: &Sample| {
+        let (b, c) = sel.fits.get(f)?.as_ref()?;
+        Some(corrected_at(b, c, s))
+    };
+    if let Some((k, choice, h)) = kriged(data, &all, &fold, &sel.heldout) {
+        offer(
+            Kept {
+                heldout: Some(h),
+                corner: None,
+                kriging: Some((k, choice)),
+            },
+            &mut best,
+        );
     }
     let (Some(params), Film::Centre, Some(pm)) = (r.corner, film, pm) else {
         return best;
@@ -93,13 +91,9 @@ pub(super) fn kept<Mo: FilmModel>(
         let asym = b.asymptotes(s.m, s.l, s.d);
         (asym, c.apply(b.film(s.m, s.l, s.d), asym, s.d))
     };
-    let kriging = if r.kriging {
-        let all = |s: &Sample| corner_at(model, &law, s);
-        let fold = |f: usize, s: &Sample| Some(corner_at(sel.blends.get(f)?, folds.get(f)?, s));
-        kriged(data, &all, &fold, &heldout)
-    } else {
-        None
-    };
+    let all = |s: &Sample| corner_at(model, &law, s);
+    let fold = |f: usize, s: &Sample| Some(corner_at(sel.blends.get(f)?, folds.get(f)?, s));
+    let kriging = kriged(data, &all, &fold, &heldout);
     offer(
         Kept {
             heldout: Some(heldout),

@@ -57,7 +57,10 @@ the candidate (number of terms, or lattice spacing and ridge) is chosen by 5-fol
 coefficients fitted on all cases. H_pm is not fitted where the pressure maximum is not \
 grid-converged (the outlet spike, or P_max_err above 2 %). Where the data show the corner at \
 which H_c meets H_pm, H_c is the corner law of its section (with the asymptotes of its blend). \
-formula.py evaluates H.";
+Where it lowers the held-out RMS and not its max, the law is also multiplied by a kriging \
+residual exp(k), k = sum_j w_j K(|z - z_j|_s): K the Matern 5/2 kernel, z = (a, max(c, c_floor)) \
+of each data case, scales s and nugget chosen by the same folds, w fitted to the law's log \
+residuals; k falls to 0 away from the data and in every asymptotic limit. formula.py evaluates H.";
 
 const POINT_FORM: &str = "Formula (Moes point units, NVM 1994 form): H = H_blend exp(C). \
 H_blend = { [H_RI^r + (H_EI^-4 + H_00^-4)^(-r/4)]^(s/r) + (H_RP^-8 + H_EP^-8)^(-s/8) }^(1/s), \
@@ -78,11 +81,11 @@ their constants and D corrections are fitted, H_EP's first held at NVM's, then a
 the blend (s0, s1, c_00, r: NVM's 1.5, 1.2, 1.8, 3/2) too (kept \
 only if physical, identified and better) with 40 or more converged cases. C = sum c_k phi_k is \
 the interior correction (as for line contacts, with ln D factors), its size chosen by 5-fold \
-held-out error. Where it lowers the held-out RMS and not its max, exp(C) is also multiplied by a kriging \
-residual exp(k), k = sum_j w_j K(|z - z_j|_s): K the Matern 5/2 kernel, z = (a, max(c, c_floor), \
-ln D) of each data case, scales s and nugget chosen by the same folds, w fitted to the log \
-residuals of the corrected blend; k falls to 0 away from the data and in every asymptotic \
-limit. H_c is the film at the centre, H_pm the film at the pressure maximum on the \
+held-out error. Where it lowers the held-out RMS and not its max, the law (corrected blend or \
+corner law) is also multiplied by a kriging residual exp(k), k = sum_j w_j K(|z - z_j|_s): K the \
+Matern 5/2 kernel, z = (a, max(c, c_floor), ln D) of each data case, scales s and nugget chosen \
+by the same folds, w fitted to the law's log residuals; k falls to 0 away from the data and in \
+every asymptotic limit. H_c is the film at the centre, H_pm the film at the pressure maximum on the \
 centre line, H_min the minimum film: each has its own fit. Where the data show the corner at \
 which H_c meets H_pm, H_c is the corner law of its section (with the asymptotes of its blend).";
 
@@ -176,9 +179,9 @@ fn d_factors(powers: u8) -> String {
 }
 
 /// The formula kept for `q`, in words: its corner law ([`crate::fit::corner`]) or the
-/// correction candidate `chosen`.
+/// correction candidate `chosen`, and its kriging residual ([`crate::fit::kriging`]) if any.
 fn kept_name(q: &QuantityFit, chosen: &SizeScore) -> String {
-    match &q.corner {
+    let law = match &q.corner {
         Some(c) => format!(
             "its corner law: 2 x {} lattice terms (W = {}{}), ridges {:.0e} / {:.0e}",
             c.terms,
@@ -187,19 +190,25 @@ fn kept_name(q: &QuantityFit, chosen: &SizeScore) -> String {
             c.ridges[0],
             c.ridges[1]
         ),
-        None => match &q.kriging {
-            Some(k) => format!(
-                "{} and a kriging residual (Matern 5/2, scales {} / {} / {} in a / c / ln D, nugget {:.0e}; without it held out {:.2} % / {:.2} %)",
-                candidate_name(chosen),
-                k.scales[0],
-                k.scales[1],
-                k.scales[2],
+        None => candidate_name(chosen),
+    };
+    match &q.kriging {
+        Some(k) => {
+            let scales = match q.model.blend {
+                Blend::Line(_) => format!("{} / {} in a / c", k.scales[0], k.scales[1]),
+                Blend::Point(_) => format!(
+                    "{} / {} / {} in a / c / ln D",
+                    k.scales[0], k.scales[1], k.scales[2]
+                ),
+            };
+            format!(
+                "{law} and a kriging residual (Matern 5/2, scales {scales}, nugget {:.0e}; without it held out {:.2} % / {:.2} %)",
                 k.nugget,
                 100.0 * k.without_max,
                 100.0 * k.without_rms
-            ),
-            None => candidate_name(chosen),
-        },
+            )
+        }
+        None => law,
     }
 }
 

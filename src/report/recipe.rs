@@ -127,9 +127,6 @@ pub(super) struct Recipe<Mo> {
     /// The corner law's lattice and ridges when H_c is fitted through its corner with H_pm
     /// ([`crate::fit::corner`]; where the data allow it).
     pub(super) corner: Option<CornerParams>,
-    /// Whether the smooth laws are offered a kriging residual ([`crate::fit::kriging`]), kept
-    /// where it lowers the held-out RMS without raising its max.
-    pub(super) kriging: bool,
 }
 
 /// Ridge weights of the line lattice candidates ([`line_bases`]).
@@ -215,7 +212,6 @@ pub(super) fn line_recipe() -> Recipe<LineModel> {
         bases: line_bases,
         side_lobes: false,
         corner: Some(corner::LINE),
-        kriging: false,
     }
 }
 
@@ -247,6 +243,5 @@ pub(super) fn point_recipe(pts: &[FitPoint]) -> Recipe<PointModel> {
         bases: point_bases,
         side_lobes: true,
         corner: Some(corner::POINT),
-        kriging: true,
     }
 }
