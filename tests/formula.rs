@@ -119,6 +119,7 @@ fn with_lattice(mut r: FitReport) -> FitReport {
             .collect(),
         powers,
         ramp: Some([20f64.ln(), 40f64.ln()]),
+        kriging: None,
     };
     let f: Vec<f64> = [
         (30.0, 0.0, 0.2),
@@ -130,6 +131,36 @@ fn with_lattice(mut r: FitReport) -> FitReport {
     .map(|&(m, l, d)| side.factor(m, l, d))
     .collect();
     assert!(f.contains(&1.0) && f.iter().any(|v| *v < 0.99), "{f:?}");
+    // ... and a kriging residual in its box-clamped (ln M, ln(1 + L), ln D), weights of both
+    // signs, which moves the factor at some cases.
+    q.model.side = Some(side.clone());
+    let mut side = side;
+    let centres: Vec<[f64; 3]> = (0..24)
+        .map(|k| {
+            let k = f64::from(k);
+            [
+                10f64.ln() + 0.2 * k,
+                21f64.ln() * (k % 4.0) / 3.0,
+                0.1f64.ln() * (k % 3.0) / 2.0,
+            ]
+        })
+        .collect();
+    let weights = (0..centres.len())
+        .map(|k| 0.02 * ((k % 5) as f64 - 2.0))
+        .collect();
+    side.kriging = Some(Kriging {
+        scales: [1.0, 1.0, 2.0],
+        c_floor: 0.0,
+        nugget: 1e-3,
+        centres,
+        weights,
+    });
+    let plain = q.model.side.clone().unwrap_or_else(|| side.clone());
+    let moved = [(500.0, 5.0, 1.0), (100.0, 1.0, 0.3), (1000.0, 20.0, 0.1)]
+        .iter()
+        .any(|&(m, l, d)| (side.factor(m, l, d) - plain.factor(m, l, d)).abs() > 1e-4);
+    assert!(moved);
+    assert_eq!(side.factor(0.3, 0.0, 1.0), 1.0);
     q.model.side = Some(side);
     // The point H_pm and the line H_min get kriging residuals, centred at cases over the data's
     // box, weights of both signs (the point one with the isoviscous plane at its c floor).

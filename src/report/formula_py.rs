@@ -170,14 +170,18 @@ def _correction(terms, asym, D):
 
 
 def _kriging(k, asym, D):
-    """The kriging residual sum_j w_j K(|z - z_j|_s), K the Matern 5/2 kernel (ehlmap
-    src/fit/kriging.rs)."""
+    """The kriging residual of a law at the coordinates (a, max(c, c_floor), ln D) of its
+    asymptotes (ehlmap src/fit/kriging.rs)."""
     a, _, c, ln_d, _ = _coords(asym, D)
     if math.isfinite(c):
         c = max(c, k["c_floor"])
     elif c < 0.0:
         c = k["c_floor"]
-    x = (a, c, ln_d)
+    return _kriging_at(k, (a, c, ln_d))
+
+
+def _kriging_at(k, x):
+    """sum_j w_j K(|x - z_j|_s), K the Matern 5/2 kernel."""
     s = k["scales"]
     total = 0.0
     for z, w in zip(k["centres"], k["weights"]):
@@ -213,7 +217,7 @@ def _corner(k, blend, asym, D):
 
 
 def _side(side, M, L, D):
-    """The side-lobe factor exp(-max(0, g)) of the point H_min (1 without one)."""
+    """The side-lobe factor exp(-max(0, max(0, g) - r k)) of the point H_min (1 without one)."""
     if side is None:
         return 1.0
     x = (math.log(M), math.log(D), math.log1p(L))
@@ -234,7 +238,11 @@ def _side(side, M, L, D):
         for v, k in zip(t, powers):
             m *= v ** k
         g += coef * m
-    return _exp(-max(0.0, r * g))
+    big_g = max(0.0, r * g)
+    if side.get("kriging") is not None:
+        xc = [min(max(v, lo), max(hi, lo)) for v, lo, hi in zip(x, side["lo"], side["hi"])]
+        big_g = big_g - r * _kriging_at(side["kriging"], (xc[0], xc[2], xc[1]))
+    return _exp(-max(0.0, big_g))
 
 "#;
 
@@ -292,13 +300,14 @@ fn side(s: Option<&SideLobe>) -> String {
         .map(|p| format!("({}, {}, {})", p[0], p[1], p[2]))
         .collect();
     format!(
-        "{{\"lo\": [{}], \"hi\": [{}], \"powers\": [{}], \"coef\": [{}], \"ramp\": {}}}",
+        "{{\"lo\": [{}], \"hi\": [{}], \"powers\": [{}], \"coef\": [{}], \"ramp\": {}, \"kriging\": {}}}",
         list(&s.lo),
         list(&s.hi),
         powers.join(", "),
         list(&s.coef),
         s.ramp
-            .map_or("None".to_string(), |r| format!("[{}]", list(&r)))
+            .map_or("None".to_string(), |r| format!("[{}]", list(&r))),
+        kriging(s.kriging.as_ref())
     )
 }
 

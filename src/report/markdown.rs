@@ -299,6 +299,22 @@ fn side_lobe(md: &mut String, q: &QuantityFit) {
         100.0 * c.rms,
         pct(c.max)
     );
+    if let (Some(k), Some([rms, max])) = (&s.kriging, c.without) {
+        let _ = writeln!(
+            md,
+            "With a kriging residual: g is replaced by max(0, g) - r(M) k, k the Matern 5/2 kriging of \
+             the factor's log residuals over the cases with r(M) > 0 in (ln M, ln(1 + L), ln D) \
+             clamped to the box (scales {} / {} / {}, nugget {:.0e}, {} centres); without it ln F \
+             held out RMS {:.2} %, max {:.2} %.\n",
+            k.scales[0],
+            k.scales[1],
+            k.scales[2],
+            k.nugget,
+            k.centres.len(),
+            100.0 * rms,
+            100.0 * max
+        );
+    }
     let _ = writeln!(md, "| (i, j, n) | c_k |\n|---|---|");
     for (p, k) in s.powers.iter().zip(&s.coef) {
         let _ = writeln!(md, "| ({}, {}, {}) | {} |", p[0], p[1], p[2], sig5(*k));
