@@ -161,9 +161,9 @@ fn line_asymptotes_agree_with_the_limit_solves() {
     // The summary counts the checks within 1 %.
     assert!(
         md.contains(
-            "- H_pm: max error 0.05 % (target 2 %: met); held-out max 1.94 %, RMS 0.54 % (10 \
+            "- H_pm: max error 0.00 % (target 2 %: met); held-out max 1.93 %, RMS 0.54 % (10 \
              correction terms and a kriging residual (Matern 5/2, scales 2 / 0.5 in a / c, \
-             nugget 1e-3; without it held out 2.35 % / 0.78 %)); Moes 1992 5.86 % (fit better); \
+             nugget 1e-5; without it held out 2.35 % / 0.78 %)); Moes 1992 5.86 % (fit better); \
              asymptotes within 1 % of the limit solves: 4 of 5 (rigid-isoviscous, \
              elastic-isoviscous, rigid-piezoviscous, elastic-piezoviscous)."
         ),
@@ -253,21 +253,21 @@ fn fit_command_writes_report_json_and_charts() {
     // were H_c 2.74 %, H_pm 1.62 %, H_min 0.94 % (free RP law and EP exponents: 2.26, 2.94 and
     // 1.14 % with the spike rows' exclusion; 2.26, 1.01, 1.14 % before it); with H_EP's constant
     // held at the solver's limit too (2026-12-06) 2.62 %, 2.35 % and 0.98 %; with the kriging
-    // residual (2026-12-06, 18:10 UTC) 2.07 %, 1.94 % and 0.71 % (in sample 0.01-0.05 %).
+    // residual (2026-12-06, 18:55 UTC) 2.07 %, 1.93 % and 0.71 % (in sample below 0.005 %).
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
     assert!(
         md.contains(
-            "- H_pm: max error 0.05 % (target 2 %: met); held-out max 1.94 %, RMS 0.54 % (10 \
+            "- H_pm: max error 0.00 % (target 2 %: met); held-out max 1.93 %, RMS 0.54 % (10 \
              correction terms and a kriging residual (Matern 5/2, scales 2 / 0.5 in a / c, \
-             nugget 1e-3; without it held out 2.35 % / 0.78 %)); Moes 1992 5.86 % (fit better)."
+             nugget 1e-5; without it held out 2.35 % / 0.78 %)); Moes 1992 5.86 % (fit better)."
         ),
         "{md}"
     );
-    assert!(md.contains("- H_c: max error 0.01 % (target 2 %: met); held-out max 2.07 %"));
+    assert!(md.contains("- H_c: max error 0.00 % (target 2 %: met); held-out max 2.07 %"));
     // Every formula on the same cases in one table: the fit in sample and held out, the published.
     assert!(
         md.contains(
-            "| ehlmap fit, held out | 2.07 % / 0.73 % | 1.94 % / 0.54 % | 0.71 % / 0.22 % |\n\
+            "| ehlmap fit, held out | 2.07 % / 0.73 % | 1.93 % / 0.54 % | 0.71 % / 0.21 % |\n\
              | Moes 1992 | 5.86 % / 2.75 % | 5.86 % / 2.53 % | - |\n\
              | Dowson-Toyoda 1979 (skipped: dataset has no G) | - | - | - |"
         ),

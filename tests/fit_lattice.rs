@@ -209,8 +209,8 @@ fn the_point_lattice_cuts_the_held_out_errors_of_h_c_and_h_pm() {
     }
     // The kriging residual on the smooth laws of H_pm and H_min (through the centre line): kept,
     // and lowering the held-out RMS and max by at least a sixth (measured 2026-12-06: H_pm 5.04
-    // % / 0.82 % -> 3.31 % / 0.57 %; H_min's centre-line law likewise, the film with its side
-    // lobes 3.66 % / 0.60 %).
+    // % / 0.82 % -> 3.45 % / 0.56 %; H_min, fitted directly on these data, 5.13 % / 0.84 % ->
+    // 2.98 % / 0.54 %).
     for q in [r.h_pm.as_ref().unwrap(), r.h_min.as_ref().unwrap()] {
         let k = q.kriging.as_ref().expect("a kriging residual is kept");
         eprintln!(

@@ -24,16 +24,18 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 /// The length scales (s_a, s_c, s_D) tried.
-pub const SCALES: [[f64; 3]; 5] = [
+pub const SCALES: [[f64; 3]; 7] = [
     [1.0, 0.5, 1.0],
     [1.0, 0.5, 2.0],
     [2.0, 0.5, 2.0],
     [1.0, 1.0, 2.0],
     [2.0, 1.0, 2.0],
+    [2.0, 0.5, 1.0],
+    [2.0, 1.0, 1.0],
 ];
 
 /// The nuggets tried (relative to the kernel's unit variance).
-pub const NUGGETS: [f64; 2] = [1e-3, 1e-2];
+pub const NUGGETS: [f64; 4] = [1e-5, 1e-4, 1e-3, 1e-2];
 
 /// A fitted kriging residual.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -158,10 +160,16 @@ pub struct Fold {
     pub test: Vec<(usize, [f64; 3], f64)>,
 }
 
-/// The scales and nugget of the best held-out RMS, with each data case's held-out relative error
-/// formula / data - 1 (None when a fold's system fails for every candidate). Candidates in
+/// The scales and nugget of the best held-out RMS among the candidates whose largest held-out
+/// |error| is at most `max_bound`, with each data case's held-out relative error formula / data
+/// - 1 (NaN for a case in no fold's test set; None when no candidate qualifies). Candidates in
 /// parallel, compared in order: the same at any thread count.
-pub fn select(folds: &[Fold], c_floor: f64, cases: usize) -> Option<([f64; 3], f64, Vec<f64>)> {
+pub fn select(
+    folds: &[Fold],
+    c_floor: f64,
+    cases: usize,
+    max_bound: f64,
+) -> Option<([f64; 3], f64, Vec<f64>)> {
     let candidates: Vec<([f64; 3], f64)> = SCALES
         .iter()
         .flat_map(|s| NUGGETS.iter().map(move |g| (*s, *g)))
@@ -182,6 +190,9 @@ pub fn select(folds: &[Fold], c_floor: f64, cases: usize) -> Option<([f64; 3], f
                 return None;
             }
             let rms = (got.iter().map(|v| v * v).sum::<f64>() / got.len() as f64).sqrt();
+            if got.iter().any(|v| v.abs() > max_bound) {
+                return None;
+            }
             Some((rms, e))
         })
         .collect();
@@ -289,7 +300,11 @@ mod tests {
                     .collect(),
             })
             .collect();
-        let (s, g, e) = select(&folds, -10.0, x.len()).unwrap();
+        let (s, g, e) = select(&folds, -10.0, x.len(), f64::INFINITY).unwrap();
+        assert!(
+            select(&folds, -10.0, x.len(), 1e-9).is_none(),
+            "no candidate that close"
+        );
         assert!(SCALES.contains(&s) && NUGGETS.contains(&g));
         assert_eq!(e.len(), x.len());
         let rms = (e.iter().map(|v| v * v).sum::<f64>() / e.len() as f64).sqrt();

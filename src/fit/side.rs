@@ -387,7 +387,10 @@ fn kriged_side(
     if kfolds.iter().any(|f| f.train.is_empty()) {
         return None;
     }
-    let (scales, nugget, errors) = kriging::select(&kfolds, 0.0, cases.len())?;
+    // Relative errors exp(k - r) - 1 against log errors |y - G| of the choice: the bound is
+    // checked again on the log errors below.
+    let (scales, nugget, errors) =
+        kriging::select(&kfolds, 0.0, cases.len(), choice.max.abs().exp_m1())?;
     // Each case's held-out G: the fold's max(0, g) less its kriging (k = ln(1 + e) + r, from
     // the error e = exp(k - r) - 1 of a case with a ramp; 0 elsewhere).
     let g: Vec<f64> = (0..cases.len())

@@ -68,7 +68,8 @@ pub(super) fn kriged(
             Some(out)
         })
         .collect::<Option<Vec<Fold>>>()?;
-    let (scales, nugget, errors) = kriging::select(&folds, floor, data.len())?;
+    let (scales, nugget, errors) =
+        kriging::select(&folds, floor, data.len(), plain.chosen.max.abs())?;
     if errors.iter().any(|e| e.is_nan()) || plain.cases.len() != errors.len() {
         return None;
     }
