@@ -161,9 +161,9 @@ pub struct Fold {
 }
 
 /// The scales and nugget of the best held-out RMS among the candidates whose largest held-out
-/// |error| is at most `max_bound`, with each data case's held-out relative error formula / data
-/// - 1 (NaN for a case in no fold's test set; None when no candidate qualifies). Candidates in
-/// parallel, compared in order: the same at any thread count.
+/// |error| is at most `max_bound`, with each data case's held-out relative error (formula over
+/// data, less 1; NaN for a case in no fold's test set; None when no candidate qualifies).
+/// Candidates in parallel, compared in order: the same at any thread count.
 pub fn select(
     folds: &[Fold],
     c_floor: f64,
