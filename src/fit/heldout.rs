@@ -139,6 +139,27 @@ pub struct HeldOut {
 }
 
 impl HeldOut {
+    /// These held-out errors with the chosen candidate's RMS, max and worst case taken again from
+    /// the cases' errors (after a law on top of the candidate replaced them).
+    pub fn rescored(mut self) -> Self {
+        let e: Vec<f64> = self.cases.iter().map(|c| c.error).collect();
+        let (worst, rms) = worst_and_rms(&e);
+        let w = &self.cases[worst];
+        self.chosen.rms = rms;
+        self.chosen.max = e[worst];
+        self.chosen.worst = (w.m, w.l, w.d);
+        self
+    }
+
+    /// These held-out errors with each case's error replaced by `errors` (in the cases' order),
+    /// [`HeldOut::rescored`].
+    pub fn with_errors(mut self, errors: &[f64]) -> Self {
+        for (c, e) in self.cases.iter_mut().zip(errors) {
+            c.error = *e;
+        }
+        self.rescored()
+    }
+
     /// These held-out errors with each case's data error estimate (`estimates` in the data's
     /// order, as the samples were given to [`select`]).
     pub fn with_estimates(mut self, estimates: &[Option<f64>]) -> Self {
@@ -390,7 +411,7 @@ pub fn select<Mo: FilmModel>(
     );
     chosen_k.sort_unstable();
     chosen_k.dedup();
-    let joint_scores: Vec<(SizeScore, Vec<f64>, Vec<FoldFit<Mo>>)> =
+    let mut joint_scores: Vec<(SizeScore, Vec<f64>, Vec<FoldFit<Mo>>)> =
         chosen_k.iter().filter_map(|&k| scored(k, true)).collect();
     let best = joint_scores
         .iter()
@@ -399,7 +420,8 @@ pub fn select<Mo: FilmModel>(
     let at = joint_scores
         .iter()
         .position(|(s, _, _)| s.rms <= RMS_SLACK * best)?;
-    let (chosen, errors) = (joint_scores[at].0.clone(), joint_scores[at].1.clone());
+    let joint: Vec<SizeScore> = joint_scores.iter().map(|(s, _, _)| s.clone()).collect();
+    let (chosen, errors, fits) = joint_scores.swap_remove(at);
     let cases = data
         .iter()
         .zip(&errors)
@@ -415,11 +437,10 @@ pub fn select<Mo: FilmModel>(
     let h = HeldOut {
         folds: FOLDS,
         sizes: plain.into_iter().map(|(s, _)| s).collect(),
-        joint: joint_scores.iter().map(|(s, _, _)| s.clone()).collect(),
+        joint,
         chosen,
         cases,
     };
-    let fits = joint_scores.into_iter().nth(at)?.2;
     Some(Selected {
         heldout: h,
         blends,

@@ -160,32 +160,40 @@ pub struct Fold {
     pub test: Vec<(usize, [f64; 3], f64)>,
 }
 
+/// What [`select`] returns: the scales and nugget kept and, per data case (NaN for a case in no
+/// fold's test set), the held-out k and relative error exp(k - r) - 1.
+pub struct Selection {
+    /// Length scales (s_a, s_c, s_D).
+    pub scales: [f64; 3],
+    /// Nugget.
+    pub nugget: f64,
+    /// Each case's k, from the fit without its fold.
+    pub k: Vec<f64>,
+    /// Each case's held-out relative error (formula over data, less 1).
+    pub errors: Vec<f64>,
+}
+
 /// The scales and nugget of the best held-out RMS among the candidates whose largest held-out
-/// |error| is at most `max_bound`, with each data case's held-out relative error (formula over
-/// data, less 1; NaN for a case in no fold's test set; None when no candidate qualifies).
-/// Candidates in parallel, compared in order: the same at any thread count.
-pub fn select(
-    folds: &[Fold],
-    c_floor: f64,
-    cases: usize,
-    max_bound: f64,
-) -> Option<([f64; 3], f64, Vec<f64>)> {
+/// |error| is at most `max_bound` (None when no candidate qualifies). Candidates in parallel,
+/// compared in order: the same at any thread count.
+pub fn select(folds: &[Fold], c_floor: f64, cases: usize, max_bound: f64) -> Option<Selection> {
     let candidates: Vec<([f64; 3], f64)> = SCALES
         .iter()
         .flat_map(|s| NUGGETS.iter().map(move |g| (*s, *g)))
         .collect();
-    let scored: Vec<Option<(f64, Vec<f64>)>> = candidates
+    let scored: Vec<Option<(f64, Selection)>> = candidates
         .par_iter()
-        .map(|&(s, g)| {
-            let mut e = vec![f64::NAN; cases];
+        .map(|&(scales, nugget)| {
+            let (mut k, mut errors) = (vec![f64::NAN; cases], vec![f64::NAN; cases]);
             for f in folds {
                 let (x, r): (Vec<[f64; 3]>, Vec<f64>) = f.train.iter().copied().unzip();
-                let k = fit(&x, &r, s, g, c_floor)?;
+                let fitted = fit(&x, &r, scales, nugget, c_floor)?;
                 for (i, z, r) in &f.test {
-                    e[*i] = (k.at(z) - r).exp() - 1.0;
+                    k[*i] = fitted.at(z);
+                    errors[*i] = (k[*i] - r).exp() - 1.0;
                 }
             }
-            let got: Vec<f64> = e.iter().copied().filter(|v| !v.is_nan()).collect();
+            let got: Vec<f64> = errors.iter().copied().filter(|v| !v.is_nan()).collect();
             if got.is_empty() || !got.iter().all(|v| v.is_finite()) {
                 return None;
             }
@@ -193,20 +201,23 @@ pub fn select(
             if got.iter().any(|v| v.abs() > max_bound) {
                 return None;
             }
-            Some((rms, e))
+            let sel = Selection {
+                scales,
+                nugget,
+                k,
+                errors,
+            };
+            Some((rms, sel))
         })
         .collect();
-    let mut best: Option<(usize, f64)> = None;
-    for (k, s) in scored.iter().enumerate() {
-        if let Some((rms, _)) = s {
-            if best.is_none_or(|(_, b)| *rms < b) {
-                best = Some((k, *rms));
-            }
+    // The first of the lowest RMS.
+    let mut best: Option<(f64, Selection)> = None;
+    for (rms, sel) in scored.into_iter().flatten() {
+        if best.as_ref().is_none_or(|(b, _)| rms < *b) {
+            best = Some((rms, sel));
         }
     }
-    let (k, _) = best?;
-    let (s, g) = candidates[k];
-    scored.into_iter().nth(k)?.map(|(_, e)| (s, g, e))
+    best.map(|(_, sel)| sel)
 }
 
 #[cfg(test)]
@@ -300,7 +311,15 @@ mod tests {
                     .collect(),
             })
             .collect();
-        let (s, g, e) = select(&folds, -10.0, x.len(), f64::INFINITY).unwrap();
+        let Selection {
+            scales: s,
+            nugget: g,
+            k,
+            errors: e,
+        } = select(&folds, -10.0, x.len(), f64::INFINITY).unwrap();
+        for (i, (k, e)) in k.iter().zip(&e).enumerate() {
+            assert!(((k - r[i]).exp() - 1.0 - e).abs() < 1e-15);
+        }
         assert!(
             select(&folds, -10.0, x.len(), 1e-9).is_none(),
             "no candidate that close"

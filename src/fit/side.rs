@@ -295,8 +295,9 @@ pub fn select_side(
     fold: &[usize],
     folds: usize,
 ) -> Option<(SideLobe, SideChoice)> {
-    // Each candidate's held-out scores (log errors y - max(0, g)).
-    let scored: Vec<SideChoice> = side_candidates()
+    // Each candidate's held-out scores (log errors y - max(0, g)), with its fit on each fold's
+    // training cases.
+    let scored: Vec<(SideChoice, Vec<SideLobe>)> = side_candidates()
         .into_iter()
         .filter_map(|cand| {
             let powers = tensor_powers(cand.degrees);
@@ -304,6 +305,7 @@ pub fn select_side(
                 return None;
             }
             let mut g = vec![f64::NAN; cases.len()];
+            let mut fits = Vec::with_capacity(folds);
             for f in 0..folds {
                 let train: Vec<SideCase> = (0..cases.len())
                     .filter(|&i| fold[i] != f)
@@ -313,26 +315,28 @@ pub fn select_side(
                 for i in (0..cases.len()).filter(|&i| fold[i] == f) {
                     g[i] = s.g(cases[i].m, cases[i].l, cases[i].d);
                 }
+                fits.push(s);
             }
             if !g.iter().all(|v| v.is_finite()) {
                 return None;
             }
             let e: Vec<f64> = g.iter().zip(cases).map(|(g, c)| c.y - g.max(0.0)).collect();
             let (worst, rms) = worst_and_rms(&e);
-            Some(SideChoice {
+            let choice = SideChoice {
                 chosen: cand,
                 rms,
                 max: e[worst],
                 heldout_g: g,
                 without: None,
-            })
+            };
+            Some((choice, fits))
         })
         .collect();
-    let best = scored.iter().map(|s| s.rms).fold(f64::INFINITY, f64::min);
-    let choice = scored.into_iter().find(|s| s.rms <= RMS_SLACK * best)?;
+    let best = scored.iter().map(|s| s.0.rms).fold(f64::INFINITY, f64::min);
+    let (choice, fits) = scored.into_iter().find(|s| s.0.rms <= RMS_SLACK * best)?;
     let c = choice.chosen;
     let side = fit_side(cases, &tensor_powers(c.degrees), c.ridge)?;
-    Some(kriged_side(cases, fold, folds, side.clone(), choice.clone()).unwrap_or((side, choice)))
+    Some(kriged_side(cases, fold, &fits, side.clone(), choice.clone()).unwrap_or((side, choice)))
 }
 
 /// The log residual ln(H_min / (H_min,cl e^-max(0, g))) = max(0, g) - y of `c` under `s`.
@@ -340,27 +344,17 @@ fn side_residual(s: &SideLobe, c: &SideCase) -> f64 {
     s.g(c.m, c.l, c.d).max(0.0) - c.y
 }
 
-/// The side factor `side` (chosen as `choice`) with a kriging residual of its log residuals over
-/// the cases with a side-lobe ramp (M >= M_1), cross-validated on the same folds (each fold's
-/// factor refitted without it); None when a fit fails or it does not lower the held-out RMS or
-/// raises the max.
+/// The side factor `side` (chosen as `choice`, fitted without each fold as `fits`) with a
+/// kriging residual of its log residuals over the cases with a side-lobe ramp (M >= M_1),
+/// cross-validated on the same folds; None when a fit fails or it does not lower the held-out
+/// RMS or raises the max.
 fn kriged_side(
     cases: &[SideCase],
     fold: &[usize],
-    folds: usize,
+    fits: &[SideLobe],
     mut side: SideLobe,
     choice: SideChoice,
 ) -> Option<(SideLobe, SideChoice)> {
-    let powers = tensor_powers(choice.chosen.degrees);
-    let fits: Vec<SideLobe> = (0..folds)
-        .map(|f| {
-            let train: Vec<SideCase> = (0..cases.len())
-                .filter(|&i| fold[i] != f)
-                .map(|i| cases[i])
-                .collect();
-            fit_side(&train, &powers, choice.chosen.ridge)
-        })
-        .collect::<Option<_>>()?;
     let kfolds: Vec<Fold> = fits
         .iter()
         .enumerate()
@@ -389,18 +383,14 @@ fn kriged_side(
     }
     // Relative errors exp(k - r) - 1 against log errors |y - G| of the choice: the bound is
     // checked again on the log errors below.
-    let (scales, nugget, errors) =
-        kriging::select(&kfolds, 0.0, cases.len(), choice.max.abs().exp_m1())?;
-    // Each case's held-out G: the fold's max(0, g) less its kriging (k = ln(1 + e) + r, from
-    // the error e = exp(k - r) - 1 of a case with a ramp; 0 elsewhere).
+    let kriging::Selection {
+        scales, nugget, k, ..
+    } = kriging::select(&kfolds, 0.0, cases.len(), choice.max.abs().exp_m1())?;
+    // Each case's held-out G: the fold's max(0, g) less its kriging (0 without a ramp).
     let g: Vec<f64> = (0..cases.len())
         .map(|i| {
             let (s, c) = (&fits[fold[i]], &cases[i]);
-            let k = if errors[i].is_nan() {
-                0.0
-            } else {
-                errors[i].ln_1p() + side_residual(s, c)
-            };
+            let k = if k[i].is_nan() { 0.0 } else { k[i] };
             s.g(c.m, c.l, c.d).max(0.0) - s.ramp(c.m) * k
         })
         .collect();

@@ -14,7 +14,7 @@ use crate::fit::corner::{
 };
 use crate::fit::dataset::FitPoint;
 use crate::fit::fitted::Blend;
-use crate::fit::heldout::{folds_of, worst_and_rms, HeldOut, FOLDS, LATTICE_MIN_CASES};
+use crate::fit::heldout::{folds_of, HeldOut, FOLDS, LATTICE_MIN_CASES};
 use crate::fit::lsq::Sample;
 use crate::fit::model::FilmModel;
 use crate::report::recipe::MIN_CASES;
@@ -95,15 +95,7 @@ pub(super) fn corner_fit<Mo: FilmModel>(
         errors,
         folds,
     } = select_corner(&cases, &fold, &bases, &own, rho, params)?;
-    let mut heldout = plain.clone();
-    for (c, e) in heldout.cases.iter_mut().zip(&errors) {
-        c.error = *e;
-    }
-    let (worst, rms) = worst_and_rms(&errors);
-    let w = &heldout.cases[worst];
-    heldout.chosen.rms = rms;
-    heldout.chosen.max = errors[worst];
-    heldout.chosen.worst = (w.m, w.l, w.d);
+    let heldout = plain.clone().with_errors(&errors);
     Some(CornerFit {
         law,
         choice,

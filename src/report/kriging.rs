@@ -68,8 +68,12 @@ pub(super) fn kriged(
             Some(out)
         })
         .collect::<Option<Vec<Fold>>>()?;
-    let (scales, nugget, errors) =
-        kriging::select(&folds, floor, data.len(), plain.chosen.max.abs())?;
+    let kriging::Selection {
+        scales,
+        nugget,
+        errors,
+        ..
+    } = kriging::select(&folds, floor, data.len(), plain.chosen.max.abs())?;
     if errors.iter().any(|e| e.is_nan()) || plain.cases.len() != errors.len() {
         return None;
     }
@@ -84,13 +88,7 @@ pub(super) fn kriged(
         .map(|(s, l)| residual(*l, s, floor))
         .unzip();
     let k = kriging::fit(&x, &r, scales, nugget, floor)?;
-    let mut h = plain.clone();
-    for (c, e) in h.cases.iter_mut().zip(&errors) {
-        c.error = *e;
-    }
-    h.chosen.rms = rms;
-    h.chosen.max = errors[worst];
-    h.chosen.worst = (data[worst].m, data[worst].l, data[worst].d);
+    let h = plain.clone().with_errors(&errors);
     let choice = KrigingChoice {
         scales,
         nugget,

@@ -20,6 +20,7 @@
 
 pub mod checks;
 mod corner;
+mod forms;
 pub mod formula_py;
 mod kriging;
 mod law;
@@ -29,13 +30,11 @@ mod recipe;
 mod side_lobes;
 pub mod surrogate;
 
-use crate::fit::corner::{Corner, CornerChoice};
 use crate::fit::correction::{Coordinates, Correction};
 pub use crate::fit::dataset::{FitInput, FitPoint};
 use crate::fit::error::FitError;
 pub use crate::fit::fitted::{Blend, FittedModel, Param, QuantityFit};
-use crate::fit::heldout::{joint_best, select, HeldOut, Refit, Selected};
-use crate::fit::kriging::{Kriging, KrigingChoice};
+use crate::fit::heldout::{joint_best, select, Refit, Selected};
 use crate::fit::lsq::{fit, LsqFit, Sample};
 use crate::fit::model::FilmModel;
 use crate::fit::side::{SideChoice, SideLobe};
@@ -196,32 +195,24 @@ fn staged<Mo: FilmModel>(
     Ok(f)
 }
 
-/// The laws a film's formula may carry beyond its corrected blend, each with its held-out
-/// choice.
-struct Extras {
-    /// The side-lobe factor (point H_min through the centre line).
-    side: Option<(SideLobe, SideChoice)>,
-    /// The corner law (H_c).
-    corner: Option<(Corner, CornerChoice)>,
-    /// The kriging residual of the corrected blend.
-    kriging: Option<(Kriging, KrigingChoice)>,
-}
-
+/// The fit of `film`: the blend `f` with its `correction`, the law kept on top of them with its
+/// held-out errors (`law`), and for the point H_min through the centre line its side factor.
 fn quantity<Mo: FilmModel>(
     film: Film,
     pts: &[FitPoint],
     f: LsqFit<Mo>,
-    correction: (Correction, Option<HeldOut>),
-    extras: Extras,
+    correction: Correction,
+    law: Kept,
+    side: Option<(SideLobe, SideChoice)>,
     r: &Recipe<Mo>,
 ) -> QuantityFit {
     let (names, wrap) = (r.names, r.wrap);
-    let (lobe, choice) = extras.side.unzip();
-    let (corner, corner_choice) = extras.corner.unzip();
-    let (kriging, kriging_choice) = extras.kriging.unzip();
+    let (lobe, choice) = side.unzip();
+    let (corner, corner_choice) = law.corner.unzip();
+    let (kriging, kriging_choice) = law.kriging.unzip();
     let model = FittedModel {
         blend: wrap(f.model.clone()),
-        correction: correction.0,
+        correction,
         side: lobe,
         corner,
         kriging,
@@ -260,7 +251,7 @@ fn quantity<Mo: FilmModel>(
         regions: region_table(&tuples),
         per_d: d_table(&dts),
         within_target: target_range(&tuples, MAX_ERROR_TARGET),
-        heldout: correction.1,
+        heldout: law.heldout,
         check: vec![],
         side: choice,
         corner: corner_choice,
@@ -408,33 +399,25 @@ fn fit_films<Mo: FilmModel>(
             .iter()
             .find(|(g, _)| *g == Film::PressureMax)
             .map(|(_, m)| m);
-        let Kept {
-            heldout,
-            corner,
-            kriging: krig,
-        } = kept(film, pts, &data, (&f.model, &correction), cv, pm, r);
+        let mut law = kept(film, pts, &data, (&f.model, &correction), cv, pm, r);
         let estimates: Vec<Option<f64>> = pts
             .iter()
             .filter(|p| p.film(film).is_some())
             .map(|p| p.estimate(film))
             .collect();
-        let (heldout, side) = match side {
-            Some(s) => (composed(&s, heldout, pts), Some((s.lobe, s.choice))),
-            None => (heldout.map(|h| h.with_estimates(&estimates)), None),
+        let heldout = law.heldout.take();
+        let side = match side {
+            Some(s) => {
+                law.heldout = composed(&s, heldout, pts);
+                Some((s.lobe, s.choice))
+            }
+            None => {
+                law.heldout = heldout.map(|h| h.with_estimates(&estimates));
+                None
+            }
         };
         models.push((film, f.model.clone()));
-        let q = Some(quantity(
-            film,
-            pts,
-            f,
-            (correction, heldout),
-            Extras {
-                side,
-                corner,
-                kriging: krig,
-            },
-            r,
-        ));
+        let q = Some(quantity(film, pts, f, correction, law, side, r));
         match film {
             Film::Centre => report.h_c = q,
             Film::PressureMax => report.h_pm = q,

@@ -8,7 +8,7 @@
 //! both fitted without that case's fold.
 
 use crate::fit::dataset::FitPoint;
-use crate::fit::heldout::{folds_of, worst_and_rms, CaseError, HeldOut, FOLDS};
+use crate::fit::heldout::{folds_of, CaseError, HeldOut, FOLDS};
 use crate::fit::lsq::Sample;
 use crate::fit::side::{select_side, SideCase, SideChoice, SideLobe, NO_LOBE};
 use crate::solve::film::Film;
@@ -119,11 +119,5 @@ pub(super) fn composed(
             }
         })
         .collect();
-    let e: Vec<f64> = h.cases.iter().map(|c| c.error).collect();
-    let (worst, rms) = worst_and_rms(&e);
-    let w = &h.cases[worst];
-    h.chosen.rms = rms;
-    h.chosen.max = e[worst];
-    h.chosen.worst = (w.m, w.l, w.d);
-    Some(h)
+    Some(h.rescored())
 }

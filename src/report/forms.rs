@@ -1,0 +1,57 @@
+//! The fitted formulas' form in words, as report.md states it above each contact's
+//! coefficients: the blend, its held asymptotes, the interior correction, the corner law and the
+//! kriging residual (the mathematics: docs/method.md, "Fit"; the code: [`crate::fit`]).
+
+/// The line formula's form.
+pub(super) const LINE_FORM: &str =
+    "Formula (Moes units): H = H_blend exp(C). H_blend = [ (H_RI^p + H_EI^p)^(s/p) + (H_RP^-q + \
+H_EP^-q)^(-s/q) ]^(1/s), s = s0 + s1 exp(-s2 H_EI/H_RI), p = p0 + p1 exp(-s2 H_EI/H_RI), \
+H_RI = 2.4475/M (exact, fixed), H_EI = a M^-1/5 (held at the solver's limit: a = 2.488, 1.984 \
+for H_min, from L = 0 solves up to M = 1e4), H_RP = b L^(2/3) (held at the solver's \
+rigid-piezoviscous limit b = 1.0496, times 3/2.4475 for H_pm), H_EP = d M^(-1/8) L^(3/4) (the \
+exponents of asymptotic theory; held at the solver's limit d = 1.307, 0.978 for H_min, from \
+solves at M = 1e4 and L up to 80 extrapolated in L). p, q, the s-law and p1 start from Moes' (7/3, 7/2, 7/5 + 8/5 \
+exp(-2 H_EI/H_RI), 0) and are fitted too with 40 or more converged cases (a 1 sigma of 0 marks a \
+parameter held fixed). H_pm, the film at the pressure maximum (Moes' central film), is fitted \
+with the same form and its own exact H_RI = 3/M (the flux thickness); H_min with \
+H_RI = 2.4475/M. C = sum c_k phi_k is the interior correction: each phi_k is a transition bump \
+times a monomial and vanishes wherever one asymptote dominates (coordinates a = ln(H_EI/H_RI), \
+b = ln(H_EP/H_RP), c = ln(H_piezo/H_iso), w = 1/(1 + e^-c); bumps g(t) = 2/(1 + cosh t): \
+isoviscous g(a)(1 - w), piezoviscous g(b) w, outer g(c)), or a lattice of bumps \
+g(a/W - i)(1 - w) and g(a/W - i) g(c/W - j) (W = 0.75 or 0.375) over the data, fitted with a ridge weight; \
+the candidate (number of terms, or lattice spacing and ridge) is chosen by 5-fold held-out error, the \
+coefficients fitted on all cases. H_pm is not fitted where the pressure maximum is not \
+grid-converged (the outlet spike, or P_max_err above 2 %). Where the data show the corner at \
+which H_c meets H_pm, H_c is the corner law of its section (with the asymptotes of its blend). \
+Where it lowers the held-out RMS and not its max, the law is also multiplied by a kriging \
+residual exp(k), k = sum_j w_j K(|z - z_j|_s): K the Matern 5/2 kernel, z = (a, max(c, c_floor)) \
+of each data case, scales s and nugget chosen by the same folds, w fitted to the law's log \
+residuals; k falls to 0 away from the data and in every asymptotic limit. formula.py evaluates H.";
+
+/// The point formula's form.
+pub(super) const POINT_FORM: &str = "Formula (Moes point units, NVM 1994 form): H = H_blend exp(C). \
+H_blend = { [H_RI^r + (H_EI^-4 + H_00^-4)^(-r/4)]^(s/r) + (H_RP^-8 + H_EP^-8)^(-s/8) }^(1/s), \
+s = s0 (1 + exp(-s1 H_EI/H_RI)); H_RI = c_RI f_RI(D) D^e_RI M^-2, H_EI = a f_EI(D) D^e_EI \
+M^alpha, H_RP = b f_RP(D) D^e_RP L^beta, H_EP = d f_EP(D) D^e_EP M^gamma L^delta, \
+H_00 = c_00/D, with f_EI, f_EP NVM's D factors normalised to 1 at D = 1 and e_* free \
+corrections (0 = NVM; held at 0 when the data have one D). H_RI is held: c_RI at the solver's \
+rigid constant, its rigid solves extrapolated to an unbounded domain (35.5 for H_c and H_min, \
+45.0 for H_pm; NVM 41.3), e_RI = 0, and f_RI = [(1 + a D^p)/(1 + a)]^q / D the solver's own \
+(NVM: a = 0.796, p = 14/15, q = -15/7): a and p fitted to far-field rigid solves over D in \
+[0.005, 1], q set by the exact slender limit D M^2 H_c -> 2 (2.4475 pi)^2 (times 3/2.4475 for \
+H_pm). H_RP is held at the solver's rigid-piezoviscous limit alpha q_max = 1: b = c_RI pi(1), \
+beta = 2/3, e_RP = 0, f_RP = f_RI(D) D psi(D), psi = [(1 + a D^p)/(1 + a)]^q with pi(D) = \
+(alpha_bar(M = 1, L = 1) P_max)^(2/3) of the rigid solves = pi(1) D psi(D): a and p fitted to the \
+same solves, q set by the exact slender limit pi(D) H_c(D) -> 1.0496 (the line's constant). \
+H_EI and H_EP keep the exponents of asymptotic theory (M^(-2/15); M^(-1/12) L^(3/4)); \
+their constants and D corrections are fitted, H_EP's first held at NVM's, then all of them and \
+the blend (s0, s1, c_00, r: NVM's 1.5, 1.2, 1.8, 3/2) too (kept \
+only if physical, identified and better) with 40 or more converged cases. C = sum c_k phi_k is \
+the interior correction (as for line contacts, with ln D factors), its size chosen by 5-fold \
+held-out error. Where it lowers the held-out RMS and not its max, the law (corrected blend or \
+corner law) is also multiplied by a kriging residual exp(k), k = sum_j w_j K(|z - z_j|_s): K the \
+Matern 5/2 kernel, z = (a, max(c, c_floor), ln D) of each data case, scales s and nugget chosen \
+by the same folds, w fitted to the law's log residuals; k falls to 0 away from the data and in \
+every asymptotic limit. H_c is the film at the centre, H_pm the film at the pressure maximum on the \
+centre line, H_min the minimum film: each has its own fit. Where the data show the corner at \
+which H_c meets H_pm, H_c is the corner law of its section (with the asymptotes of its blend).";
