@@ -107,8 +107,8 @@ fn with_lattice(mut r: FitReport) -> FitReport {
     }
     assert!(n_terms > 0);
     // The point H_min gets a side-lobe factor (the committed point data predate H_min,cl), over
-    // M 10 ... 1000, D 0.1 ... 1, L 0 ... 20, lifting nothing and 1 in part of the box
-    // and below the ramp's start, M = 20.
+    // M 10 ... 1000, D 0.1 ... 1, L 0 ... 20, lifting nothing and 1 in part of the box, below
+    // the ramp's start, M = 20, and below the ramp in D's, D = 0.1.
     let q = r.point.h_min.as_mut().expect("point H_min fitted");
     let powers = tensor_powers([2, 2, 2]);
     let side = SideLobe {
@@ -119,6 +119,7 @@ fn with_lattice(mut r: FitReport) -> FitReport {
             .collect(),
         powers,
         ramp: Some([20f64.ln(), 40f64.ln()]),
+        ramp_d: Some([0.1f64.ln(), 0.2f64.ln()]),
         kriging: None,
     };
     let f: Vec<f64> = [
@@ -131,6 +132,8 @@ fn with_lattice(mut r: FitReport) -> FitReport {
     .map(|&(m, l, d)| side.factor(m, l, d))
     .collect();
     assert!(f.contains(&1.0) && f.iter().any(|v| *v < 0.99), "{f:?}");
+    assert_eq!(side.factor(500.0, 5.0, 0.1), 1.0);
+    assert!(side.factor(500.0, 5.0, 0.15) != side.factor(500.0, 5.0, 0.2));
     // ... and a kriging residual in its box-clamped (ln M, ln(1 + L), ln D), weights of both
     // signs, which moves the factor at some cases.
     q.model.side = Some(side.clone());
@@ -212,7 +215,7 @@ fn formula_py_reproduces_the_rust_evaluation() {
     let mut cases = vec![];
     for m in [0.01, 0.3, 1.0, 3.7, 20.0, 150.0, 1000.0, 3e4, 1e5] {
         for l in [0.0, 0.5, 4.0, 10.0, 25.0, 40.0] {
-            for d in [0.01, 0.1, 0.45, 1.0] {
+            for d in [0.01, 0.1, 0.15, 0.45, 1.0] {
                 cases.push((m, l, d));
             }
         }

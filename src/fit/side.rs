@@ -5,15 +5,19 @@
 //! elsewhere the two are the same film. The point formula for H_min is therefore the
 //! centre-line law (the blend and its interior correction fitted to H_min,cl) times
 //!
-//! F = exp(-max(0, g)),  g = r(M) sum_k c_k t_M^i t_D^j t_L^n,  (i, j, n) = powers of term k,
+//! F = exp(-max(0, g)),  g = r(M) r_D(D) sum_k c_k t_M^i t_D^j t_L^n,  (i, j, n) = powers of
+//! term k,
 //!
 //! with t_M, t_D, t_L the coordinates ln M, ln D and ln(1 + L) mapped linearly onto [-1, 1] over
 //! the box of the data fitted and clamped to it, and the ramp r(M) = (ln M - ln M_0) /
 //! (ln M_1 - ln M_0) clamped to [0, 1], M_1 the smallest M of a side-lobe case and M_0 the
 //! largest M of the data below it (r = 1 when the smallest M of the data already has a side
-//! lobe): no side lobe up to M_0, the polynomial alone from M_1 on. Invariants: F <= 1 everywhere (the side lobe never
+//! lobe): no side lobe up to M_0, the polynomial alone from M_1 on. The ramp in D, r_D(D) =
+//! (ln D - ln D_0) / (ln D_1 - ln D_0) clamped to [0, 1], is the same in D, with D_1 the
+//! smallest D of a lobe deeper than [`LOBE_D`] and the box's t_D starting at D_0 (r_D = 1 when
+//! no data lie below D_1): slender contacts have no side lobe. Invariants: F <= 1 everywhere (the side lobe never
 //! lifts the minimum above the centre line's); F = 1 exactly wherever g <= 0 (no side lobe),
-//! in particular at every M <= M_0, so the rigid limit is the centre line's; and beyond the
+//! in particular at every M <= M_0 and every D <= D_0, so the rigid limit is the centre line's; and beyond the
 //! data's box F is its value at the nearest point of the box (each asymptote of H_min is the
 //! centre-line asymptote times a constant factor).
 //!
@@ -55,8 +59,11 @@ pub struct SideLobe {
     /// ln M_0 and ln M_1 of the ramp (None: no ramp, r = 1).
     #[serde(default)]
     pub ramp: Option<[f64; 2]>,
+    /// ln D_0 and ln D_1 of the ramp in D (None: no ramp, r_D = 1).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ramp_d: Option<[f64; 2]>,
     /// A kriging residual k in the box-clamped (ln M, ln(1 + L), ln D) (None: none): F =
-    /// exp(-max(0, max(0, g) - r(M) k)).
+    /// exp(-max(0, max(0, g) - r(M) r_D(D) k)).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub kriging: Option<Kriging>,
 }
@@ -64,6 +71,11 @@ pub struct SideLobe {
 /// A y below this counts as no side lobe (the centre line's minimum and the global one agree to
 /// rounding).
 pub const NO_LOBE: f64 = 1e-9;
+
+/// A side lobe deeper than this (y, about the relative depth) places the ramp in D: lobes
+/// shallower than the data's 0.5 % accuracy target are fitted but do not extend the factor to
+/// slender contacts, which have none (the centre strip of a slender ellipse is a line contact).
+pub const LOBE_D: f64 = 5e-3;
 
 /// Rounds of the active-set iteration of [`fit_side`].
 const ROUNDS: usize = 50;
@@ -92,9 +104,20 @@ impl SideLobe {
             .map_or(1.0, |[a, b]| ((m.ln() - a) / (b - a)).clamp(0.0, 1.0))
     }
 
+    /// The ramp r_D(D) = (ln D - ln D_0) / (ln D_1 - ln D_0) clamped to [0, 1] (module doc).
+    pub fn ramp_d(&self, d: f64) -> f64 {
+        self.ramp_d
+            .map_or(1.0, |[a, b]| ((d.ln() - a) / (b - a)).clamp(0.0, 1.0))
+    }
+
+    /// The weight r(M) r_D(D) of the polynomial and the kriging residual.
+    pub fn weight(&self, m: f64, d: f64) -> f64 {
+        self.ramp(m) * self.ramp_d(d)
+    }
+
     /// g(M, L, D) before the hinge.
     pub fn g(&self, m: f64, l: f64, d: f64) -> f64 {
-        let r = self.ramp(m);
+        let r = self.weight(m, d);
         if r == 0.0 {
             return 0.0;
         }
@@ -120,7 +143,7 @@ impl SideLobe {
         let g = self.g(m, l, d).max(0.0);
         match &self.kriging {
             Some(k) => {
-                let r = self.ramp(m);
+                let r = self.weight(m, d);
                 if r == 0.0 {
                     g
                 } else {
@@ -168,6 +191,26 @@ pub fn data_box(cases: &[SideCase]) -> ([f64; 3], [f64; 3]) {
     (lo, hi)
 }
 
+/// The ramp in D of `cases` (module doc): ln D_0 and ln D_1, D_1 the smallest D of a case whose
+/// side lobe is deeper than [`LOBE_D`] and D_0 the largest D of the data below it; None where no
+/// case lies below D_1 or no lobe is that deep.
+fn ramp_in_d(cases: &[SideCase]) -> Option<[f64; 2]> {
+    let d1 = cases
+        .iter()
+        .filter(|c| c.y > LOBE_D)
+        .map(|c| c.d.ln())
+        .fold(f64::INFINITY, f64::min);
+    if !d1.is_finite() {
+        return None;
+    }
+    cases
+        .iter()
+        .map(|c| c.d.ln())
+        .filter(|&x| x < d1)
+        .fold(None, |a: Option<f64>, x| Some(a.map_or(x, |a| a.max(x))))
+        .map(|d0| [d0, d1])
+}
+
 /// The hinge fit of `powers` with ridge weight `ridge` to `cases` (module doc): least squares
 /// over the side-lobe cases (y > [`NO_LOBE`]) and the cases without one where g > 0, iterated
 /// until that set stops changing. None without a side-lobe case or when a solve fails.
@@ -184,19 +227,25 @@ pub fn fit_side(cases: &[SideCase], powers: &[[u8; 3]], ridge: f64) -> Option<Si
         .filter(|&x| x < first_lobe)
         .fold(None, |a: Option<f64>, x| Some(a.map_or(x, |a| a.max(x))))
         .map(|m0| [m0, first_lobe]);
+    let ramp_d = ramp_in_d(cases);
+    let mut lo = lo;
+    if let Some([d0, _]) = ramp_d {
+        lo[1] = d0;
+    }
     let mut side = SideLobe {
         lo,
         hi,
         powers: powers.to_vec(),
         coef: vec![0.0; powers.len()],
         ramp,
+        ramp_d,
         kriging: None,
     };
     let phi: Vec<Vec<f64>> = cases
         .iter()
         .map(|c| {
             let t = side.coords(c.m, c.l, c.d);
-            let r = side.ramp(c.m);
+            let r = side.weight(c.m, c.d);
             powers.iter().map(|p| r * monomial(t, *p)).collect()
         })
         .collect();
@@ -364,7 +413,7 @@ fn kriged_side(
                 test: vec![],
             };
             for (i, c) in cases.iter().enumerate() {
-                if s.ramp(c.m) == 0.0 {
+                if s.weight(c.m, c.d) == 0.0 {
                     continue;
                 }
                 let x = side.kriging_point(c.m, c.l, c.d);
@@ -391,7 +440,7 @@ fn kriged_side(
         .map(|i| {
             let (s, c) = (&fits[fold[i]], &cases[i]);
             let k = if k[i].is_nan() { 0.0 } else { k[i] };
-            s.g(c.m, c.l, c.d).max(0.0) - s.ramp(c.m) * k
+            s.g(c.m, c.l, c.d).max(0.0) - s.weight(c.m, c.d) * k
         })
         .collect();
     let e: Vec<f64> = g.iter().zip(cases).map(|(g, c)| c.y - g.max(0.0)).collect();
@@ -404,7 +453,7 @@ fn kriged_side(
     }
     let (x, r): (Vec<[f64; 3]>, Vec<f64>) = cases
         .iter()
-        .filter(|c| side.ramp(c.m) > 0.0)
+        .filter(|c| side.weight(c.m, c.d) > 0.0)
         .map(|c| (side.kriging_point(c.m, c.l, c.d), side_residual(&side, c)))
         .unzip();
     side.kriging = Some(kriging::fit(&x, &r, scales, nugget, 0.0)?);
@@ -448,6 +497,7 @@ mod tests {
             powers: tensor_powers([1, 1, 1]),
             coef: vec![0.1, 0.05, 0.2, 0.02, 0.3, 0.05, 0.1, 0.01],
             ramp: Some([lo[0], lo[0] + 0.25 * 10f64.ln()]),
+            ramp_d: None,
             kriging: None,
         };
         for c in &mut cases {
@@ -530,6 +580,54 @@ mod tests {
         }
         assert_eq!(side.factor(10.0, 5.0, 0.3), 1.0, "the ramp is 0 at M_0");
         assert_eq!(side.factor(1e-3, 20.0, 0.3), 1.0);
+    }
+
+    // Slender contacts without side lobes (D 0.01 and 0.03) below the lobes of D >= 0.1: the fit
+    // places the ramp in D between them, holds F = 1 at and below D_0 and recovers the factor.
+    #[test]
+    fn the_ramp_in_d_holds_slender_contacts_at_the_centre_line() {
+        let (base, truth0) = hinge_cases();
+        let mut cases = base.clone();
+        for c in &base {
+            for d in [0.01, 0.03] {
+                cases.push(SideCase { d, ..*c });
+            }
+        }
+        let (mut lo, hi) = data_box(&cases);
+        lo[1] = 0.03f64.ln();
+        let truth = SideLobe {
+            lo,
+            hi,
+            ramp_d: Some([0.03f64.ln(), 0.1f64.ln()]),
+            ..truth0.clone()
+        };
+        for c in &mut cases {
+            c.y = truth.g(c.m, c.l, c.d).max(0.0);
+        }
+        assert!(cases.iter().any(|c| c.d == 0.1 && c.y > LOBE_D));
+        let fit = fit_side(&cases, &tensor_powers([1, 1, 1]), 1e-12).unwrap();
+        assert_eq!(fit.ramp_d, truth.ramp_d);
+        assert_eq!(fit.lo, truth.lo);
+        for c in &cases {
+            let r = fit.factor(c.m, c.l, c.d) / (-c.y).exp();
+            assert!((r - 1.0).abs() < 1e-8, "{c:?} {r}");
+        }
+        for d in [0.001, 0.01, 0.03] {
+            assert_eq!(fit.factor(1000.0, 20.0, d), 1.0, "D = {d}");
+        }
+        assert!(fit.factor(1000.0, 20.0, 0.1) < 0.99);
+        // Data whose smallest D has a side lobe: no ramp in D, as before.
+        let (plain, _) = hinge_cases();
+        let mut plain = plain;
+        for c in &mut plain {
+            c.y = truth0.g(c.m, c.l, c.d).max(0.0);
+        }
+        assert_eq!(
+            fit_side(&plain, &tensor_powers([1, 1, 1]), 1e-12)
+                .unwrap()
+                .ramp_d,
+            None
+        );
     }
 
     #[test]

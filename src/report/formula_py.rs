@@ -221,11 +221,11 @@ def _side(side, M, L, D):
     if side is None:
         return 1.0
     x = (math.log(M), math.log(D), math.log1p(L))
-    if side["ramp"] is None:
-        r = 1.0
-    else:
-        a, b = side["ramp"]
-        r = min(max((x[0] - a) / (b - a), 0.0), 1.0)
+    r = 1.0
+    for key, v in (("ramp", x[0]), ("ramp_d", x[1])):
+        if side.get(key) is not None:
+            a, b = side[key]
+            r *= min(max((v - a) / (b - a), 0.0), 1.0)
     if r == 0.0:
         return 1.0
     t = []
@@ -300,12 +300,14 @@ fn side(s: Option<&SideLobe>) -> String {
         .map(|p| format!("({}, {}, {})", p[0], p[1], p[2]))
         .collect();
     format!(
-        "{{\"lo\": [{}], \"hi\": [{}], \"powers\": [{}], \"coef\": [{}], \"ramp\": {}, \"kriging\": {}}}",
+        "{{\"lo\": [{}], \"hi\": [{}], \"powers\": [{}], \"coef\": [{}], \"ramp\": {}, \"ramp_d\": {}, \"kriging\": {}}}",
         list(&s.lo),
         list(&s.hi),
         powers.join(", "),
         list(&s.coef),
         s.ramp
+            .map_or("None".to_string(), |r| format!("[{}]", list(&r))),
+        s.ramp_d
             .map_or("None".to_string(), |r| format!("[{}]", list(&r))),
         kriging(s.kriging.as_ref())
     )

@@ -222,12 +222,24 @@ fn side_lobe(md: &mut String, q: &QuantityFit) {
     let (Some(s), Some(c)) = (&q.model.side, &q.side) else {
         return;
     };
+    // The ramp in D, where the data reach slender contacts without side lobes.
+    let (r_d, ramp_d) = s.ramp_d.map_or((String::new(), String::new()), |[a, b]| {
+        (
+            " r_D(D)".to_string(),
+            format!(
+                ", r_D(D) = (ln D - {}) / {} clamped to [0, 1] (no side lobe at D <= {})",
+                sig5(a),
+                sig5(b - a),
+                sig5(a.exp())
+            ),
+        )
+    });
     let _ = writeln!(
         md,
         "H_min = (the law above, fitted to the centre line's minimum H_min,cl) x exp(-max(0, g)), \
-         g = r(M) sum c_k t_M^i t_D^j t_L^n, with t_M, t_D, t_L = ln M, ln D, ln(1 + L) mapped \
+         g = r(M){r_d} sum c_k t_M^i t_D^j t_L^n, with t_M, t_D, t_L = ln M, ln D, ln(1 + L) mapped \
          onto [-1, 1] over ln M in [{}, {}], ln D in [{}, {}], ln(1 + L) in [{}, {}] and clamped \
-         there, r(M) = {}; the held-out errors above are of H_min (the candidates tried, of \
+         there, r(M) = {}{ramp_d}; the held-out errors above are of H_min (the candidates tried, of \
          H_min,cl). Degrees ({}, {}, {}), ridge {:e}, chosen by held-out error: ln F held out \
          RMS {:.2} %, max {}.\n",
         sig5(s.lo[0]),
@@ -251,8 +263,8 @@ fn side_lobe(md: &mut String, q: &QuantityFit) {
     if let (Some(k), Some([rms, max])) = (&s.kriging, c.without) {
         let _ = writeln!(
             md,
-            "With a kriging residual: g is replaced by max(0, g) - r(M) k, k the Matern 5/2 kriging of \
-             the factor's log residuals over the cases with r(M) > 0 in (ln M, ln(1 + L), ln D) \
+            "With a kriging residual: g is replaced by max(0, g) - r(M){r_d} k, k the Matern 5/2 kriging of \
+             the factor's log residuals over the cases with r(M){r_d} > 0 in (ln M, ln(1 + L), ln D) \
              clamped to the box (scales {} / {} / {}, nugget {:.0e}, {} centres); without it ln F \
              held out RMS {:.2} %, max {:.2} %.\n",
             k.scales[0],
