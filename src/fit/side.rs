@@ -191,44 +191,33 @@ pub fn data_box(cases: &[SideCase]) -> ([f64; 3], [f64; 3]) {
     (lo, hi)
 }
 
-/// The ramp in D of `cases` (module doc): ln D_0 and ln D_1, D_1 the smallest D of a case whose
-/// side lobe is deeper than [`LOBE_D`] and D_0 the largest D of the data below it; None where no
-/// case lies below D_1 or no lobe is that deep.
-fn ramp_in_d(cases: &[SideCase]) -> Option<[f64; 2]> {
-    let d1 = cases
+/// A ramp over `cases` in the coordinate `x` (ln M or ln D; module doc): [x_0, x_1], x_1 the
+/// smallest x of a case whose side lobe is deeper than `depth` and x_0 the largest x of the
+/// data below it; None where no lobe is that deep or no case lies below x_1.
+fn ramp_of(cases: &[SideCase], x: impl Fn(&SideCase) -> f64, depth: f64) -> Option<[f64; 2]> {
+    let x1 = cases
         .iter()
-        .filter(|c| c.y > LOBE_D)
-        .map(|c| c.d.ln())
+        .filter(|c| c.y > depth)
+        .map(&x)
         .fold(f64::INFINITY, f64::min);
-    if !d1.is_finite() {
+    if !x1.is_finite() {
         return None;
     }
     cases
         .iter()
-        .map(|c| c.d.ln())
-        .filter(|&x| x < d1)
-        .fold(None, |a: Option<f64>, x| Some(a.map_or(x, |a| a.max(x))))
-        .map(|d0| [d0, d1])
+        .map(&x)
+        .filter(|&v| v < x1)
+        .fold(None, |a: Option<f64>, v| Some(a.map_or(v, |a| a.max(v))))
+        .map(|x0| [x0, x1])
 }
 
 /// The hinge fit of `powers` with ridge weight `ridge` to `cases` (module doc): least squares
 /// over the side-lobe cases (y > [`NO_LOBE`]) and the cases without one where g > 0, iterated
 /// until that set stops changing. None without a side-lobe case or when a solve fails.
 pub fn fit_side(cases: &[SideCase], powers: &[[u8; 3]], ridge: f64) -> Option<SideLobe> {
-    let (lo, hi) = data_box(cases);
-    let first_lobe = cases
-        .iter()
-        .filter(|c| c.y > NO_LOBE)
-        .map(|c| c.m.ln())
-        .fold(f64::INFINITY, f64::min);
-    let ramp = cases
-        .iter()
-        .map(|c| c.m.ln())
-        .filter(|&x| x < first_lobe)
-        .fold(None, |a: Option<f64>, x| Some(a.map_or(x, |a| a.max(x))))
-        .map(|m0| [m0, first_lobe]);
-    let ramp_d = ramp_in_d(cases);
-    let mut lo = lo;
+    let (mut lo, hi) = data_box(cases);
+    let ramp = ramp_of(cases, |c| c.m.ln(), NO_LOBE);
+    let ramp_d = ramp_of(cases, |c| c.d.ln(), LOBE_D);
     if let Some([d0, _]) = ramp_d {
         lo[1] = d0;
     }
@@ -470,172 +459,4 @@ fn kriged_side(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A grid of cases in M 10 ... 1000, L 0 ... 20, D 0.1 ... 1 with y = max(0, g_true), g_true
-    /// of the factor's own form (degrees (1, 1, 1), the ramp from M_0 = 10) crossing 0 inside
-    /// the box.
-    fn hinge_cases() -> (Vec<SideCase>, SideLobe) {
-        let mut cases = vec![];
-        for i in 0..9 {
-            for l in [0.0, 1.0, 5.0, 20.0] {
-                for d in [0.1, 0.25, 0.5, 1.0] {
-                    cases.push(SideCase {
-                        m: 10f64.powf(1.0 + 0.25 * f64::from(i)),
-                        l,
-                        d,
-                        y: 0.0,
-                    });
-                }
-            }
-        }
-        let (lo, hi) = data_box(&cases);
-        let truth = SideLobe {
-            lo,
-            hi,
-            powers: tensor_powers([1, 1, 1]),
-            coef: vec![0.1, 0.05, 0.2, 0.02, 0.3, 0.05, 0.1, 0.01],
-            ramp: Some([lo[0], lo[0] + 0.25 * 10f64.ln()]),
-            ramp_d: None,
-            kriging: None,
-        };
-        for c in &mut cases {
-            c.y = truth.g(c.m, c.l, c.d).max(0.0);
-        }
-        (cases, truth)
-    }
-
-    #[test]
-    fn the_hinge_fit_recovers_a_factor_of_its_own_form() {
-        let (cases, truth) = hinge_cases();
-        let lobes = cases.iter().filter(|c| c.y > NO_LOBE).count();
-        assert!(lobes > 20 && lobes < cases.len() - 20, "{lobes}");
-        let fit = fit_side(&cases, &tensor_powers([1, 1, 1]), 1e-12).unwrap();
-        let (a, b) = (fit.ramp.unwrap(), truth.ramp.unwrap());
-        assert!(
-            (a[0] - b[0]).abs() + (a[1] - b[1]).abs() < 1e-12,
-            "{a:?} {b:?}"
-        );
-        for (a, b) in fit.coef.iter().zip(&truth.coef) {
-            assert!((a - b).abs() < 1e-6, "{:?} {:?}", fit.coef, truth.coef);
-        }
-        for c in &cases {
-            let r = fit.factor(c.m, c.l, c.d) / (-c.y).exp();
-            assert!((r - 1.0).abs() < 1e-8, "{c:?} {r}");
-        }
-    }
-
-    #[test]
-    fn the_factor_never_lifts_the_film_and_is_constant_beyond_the_box() {
-        let (cases, truth) = hinge_cases();
-        for c in &cases {
-            assert!(truth.factor(c.m, c.l, c.d) <= 1.0);
-        }
-        // Beyond the box (M 1e6, L 40, D 0.01; M 1e-3): the value at the nearest box point.
-        let edge = truth.factor(1000.0, 20.0, 0.1);
-        assert!(edge < 0.99, "{edge}");
-        assert_eq!(truth.factor(1e6, 40.0, 0.01), edge);
-        assert_eq!(truth.factor(1e-3, 0.0, 1.0), truth.factor(10.0, 0.0, 1.0));
-        assert_eq!(truth.factor(10.0, 5.0, 1.0), 1.0, "the ramp is 0 at M_0");
-        assert_eq!(
-            truth.factor(100.0, 0.0, 0.1),
-            1.0,
-            "no side lobe in that corner"
-        );
-    }
-
-    #[test]
-    fn held_out_selection_finds_the_exact_form_and_predicts_every_case() {
-        let (cases, _) = hinge_cases();
-        let fold: Vec<usize> = (0..cases.len()).map(|i| i % 5).collect();
-        let (side, choice) = select_side(&cases, &fold, 5).unwrap();
-        assert_eq!(choice.heldout_g.len(), cases.len());
-        assert!(choice.rms < 1e-4 && choice.max.abs() < 1e-3, "{choice:?}");
-        // The simplest candidate that holds the exact form is kept.
-        assert_eq!(choice.chosen.degrees, [1, 1, 1]);
-        assert_eq!(side.powers.len(), 8);
-    }
-
-    // A side lobe the polynomial cannot follow (the exact form plus a narrow bump in ln M and
-    // ln D at large M): the kriging residual is kept, lowers the held-out errors, and keeps the
-    // factor's invariants (F <= 1, F = 1 up to M_0 and beyond the box's low-M edge).
-    #[test]
-    fn a_kriging_residual_follows_what_the_polynomial_cannot() {
-        let (mut cases, truth) = hinge_cases();
-        for c in &mut cases {
-            let bump = 0.03
-                * (-(c.m.ln() - 800f64.ln()).powi(2) / 0.5 - (c.d.ln() - 0.3f64.ln()).powi(2))
-                    .exp();
-            c.y = (truth.g(c.m, c.l, c.d).max(0.0) + bump * truth.ramp(c.m)).max(0.0);
-        }
-        let fold: Vec<usize> = (0..cases.len()).map(|i| i % 5).collect();
-        let (side, choice) = select_side(&cases, &fold, 5).unwrap();
-        let [rms0, max0] = choice.without.expect("kriging kept");
-        assert!(side.kriging.is_some());
-        assert!(choice.rms < 0.8 * rms0, "{} {rms0}", choice.rms);
-        assert!(choice.max.abs() <= max0, "{} {max0}", choice.max);
-        for c in &cases {
-            assert!(side.factor(c.m, c.l, c.d) <= 1.0);
-        }
-        assert_eq!(side.factor(10.0, 5.0, 0.3), 1.0, "the ramp is 0 at M_0");
-        assert_eq!(side.factor(1e-3, 20.0, 0.3), 1.0);
-    }
-
-    // Slender contacts without side lobes (D 0.01 and 0.03) below the lobes of D >= 0.1: the fit
-    // places the ramp in D between them, holds F = 1 at and below D_0 and recovers the factor.
-    #[test]
-    fn the_ramp_in_d_holds_slender_contacts_at_the_centre_line() {
-        let (base, truth0) = hinge_cases();
-        let mut cases = base.clone();
-        for c in &base {
-            for d in [0.01, 0.03] {
-                cases.push(SideCase { d, ..*c });
-            }
-        }
-        let (mut lo, hi) = data_box(&cases);
-        lo[1] = 0.03f64.ln();
-        let truth = SideLobe {
-            lo,
-            hi,
-            ramp_d: Some([0.03f64.ln(), 0.1f64.ln()]),
-            ..truth0.clone()
-        };
-        for c in &mut cases {
-            c.y = truth.g(c.m, c.l, c.d).max(0.0);
-        }
-        assert!(cases.iter().any(|c| c.d == 0.1 && c.y > LOBE_D));
-        let fit = fit_side(&cases, &tensor_powers([1, 1, 1]), 1e-12).unwrap();
-        assert_eq!(fit.ramp_d, truth.ramp_d);
-        assert_eq!(fit.lo, truth.lo);
-        for c in &cases {
-            let r = fit.factor(c.m, c.l, c.d) / (-c.y).exp();
-            assert!((r - 1.0).abs() < 1e-8, "{c:?} {r}");
-        }
-        for d in [0.001, 0.01, 0.03] {
-            assert_eq!(fit.factor(1000.0, 20.0, d), 1.0, "D = {d}");
-        }
-        assert!(fit.factor(1000.0, 20.0, 0.1) < 0.99);
-        // Data whose smallest D has a side lobe: no ramp in D, as before.
-        let (plain, _) = hinge_cases();
-        let mut plain = plain;
-        for c in &mut plain {
-            c.y = truth0.g(c.m, c.l, c.d).max(0.0);
-        }
-        assert_eq!(
-            fit_side(&plain, &tensor_powers([1, 1, 1]), 1e-12)
-                .unwrap()
-                .ramp_d,
-            None
-        );
-    }
-
-    #[test]
-    fn no_side_lobe_case_no_fit() {
-        let (mut cases, _) = hinge_cases();
-        for c in &mut cases {
-            c.y = 0.0;
-        }
-        assert!(fit_side(&cases, &tensor_powers([1, 1, 1]), 1e-8).is_none());
-    }
-}
+mod tests;
