@@ -624,6 +624,14 @@ fn table() -> Vec<Bad> {
         input("part-1of1-0001.parquet", "fit {dir}/not-parquet"),
         input("<DATASETS>", "fit"),
         input(
+            "--jump",
+            "fit {data}/smoke-line --no-limit-solves --jump {dir}/a-file",
+        ),
+        input(
+            "--jump",
+            "fit {data}/smoke-line --no-limit-solves --jump {dir}/missing.json",
+        ),
+        input(
             "--out",
             "fit {data}/smoke-line --out {data}/smoke-line --no-limit-solves",
         ),

@@ -12,8 +12,9 @@
 use ehlmap::fit::corner::Corner;
 use ehlmap::fit::correction::{lattice_terms, Coordinates, Correction, Term, TAIL};
 use ehlmap::fit::dataset::load_fit_input;
-use ehlmap::fit::kriging::{self, Kriging};
+use ehlmap::fit::kriging::{self, Kriging, KrigingJump};
 use ehlmap::fit::side::{tensor_powers, SideLobe};
+use ehlmap::limits::jump::JumpTable;
 use ehlmap::report::formula_py::formula_py;
 use ehlmap::report::{fit_report, FitReport, QuantityFit};
 use std::io::Write;
@@ -157,6 +158,8 @@ fn with_lattice(mut r: FitReport) -> FitReport {
         nugget: 1e-3,
         centres,
         weights,
+        jump: None,
+        phis: vec![],
     });
     let plain = q.model.side.clone().unwrap_or_else(|| side.clone());
     let moved = [(500.0, 5.0, 1.0), (100.0, 1.0, 0.3), (1000.0, 20.0, 0.1)]
@@ -191,15 +194,42 @@ fn with_lattice(mut r: FitReport) -> FitReport {
         let weights = (0..centres.len())
             .map(|k| 0.004 * ((k % 5) as f64 - 2.0))
             .collect();
+        // The point one also takes the corner coordinate phi, on a table of ln M_j over L {0,
+        // 5, 20} x D {0.1, 0.5, 1} (ln M_j = 2 + 0.1 ln(1 + L) - 0.7 ln D), which the cases
+        // below cross and leave.
+        let jump = (ds.len() > 1).then(|| {
+            let (lu, lv) = (
+                [0.0f64, 5.0, 20.0].map(f64::ln_1p),
+                [0.1f64, 0.5, 1.0].map(f64::ln),
+            );
+            let ln_m = lu
+                .iter()
+                .map(|u| lv.iter().map(|v| 2.0 + 0.1 * u - 0.7 * v).collect())
+                .collect();
+            KrigingJump {
+                table: JumpTable::new(lu.to_vec(), lv.to_vec(), ln_m).unwrap(),
+                width: kriging::JUMP_WIDTH,
+                scale: 0.5,
+            }
+        });
+        let phis = match &jump {
+            Some(_) => (0..centres.len())
+                .map(|k| ((k % 3) as f64 - 1.0) * 0.9)
+                .collect(),
+            None => vec![],
+        };
         let k = Kriging {
             scales: [2.0, 1.0, 2.0],
             c_floor: floor,
             nugget: 1e-3,
             centres,
             weights,
+            jump,
+            phis,
         };
         let b = &q.model.blend;
-        assert!(k.log_factor(b.asymptotes(10.0, 1.0, ds[0]), ds[0]).abs() > 1e-4);
+        let d = ds[0];
+        assert!(k.log_factor(b.asymptotes(10.0, 1.0, d), 10.0, 1.0, d).abs() > 1e-4);
         q.model.kriging = Some(k);
     }
     r

@@ -8,10 +8,15 @@ use crate::cli::output::{beside_dataset, note, outln, prepare_dir};
 use ehlmap::fit::dataset::load_fit_input;
 use ehlmap::fit::dataset::FitInput;
 use ehlmap::fit::heldout::FOLDS;
+use ehlmap::limits::jump::{jump_columns, Case, JumpFile, JumpTable, GRID, RATIO, TOLERANCE};
+use ehlmap::model::case::Contact;
 use ehlmap::render::charts::write_charts;
 use ehlmap::report::formula_py::formula_py;
 use ehlmap::report::markdown::to_markdown;
 use ehlmap::report::{fit_report, FitReport};
+use ehlmap::solve::solution::ModelUsed;
+use ehlmap::store::results::read::read_dataset;
+use ehlmap::store::results::row::RowStatus;
 use std::path::{Path, PathBuf};
 
 #[derive(clap::Args, Debug)]
@@ -36,17 +41,100 @@ pub struct FitArgs {
     /// formula answers a solve (--formula) only between data cases whose check cases it meets.
     #[arg(long)]
     pub check: Vec<PathBuf>,
+    /// Read where the point H_c corner lies (a file written by --jump-solves): the point H_c
+    /// kriging then also offers the corner coordinate (docs/method.md, "A kriging residual").
+    #[arg(long, value_name = "FILE", conflicts_with = "jump_solves")]
+    pub jump: Option<PathBuf>,
+    /// Solve where the point H_c corner lies in each (L, D) column of the data (M bisected for
+    /// H_c / H_pm = 0.95 on 513^2 to 0.2 %: about 15 min for 91 columns on two cores), write
+    /// it to FILE and use it as --jump does.
+    #[arg(long, value_name = "FILE")]
+    pub jump_solves: Option<PathBuf>,
+}
+
+/// Where the point H_c corner's place comes from.
+#[derive(Clone, Debug)]
+pub enum JumpArg {
+    /// Read from a file.
+    Read(PathBuf),
+    /// Solved and written to a file.
+    Solve(PathBuf),
 }
 
 /// Run `ehlmap fit`.
 pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
+    let jump = match (&a.jump, &a.jump_solves) {
+        (Some(f), _) => Some(JumpArg::Read(f.clone())),
+        (None, Some(f)) => Some(JumpArg::Solve(f.clone())),
+        (None, None) => None,
+    };
     fit_datasets(
         &a.datasets,
         &a.check,
         a.out.clone(),
         a.json,
         !a.no_limit_solves,
+        jump.as_ref(),
     )
+}
+
+/// The solved point cases of the `datasets` with their raw H_pm (the fit input leaves H_pm out
+/// where the outlet spike or an unresolved central peak is the maximum, which the corner's
+/// bracket still needs).
+fn jump_cases(datasets: &[PathBuf]) -> Result<Vec<Case>, CliError> {
+    let mut cases = vec![];
+    for dir in datasets {
+        let rows = read_dataset(dir).map_err(|e| input(format!("{}: {e}", dir.display())))?;
+        cases.extend(rows.iter().filter_map(|r| {
+            let solved = r.status == RowStatus::Converged && r.valid && r.sigma.is_none();
+            let (h_c, h_pm) = (r.h_c?, r.h_c_pmax?);
+            let ok = solved && r.model_used != ModelUsed::Formula && h_c > 0.0 && h_pm > 0.0;
+            (r.contact == Contact::Point && ok).then_some((r.m, r.l, r.d?, h_c, h_pm))
+        }));
+    }
+    Ok(cases)
+}
+
+/// The jump table of `arg` for the point cases of `datasets`: read, or solved and written.
+fn jump_table(arg: &JumpArg, datasets: &[PathBuf]) -> Result<JumpTable, CliError> {
+    let file = match arg {
+        JumpArg::Read(path) => {
+            let text = std::fs::read_to_string(path)
+                .map_err(|e| input(format!("--jump {}: {e}", path.display())))?;
+            serde_json::from_str::<JumpFile>(&text)
+                .map_err(|e| input(format!("--jump {}: {e}", path.display())))?
+        }
+        JumpArg::Solve(path) => {
+            let cases = jump_cases(datasets)?;
+            note!(
+                "--jump-solves: bisecting M for H_c / H_pm = {RATIO} in each (L, D) column of \
+                 the point data on {GRID}^2 (about 10 s per solve, 5-10 solves per column)"
+            );
+            let (columns, table) = jump_columns(&cases, GRID, &|n, of| {
+                note!("--jump-solves: {n} of {of} columns");
+            });
+            let file = JumpFile {
+                ratio: RATIO,
+                grid: GRID,
+                tolerance: TOLERANCE,
+                columns,
+                table,
+            };
+            let text = serde_json::to_string_pretty(&file).expect("jump file serialises");
+            std::fs::write(path, text)
+                .map_err(|e| io(format!("--jump-solves {}: {e}", path.display())))?;
+            let solved = file.columns.iter().filter(|c| c.solved).count();
+            note!(
+                "--jump-solves: wrote {} ({solved} of {} columns bisected)",
+                path.display(),
+                file.columns.len()
+            );
+            file
+        }
+    };
+    file.table.ok_or_else(|| {
+        input("--jump: the table is missing (a column of the data has no corner)".to_string())
+    })
 }
 
 /// Fit the datasets and write the report, fit.json, formula.py and charts to `out` (default beside the
@@ -58,6 +146,7 @@ pub fn fit_datasets(
     out: Option<PathBuf>,
     json: bool,
     limit_solves: bool,
+    jump: Option<&JumpArg>,
 ) -> Result<(), CliError> {
     let out = out.unwrap_or_else(|| beside_dataset(&datasets[0], "report"));
     if let Some(d) = datasets.iter().find(|d| same_dir(d, &out)) {
@@ -74,6 +163,10 @@ pub fn fit_datasets(
             .with_check(c)
             .map_err(|e| input(format!("--check: {e}")))?;
     }
+    // A table to read is read first: a bad file is refused before anything is written.
+    if let Some(j @ JumpArg::Read(_)) = jump {
+        data.jump = Some(jump_table(j, datasets)?);
+    }
     // The report's directory before the fit (its limit solves can take minutes).
     prepare_dir("--out", &out)?;
     let cases = data.line.len() + data.point.len();
@@ -89,6 +182,9 @@ pub fn fit_datasets(
             "the point asymptote checks solve the limit cases on the data's grid \
              (minutes for fine grids; --no-limit-solves skips them)"
         );
+    }
+    if let Some(j @ JumpArg::Solve(_)) = jump {
+        data.jump = Some(jump_table(j, datasets)?);
     }
     let report = fit_report(&data, limit_solves).map_err(|e| input(e.to_string()))?;
     let text = serde_json::to_string_pretty(&report).expect("report serialises");

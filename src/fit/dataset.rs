@@ -32,6 +32,7 @@
 
 use crate::discrete::point::domain::{PointDomain, PointDomainParams};
 use crate::fit::error::FitError;
+use crate::limits::jump::JumpTable;
 #[cfg(doc)]
 use crate::model::case::Models;
 use crate::model::case::{family, Contact, PointCase};
@@ -165,6 +166,10 @@ pub struct FitInput {
     /// Point cases of the check set.
     #[serde(default)]
     pub check_point: Vec<FitPoint>,
+    /// Where the point H_c corner lies, from solves ([`crate::limits::jump`], `ehlmap fit
+    /// --jump`): the point H_c kriging then also offers the corner coordinate. None: not given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub jump: Option<JumpTable>,
 }
 
 impl FitInput {

@@ -67,7 +67,7 @@ impl FittedModel {
         let h = self
             .kriging
             .as_ref()
-            .map_or(h, |k| h * k.log_factor(asym, d).exp());
+            .map_or(h, |k| h * k.log_factor(asym, m, l, d).exp());
         self.side.as_ref().map_or(h, |s| h * s.factor(m, l, d))
     }
 

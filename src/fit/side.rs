@@ -131,10 +131,10 @@ impl SideLobe {
     }
 
     /// The kriging coordinates of (M, L, D): (ln M, ln(1 + L), ln D) clamped to the box.
-    pub fn kriging_point(&self, m: f64, l: f64, d: f64) -> [f64; 3] {
+    pub fn kriging_point(&self, m: f64, l: f64, d: f64) -> kriging::X {
         let x = raw(m, l, d);
         let at = |k: usize| x[k].clamp(self.lo[k], self.hi[k].max(self.lo[k]));
-        [at(0), at(2), at(1)]
+        [at(0), at(2), at(1), 0.0]
     }
 
     /// G = max(0, g) - r(M) k, the exponent before the outer hinge (k = 0 without a kriging
@@ -423,7 +423,7 @@ fn kriged_side(
     // checked again on the log errors below.
     let kriging::Selection {
         scales, nugget, k, ..
-    } = kriging::select(&kfolds, 0.0, cases.len(), choice.max.abs().exp_m1())?;
+    } = kriging::select(&kfolds, cases.len(), choice.max.abs().exp_m1(), false)?;
     // Each case's held-out G: the fold's max(0, g) less its kriging (0 without a ramp).
     let g: Vec<f64> = (0..cases.len())
         .map(|i| {
@@ -440,12 +440,12 @@ fn kriged_side(
     if rms >= choice.rms || e[worst].abs() > choice.max.abs() {
         return None;
     }
-    let (x, r): (Vec<[f64; 3]>, Vec<f64>) = cases
+    let (x, r): (Vec<kriging::X>, Vec<f64>) = cases
         .iter()
         .filter(|c| side.weight(c.m, c.d) > 0.0)
         .map(|c| (side.kriging_point(c.m, c.l, c.d), side_residual(&side, c)))
         .unzip();
-    side.kriging = Some(kriging::fit(&x, &r, scales, nugget, 0.0)?);
+    side.kriging = Some(kriging::fit(&x, &r, scales, nugget, 0.0, None)?);
     Some((
         side,
         SideChoice {

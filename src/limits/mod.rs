@@ -1,6 +1,8 @@
 //! The asymptote limit solves: the solver's own rigid, isoviscous and piezoviscous limits that
-//! the fitted laws are checked against.
+//! the fitted laws are checked against; and the solves that place the point H_c corner
+//! ([`jump`]).
 
+pub mod jump;
 pub mod line_ep;
 pub mod rigid_d_factor;
 pub mod rigid_point;

@@ -169,26 +169,63 @@ def _correction(terms, asym, D):
     return total
 
 
-def _kriging(k, asym, D):
+def _interval(nodes, x):
+    """The interval of x among increasing nodes and its weight in [0, 1] (clamped)."""
+    n = len(nodes)
+    if n < 2 or x <= nodes[0]:
+        return 0, 0, 0.0
+    if x >= nodes[-1]:
+        return n - 1, n - 1, 0.0
+    i = 1
+    while nodes[i] <= x:
+        i += 1
+    return i - 1, i, (x - nodes[i - 1]) / (nodes[i] - nodes[i - 1])
+
+
+def _ln_m_jump(table, L, D):
+    """ln M_j(L, D): bilinear in (ln(1 + L), ln D) on the table, clamped to its box (ehlmap
+    src/limits/jump.rs)."""
+    i0, i1, u = _interval(table["ln_l1"], math.log1p(L))
+    j0, j1, v = _interval(table["ln_d"], math.log(D))
+    m = table["ln_m"]
+    return (1.0 - u) * ((1.0 - v) * m[i0][j0] + v * m[i0][j1]) + u * (
+        (1.0 - v) * m[i1][j0] + v * m[i1][j1]
+    )
+
+
+def _kriging(k, asym, M, L, D):
     """The kriging residual of a law at the coordinates (a, max(c, c_floor), ln D) of its
-    asymptotes (ehlmap src/fit/kriging.rs)."""
+    asymptotes, and phi = tanh(ln(M / M_j) / width) with a corner coordinate (ehlmap
+    src/fit/kriging.rs)."""
     a, _, c, ln_d, _ = _coords(asym, D)
     if math.isfinite(c):
         c = max(c, k["c_floor"])
     elif c < 0.0:
         c = k["c_floor"]
-    return _kriging_at(k, (a, c, ln_d))
+    jump = k.get("jump")
+    if jump is None:
+        return _kriging_at(k, (a, c, ln_d))
+    phi = math.tanh((math.log(M) - _ln_m_jump(jump["table"], L, D)) / jump["width"])
+    return _kriging_at(k, (a, c, ln_d), (phi, k["phis"], jump["scale"]))
 
 
-def _kriging_at(k, x):
-    """sum_j w_j K(|x - z_j|_s), K the Matern 5/2 kernel."""
+def _kriging_at(k, x, phi=None):
+    """sum_j w_j K(|x - z_j|_s), K the Matern 5/2 kernel; phi = (its value, the centres',
+    its scale) adds the corner coordinate."""
     s = k["scales"]
     total = 0.0
-    for z, w in zip(k["centres"], k["weights"]):
+    for j, (z, w) in enumerate(zip(k["centres"], k["weights"])):
         d2 = 0.0
         for i in range(3):
-            t = (x[i] - z[i]) / s[i]
-            d2 += t * t
+            t = x[i] - z[i]
+            if t != 0.0:
+                t /= s[i]
+                d2 += t * t
+        if phi is not None:
+            t = phi[0] - phi[1][j]
+            if t != 0.0:
+                t /= phi[2]
+                d2 += t * t
         if math.isfinite(d2):
             r = math.sqrt(5.0) * math.sqrt(d2)
             total += w * ((1.0 + r + r * r / 3.0) * _exp(-r))
@@ -319,12 +356,25 @@ fn kriging(k: Option<&Kriging>) -> String {
         return "None".to_string();
     };
     let centres: Vec<String> = k.centres.iter().map(|c| format!("[{}]", list(c))).collect();
+    let jump = k.jump.as_ref().map_or("None".to_string(), |j| {
+        let rows: Vec<String> = j.table.ln_m.iter().map(|r| format!("[{}]", list(r))).collect();
+        format!(
+            "{{\"table\": {{\"ln_l1\": [{}], \"ln_d\": [{}], \"ln_m\": [{}]}}, \"width\": {}, \"scale\": {}}}",
+            list(&j.table.ln_l1),
+            list(&j.table.ln_d),
+            rows.join(", "),
+            f(j.width),
+            f(j.scale)
+        )
+    });
     format!(
-        "{{\"scales\": [{}], \"c_floor\": {}, \"centres\": [{}], \"weights\": [{}]}}",
+        "{{\"scales\": [{}], \"c_floor\": {}, \"centres\": [{}], \"weights\": [{}], \"jump\": {}, \"phis\": [{}]}}",
         list(&k.scales),
         f(k.c_floor),
         centres.join(", "),
-        list(&k.weights)
+        list(&k.weights),
+        jump,
+        list(&k.phis)
     )
 }
 
@@ -390,7 +440,7 @@ def H(M, L, D=None, film="H_c"):
         else:
             h = blend * _exp(_correction(e["terms"], asym, 1.0))
         if e.get("kriging") is not None:
-            h = h * _exp(_kriging(e["kriging"], asym, 1.0))
+            h = h * _exp(_kriging(e["kriging"], asym, M, L, 1.0))
         return h
     if film not in POINT:
         raise ValueError(f"no point formula for {film} (fitted: {sorted(POINT)})")
@@ -403,7 +453,7 @@ def H(M, L, D=None, film="H_c"):
     else:
         h = blend * _exp(_correction(e["terms"], asym, D))
     if e.get("kriging") is not None:
-        h = h * _exp(_kriging(e["kriging"], asym, D))
+        h = h * _exp(_kriging(e["kriging"], asym, M, L, D))
     return h * _side(e.get("side"), M, L, D)
 "#;
 

@@ -59,7 +59,8 @@ pub(super) fn kept<Mo: FilmModel>(
         let (b, c) = sel.fits.get(f)?.as_ref()?;
         Some(corrected_at(b, c, s))
     };
-    if let Some((k, choice, h)) = kriged(data, &all, &fold, &sel.heldout) {
+    let jump = (film == Film::Centre).then_some(r.jump.as_ref()).flatten();
+    if let Some((k, choice, h)) = kriged(data, &all, &fold, &sel.heldout, jump) {
         offer(
             Kept {
                 heldout: Some(h),
@@ -93,7 +94,7 @@ pub(super) fn kept<Mo: FilmModel>(
     };
     let all = |s: &Sample| corner_at(model, &law, s);
     let fold = |f: usize, s: &Sample| Some(corner_at(sel.blends.get(f)?, folds.get(f)?, s));
-    let kriging = kriged(data, &all, &fold, &heldout);
+    let kriging = kriged(data, &all, &fold, &heldout, jump);
     offer(
         Kept {
             heldout: Some(heldout),

@@ -143,12 +143,15 @@ fn kept_name(q: &QuantityFit, chosen: &SizeScore) -> String {
     };
     match &q.kriging {
         Some(k) => {
-            let scales = match q.model.blend {
-                Blend::Line(_) => format!("{} / {} in a / c", k.scales[0], k.scales[1]),
-                Blend::Point(_) => format!(
-                    "{} / {} / {} in a / c / ln D",
-                    k.scales[0], k.scales[1], k.scales[2]
-                ),
+            let [sa, sc, sd] = k.scales;
+            let scales = match (&q.model.blend, k.jump_scale) {
+                (Blend::Line(_), _) => format!("{sa} / {sc} in a / c"),
+                (Blend::Point(_), None) => format!("{sa} / {sc} / {sd} in a / c / ln D"),
+                (Blend::Point(_), Some(p)) => {
+                    format!(
+                        "{sa} / {sc} / {sd} / {p} in a / c / ln D / phi (the corner coordinate)"
+                    )
+                }
             };
             format!(
                 "{law} and a kriging residual (Matern 5/2, scales {scales}, nugget {:.0e}; without it held out {:.2} % / {:.2} %)",

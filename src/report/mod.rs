@@ -39,6 +39,7 @@ use crate::fit::lsq::{fit, LsqFit, Sample};
 use crate::fit::model::FilmModel;
 use crate::fit::side::{SideChoice, SideLobe};
 use crate::fit::stats::{d_table, err_stats, region_table, target_range, ErrStats, RegionStats};
+use crate::limits::jump::JumpTable;
 use crate::model::formulas::{
     dowson_toyoda_line_hc_moes, hamrock_dowson_hc_moes, moes_line_hc, nvm_point_hc,
 };
@@ -455,8 +456,10 @@ fn point_report(
     pts: &[FitPoint],
     failed: usize,
     limit_solves: bool,
+    jump: Option<&JumpTable>,
 ) -> Result<ContactReport, FitError> {
-    let recipe = point_recipe(pts);
+    let mut recipe = point_recipe(pts);
+    recipe.jump = jump.cloned();
     let need = (recipe.stage1.len() + SPARE_CASES).max(MIN_CASES);
     if pts.len() < need {
         return Ok(skipped("point", pts.len(), failed, need));
@@ -499,7 +502,12 @@ pub fn fit_report(input: &FitInput, limit_solves: bool) -> Result<FitReport, Fit
         });
     }
     let mut line = line_report(&input.line, input.failed_line, limit_solves)?;
-    let mut point = point_report(&input.point, input.failed_point, limit_solves)?;
+    let mut point = point_report(
+        &input.point,
+        input.failed_point,
+        limit_solves,
+        input.jump.as_ref(),
+    )?;
     line.families = input.line_families.clone();
     point.families = input.point_families.clone();
     add_checks(&mut line, &input.check_line);

@@ -13,6 +13,7 @@ use crate::fit::fitted::Blend;
 use crate::fit::heldout::{lattice, nested, Basis};
 use crate::fit::model::{LineModel, PARAM_NAMES};
 use crate::fit::point_model::{PointModel, POINT_PARAM_NAMES};
+use crate::limits::jump::JumpTable;
 use crate::limits::{rigid_d_factor, rigid_point, rigid_rp};
 use crate::solve::film::Film;
 use crate::strategy::closed_form::MARTIN_FLUX;
@@ -127,6 +128,9 @@ pub(super) struct Recipe<Mo> {
     /// The corner law's lattice and ridges when H_c is fitted through its corner with H_pm
     /// ([`crate::fit::corner`]; where the data allow it).
     pub(super) corner: Option<CornerParams>,
+    /// Where the point H_c corner lies, from solves ([`crate::limits::jump`]): its kriging then
+    /// also offers the corner coordinate ([`crate::fit::kriging`]). None: not given.
+    pub(super) jump: Option<JumpTable>,
 }
 
 /// Ridge weights of the line lattice candidates ([`line_bases`]).
@@ -212,6 +216,7 @@ pub(super) fn line_recipe() -> Recipe<LineModel> {
         bases: line_bases,
         side_lobes: false,
         corner: Some(corner::LINE),
+        jump: None,
     }
 }
 
@@ -243,5 +248,6 @@ pub(super) fn point_recipe(pts: &[FitPoint]) -> Recipe<PointModel> {
         bases: point_bases,
         side_lobes: true,
         corner: Some(corner::POINT),
+        jump: None,
     }
 }
