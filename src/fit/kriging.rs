@@ -342,6 +342,22 @@ mod tests {
         0.03 * (0.8 * x[0]).sin() * (-0.2 * x[1] * x[1]).exp() + 0.01 * x[2]
     }
 
+    /// Five folds of the cases (x, r): case i in fold i mod 5.
+    fn five_folds(x: &[X], r: &[f64]) -> Vec<Fold> {
+        (0..5)
+            .map(|k| Fold {
+                train: (0..x.len())
+                    .filter(|i| i % 5 != k)
+                    .map(|i| (x[i], r[i]))
+                    .collect(),
+                test: (0..x.len())
+                    .filter(|i| i % 5 == k)
+                    .map(|i| (i, x[i], r[i]))
+                    .collect(),
+            })
+            .collect()
+    }
+
     /// Three coordinates, s_phi infinite.
     const S3: X = [1.5, 1.5, 2.0, f64::INFINITY];
 
@@ -437,18 +453,7 @@ mod tests {
             }
         }
         let r: Vec<f64> = x.iter().map(f).collect();
-        let folds: Vec<Fold> = (0..5)
-            .map(|k| Fold {
-                train: (0..x.len())
-                    .filter(|i| i % 5 != k)
-                    .map(|i| (x[i], r[i]))
-                    .collect(),
-                test: (0..x.len())
-                    .filter(|i| i % 5 == k)
-                    .map(|i| (i, x[i], r[i]))
-                    .collect(),
-            })
-            .collect();
+        let folds = five_folds(&x, &r);
         let Selection {
             scales: s,
             nugget: g,
@@ -484,23 +489,9 @@ mod tests {
                 r.push(0.04 * (t / 0.005).tanh() + 0.01 * (1.5 * t).sin() + 0.005 * c);
             }
         }
-        let folds = |x: &[X]| -> Vec<Fold> {
-            (0..5)
-                .map(|k| Fold {
-                    train: (0..x.len())
-                        .filter(|i| i % 5 != k)
-                        .map(|i| (x[i], r[i]))
-                        .collect(),
-                    test: (0..x.len())
-                        .filter(|i| i % 5 == k)
-                        .map(|i| (i, x[i], r[i]))
-                        .collect(),
-                })
-                .collect()
-        };
         let rms = |e: &[f64]| (e.iter().map(|v| v * v).sum::<f64>() / e.len() as f64).sqrt();
-        let with = select(&folds(&x), x.len(), f64::INFINITY, true).unwrap();
-        let without = select(&folds(&x), x.len(), f64::INFINITY, false).unwrap();
+        let with = select(&five_folds(&x, &r), x.len(), f64::INFINITY, true).unwrap();
+        let without = select(&five_folds(&x, &r), x.len(), f64::INFINITY, false).unwrap();
         assert!(JUMP_SCALES.contains(&with.scales[3]), "{:?}", with.scales);
         let (a, b) = (rms(&with.errors), rms(&without.errors));
         assert!(
