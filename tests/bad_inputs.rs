@@ -632,6 +632,10 @@ fn table() -> Vec<Bad> {
             "fit {data}/smoke-line --no-limit-solves --jump {dir}/missing.json",
         ),
         input(
+            "no solved point cases",
+            "fit {data}/smoke-line --no-limit-solves --jump-solves {dir}/j.json --out {dir}/r",
+        ),
+        input(
             "--out",
             "fit {data}/smoke-line --out {data}/smoke-line --no-limit-solves",
         ),

@@ -15,7 +15,7 @@ use ehlmap::report::formula_py::formula_py;
 use ehlmap::report::markdown::to_markdown;
 use ehlmap::report::{fit_report, FitReport};
 use ehlmap::solve::solution::ModelUsed;
-use ehlmap::store::results::read::read_dataset;
+use ehlmap::store::results::read::{read_dataset, read_part};
 use ehlmap::store::results::row::RowStatus;
 use std::path::{Path, PathBuf};
 
@@ -42,11 +42,12 @@ pub struct FitArgs {
     #[arg(long)]
     pub check: Vec<PathBuf>,
     /// Read where the point H_c corner lies (a file written by --jump-solves): the point H_c
-    /// kriging then also offers the corner coordinate (docs/method.md, "A kriging residual").
+    /// kriging then also offers the corner coordinate (docs/method.md, "The corner coordinate of
+    /// the point H_c").
     #[arg(long, value_name = "FILE", conflicts_with = "jump_solves")]
     pub jump: Option<PathBuf>,
     /// Solve where the point H_c corner lies in each (L, D) column of the data (M bisected for
-    /// H_c / H_pm = 0.95 on 513^2 to 0.2 %: about 15 min for 91 columns on two cores), write
+    /// H_c / H_pm = 0.95 on 513^2 to 0.2 %: about 6 min for 91 columns on two cores), write
     /// it to FILE and use it as --jump does.
     #[arg(long, value_name = "FILE")]
     pub jump_solves: Option<PathBuf>,
@@ -84,7 +85,12 @@ pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
 fn jump_cases(datasets: &[PathBuf]) -> Result<Vec<Case>, CliError> {
     let mut cases = vec![];
     for dir in datasets {
-        let rows = read_dataset(dir).map_err(|e| input(format!("{}: {e}", dir.display())))?;
+        let rows = if dir.is_file() {
+            read_part(dir).map(|p| p.rows)
+        } else {
+            read_dataset(dir)
+        }
+        .map_err(|e| input(format!("{}: {e}", dir.display())))?;
         cases.extend(rows.iter().filter_map(|r| {
             let solved = r.status == RowStatus::Converged && r.valid && r.sigma.is_none();
             let (h_c, h_pm) = (r.h_c?, r.h_c_pmax?);
@@ -92,11 +98,16 @@ fn jump_cases(datasets: &[PathBuf]) -> Result<Vec<Case>, CliError> {
             (r.contact == Contact::Point && ok).then_some((r.m, r.l, r.d?, h_c, h_pm))
         }));
     }
+    if cases.is_empty() {
+        return Err(input(
+            "--jump-solves: the data have no solved point cases".to_string(),
+        ));
+    }
     Ok(cases)
 }
 
-/// The jump table of `arg` for the point cases of `datasets`: read, or solved and written.
-fn jump_table(arg: &JumpArg, datasets: &[PathBuf]) -> Result<JumpTable, CliError> {
+/// The jump table of `arg`: read, or solved for the point `cases` and written.
+fn jump_table(arg: &JumpArg, cases: &[Case]) -> Result<JumpTable, CliError> {
     let file = match arg {
         JumpArg::Read(path) => {
             let text = std::fs::read_to_string(path)
@@ -105,12 +116,11 @@ fn jump_table(arg: &JumpArg, datasets: &[PathBuf]) -> Result<JumpTable, CliError
                 .map_err(|e| input(format!("--jump {}: {e}", path.display())))?
         }
         JumpArg::Solve(path) => {
-            let cases = jump_cases(datasets)?;
             note!(
                 "--jump-solves: bisecting M for H_c / H_pm = {RATIO} in each (L, D) column of \
                  the point data on {GRID}^2 (about 10 s per solve, 5-10 solves per column)"
             );
-            let (columns, table) = jump_columns(&cases, GRID, &|n, of| {
+            let (columns, table) = jump_columns(cases, GRID, &|n, of| {
                 note!("--jump-solves: {n} of {of} columns");
             });
             let file = JumpFile {
@@ -163,10 +173,16 @@ pub fn fit_datasets(
             .with_check(c)
             .map_err(|e| input(format!("--check: {e}")))?;
     }
-    // A table to read is read first: a bad file is refused before anything is written.
-    if let Some(j @ JumpArg::Read(_)) = jump {
-        data.jump = Some(jump_table(j, datasets)?);
-    }
+    // A table to read is read first, and the cases to solve one for are gathered: bad input is
+    // refused before anything is written.
+    let solve_for = match jump {
+        Some(j @ JumpArg::Read(_)) => {
+            data.jump = Some(jump_table(j, &[])?);
+            vec![]
+        }
+        Some(JumpArg::Solve(_)) => jump_cases(datasets)?,
+        None => vec![],
+    };
     // The report's directory before the fit (its limit solves can take minutes).
     prepare_dir("--out", &out)?;
     let cases = data.line.len() + data.point.len();
@@ -184,7 +200,7 @@ pub fn fit_datasets(
         );
     }
     if let Some(j @ JumpArg::Solve(_)) = jump {
-        data.jump = Some(jump_table(j, datasets)?);
+        data.jump = Some(jump_table(j, &solve_for)?);
     }
     let report = fit_report(&data, limit_solves).map_err(|e| input(e.to_string()))?;
     let text = serde_json::to_string_pretty(&report).expect("report serialises");

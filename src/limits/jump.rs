@@ -16,8 +16,8 @@
 //! ln M_j on the table's nodes (ln(1 + L), ln D), each node's M_j the geometric mean of its final
 //! bracket; a node whose column has no crossing or whose bisection fails takes the data's
 //! crossing interpolated linearly in ln M (marked in [`JumpColumn::solved`]), and the table is
-//! None when a node has neither. Invariants: every column's solves are independent and run on
-//! one thread each, so the table is the same at any thread count.
+//! None when a node has neither. Invariants: every column's solves are independent and each
+//! solve is the same at any thread count, so the table is too.
 
 use crate::model::case::{Models, PointCase};
 use crate::solve::film::Film;
@@ -247,7 +247,7 @@ fn distinct(mut v: Vec<f64>) -> Vec<f64> {
 }
 
 /// The corner's place in each (L, D) column of `cases` (L >= 0, D > 0), by
-/// bisection solves on `grid` (columns in parallel, each solve on the calling pool), and the
+/// bisection solves on `grid` (columns in parallel on the calling pool), and the
 /// table of all columns (None when a column has no crossing at all). `progress` is called after
 /// each column with (columns done, of).
 pub fn jump_columns(
