@@ -68,9 +68,9 @@ pub struct KrigingJump {
     pub scale: f64,
 }
 
-/// phi = tanh(ln(M / M_j(L, D)) / [`JUMP_WIDTH`]) at (M, L, D).
-pub fn phi(table: &JumpTable, m: f64, l: f64, d: f64) -> f64 {
-    ((m.ln() - table.ln_m_at(l, d)) / JUMP_WIDTH).tanh()
+/// phi = tanh(ln(M / M_j(L, D)) / width) at (M, L, D) (fits use [`JUMP_WIDTH`]).
+pub fn phi(table: &JumpTable, width: f64, m: f64, l: f64, d: f64) -> f64 {
+    ((m.ln() - table.ln_m_at(l, d)) / width).tanh()
 }
 
 /// A fitted kriging residual.
@@ -172,7 +172,10 @@ pub fn with_phi(x: [f64; 3], phi: f64) -> X {
 impl Kriging {
     /// k at the coordinates of the law's asymptotes `asym` at (M, L, D).
     pub fn log_factor(&self, asym: [f64; 4], m: f64, l: f64, d: f64) -> f64 {
-        let p = self.jump.as_ref().map_or(0.0, |j| phi(&j.table, m, l, d));
+        let p = self
+            .jump
+            .as_ref()
+            .map_or(0.0, |j| phi(&j.table, j.width, m, l, d));
         self.at(&with_phi(
             point(&Coordinates::new(asym, d), self.c_floor),
             p,
@@ -430,7 +433,8 @@ mod tests {
                 assert_eq!(k.at(&far), 0.0, "{far:?}");
             }
         }
-        assert!(phi(&table, 1e-30, 3.0, 0.5) == -1.0 && phi(&table, 1e30, 3.0, 0.5) == 1.0);
+        let w = JUMP_WIDTH;
+        assert!(phi(&table, w, 1e-30, 3.0, 0.5) == -1.0 && phi(&table, w, 1e30, 3.0, 0.5) == 1.0);
         assert!(matern52(4.3 / 2.0) < 0.12);
         assert_eq!(matern52(0.0), 1.0);
         let z = Coordinates {

@@ -205,8 +205,7 @@ pub fn bisect(
         } else {
             (fa / (fa - fb)).clamp(0.05, 0.95)
         };
-        let m = (a.m.ln() + t * (b.m / a.m).ln()).exp();
-        let s = solve(m);
+        let s = solve(between(a.m, b.m, t));
         solves.push(s);
         if !s.ratio().is_finite() {
             return (None, solves);
@@ -223,6 +222,11 @@ pub fn bisect(
     (found, solves)
 }
 
+/// The M a fraction `t` of the way from `lo` to `hi` in ln M.
+fn between(lo: f64, hi: f64, t: f64) -> f64 {
+    (lo.ln() + t * (hi / lo).ln()).exp()
+}
+
 /// The last bracket in M of a column's cases (sorted by M) across [`RATIO`] (a case below it
 /// and the next at or above it), with the data's crossing interpolated linearly in ln M.
 fn data_bracket(column: &[Case]) -> Option<([f64; 2], f64)> {
@@ -234,8 +238,7 @@ fn data_bracket(column: &[Case]) -> Option<([f64; 2], f64)> {
         .map(|w| {
             let (ra, rb) = (ratio(&w[0]), ratio(&w[1]));
             let t = (RATIO - ra) / (rb - ra);
-            let m = (w[0].0.ln() + t * (w[1].0 / w[0].0).ln()).exp();
-            ([w[0].0, w[1].0], m)
+            ([w[0].0, w[1].0], between(w[0].0, w[1].0, t))
         })
 }
 
@@ -297,10 +300,8 @@ pub fn jump_columns(
             out
         })
         .collect();
-    let ln_m: Vec<Vec<f64>> = ls
-        .iter()
-        .enumerate()
-        .map(|(i, _)| {
+    let ln_m: Vec<Vec<f64>> = (0..ls.len())
+        .map(|i| {
             (0..ds.len())
                 .map(|j| columns[i * ds.len() + j].m_j.ln())
                 .collect()

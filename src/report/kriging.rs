@@ -28,7 +28,7 @@ pub(super) fn corrected_at<Mo: FilmModel>(
 
 /// The kriging coordinates (phi from `jump`, else 0) and log residual ln(H / H_law) of `s`.
 fn residual(law: ([f64; 4], f64), s: &Sample, c_floor: f64, jump: Option<&JumpTable>) -> (X, f64) {
-    let phi = jump.map_or(0.0, |t| kriging::phi(t, s.m, s.l, s.d));
+    let phi = jump.map_or(0.0, |t| kriging::phi(t, kriging::JUMP_WIDTH, s.m, s.l, s.d));
     (
         kriging::with_phi(kriging::point(&Coordinates::new(law.0, s.d), c_floor), phi),
         (s.h / law.1).ln(),
