@@ -12,6 +12,7 @@
 use ehlmap::fit::corner::Corner;
 use ehlmap::fit::correction::{lattice_terms, Coordinates, Correction, Term, TAIL};
 use ehlmap::fit::dataset::load_fit_input;
+use ehlmap::fit::fitted::Blend;
 use ehlmap::fit::kriging::{self, Kriging, KrigingJump};
 use ehlmap::fit::side::{tensor_powers, SideLobe};
 use ehlmap::limits::jump::JumpTable;
@@ -303,6 +304,16 @@ fn formula_py_reproduces_the_rust_evaluation() {
     assert!(worst < 1e-12, "worst relative difference {worst:e}");
     // Some correction is in play (else this test would not cover it).
     assert!(fs.iter().any(|(_, q)| !q.model.correction.terms.is_empty()));
+    // The point H_pm's elastic-isoviscous law has the exact D factor (so the cases above check
+    // formula.py's elliptic integrals at five D).
+    let pm = &r
+        .point
+        .h_pm
+        .as_ref()
+        .expect("point H_pm fitted")
+        .model
+        .blend;
+    assert!(matches!(pm, Blend::Point(p) if p.ei_exact), "{pm:?}");
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -5,7 +5,8 @@
 //! (c(D) = 1 + 0.006 ln D + 0.63 D^(4/7)):
 //!
 //! H_RI = c_RI  f_RI(D) D^e_RI M^-2,            f_RI = [(1 + a D^p)/(1 + a)]^q / D
-//! H_EI = a M^alpha f_EI(D) D^e_EI,             f_EI = [c(D)/c(1)]^(-14/25) D^(-1/15)
+//! H_EI = a M^alpha f_EI(D) D^e_EI,             f_EI = [c(D)/c(1)]^(-14/25) D^(-1/15) (NVM)
+//!                                              or k^(2/15) [4 E(m)/(pi (1 + D))]^(2/3) (exact)
 //! H_RP = b L^beta  f_RP(D) D^e_RP,             f_RP = [(1 + 0.691 D)/1.691]^(-2/3) (NVM)
 //!                                              or f_RI(D) D psi(D) (the solver's)
 //! H_EP = d M^gamma L^delta f_EP(D) D^e_EP,     f_EP = [c(D)/c(1)]^(-7/20) D^(-1/24)
@@ -29,12 +30,14 @@
 //! ([`crate::limits::rigid_point`]) and its D factor at the solver's own, exact in the slender
 //! limit ([`crate::limits::rigid_d_factor`]; e_RI = 0), since the fitted rows barely see the
 //! rigid-isoviscous regime; the fits hold the exponents of H_EI and H_EP at asymptotic theory's
-//! (NVM's), and H_RP at the solver's rigid-piezoviscous limit, beta = 2/3,
+//! (NVM's), the H_pm fit H_EI at its limit with the exact f_EI (`ei_exact`;
+//! [`crate::limits::point_ei`]), and H_RP at the solver's rigid-piezoviscous limit, beta = 2/3,
 //! b = c_RI pi(1), f_RP = f_RI(D) D psi(D), e_RP = 0 ([`crate::limits::rigid_rp`]). (Fit
 //! figures behind these choices: docs/validation.md, "Fit: the nightly sweeps" and "The held
 //! asymptotes".)
 
 use crate::fit::model::FilmModel;
+use crate::limits::point_ei::ei_d_factor;
 use crate::limits::rigid_rp::psi;
 use serde::{Deserialize, Serialize};
 
@@ -57,6 +60,11 @@ pub struct PointModel {
     /// ([`crate::limits::rigid_rp`]); None for NVM's f_RP (and in stored models before it).
     #[serde(default)]
     pub rp_shape: Option<[f64; 3]>,
+    /// Whether f_EI is the exact D factor of the local inlet analysis
+    /// ([`crate::limits::point_ei::ei_d_factor`]; the H_c and H_pm fits) instead of NVM's (false
+    /// in stored models before it).
+    #[serde(default)]
+    pub ei_exact: bool,
 }
 
 /// NVM's (a, p, q) of f_RI.
@@ -120,6 +128,7 @@ impl PointModel {
             ],
             ri_shape: nvm_ri_shape(),
             rp_shape: None,
+            ei_exact: false,
         }
     }
 
@@ -131,6 +140,9 @@ impl PointModel {
         // f_RP: NVM's, or the solver's f_RI(D) D psi(D) when `rp_shape` is set.
         if let Some(s) = self.rp_shape {
             f[2] = f[0] * d * psi(s, d);
+        }
+        if self.ei_exact {
+            f[1] = ei_d_factor(d);
         }
         [
             x[0].exp() * f[0] * d.powf(x[1]) / (m * m),

@@ -4,6 +4,7 @@
 
 pub mod jump;
 pub mod line_ep;
+pub mod point_ei;
 pub mod rigid_d_factor;
 pub mod rigid_point;
 pub mod rigid_rp;

@@ -339,7 +339,17 @@ pub fn point_checks(
         let laws = Laws {
             text: [
                 format!("{:.3} f_RI(D) D^{:.3} M^-2", x[0].exp(), x[1]),
-                format!("{:.4} f_EI(D) D^{:.3} M^{:.4}", x[2].exp(), x[4], x[3]),
+                format!(
+                    "{:.4} f_EI(D) D^{:.3} M^{:.4}{}",
+                    x[2].exp(),
+                    x[4],
+                    x[3],
+                    if fit.ei_exact {
+                        " (exact f_EI, held at the line's limit)"
+                    } else {
+                        ""
+                    }
+                ),
                 format!(
                     "{:.4} f_RP(D) D^{:.3} L^{:.4}{}",
                     x[5].exp(),

@@ -12,6 +12,7 @@ use crate::fit::corner::{
     rigid_ratio, select_corner, Corner, CornerCase, CornerChoice, CornerParams, CornerSelection,
     FOLLOWS,
 };
+use crate::fit::correction::Correction;
 use crate::fit::dataset::FitPoint;
 use crate::fit::fitted::Blend;
 use crate::fit::heldout::{folds_of, HeldOut, FOLDS, LATTICE_MIN_CASES};
@@ -38,9 +39,11 @@ pub(super) struct CornerFit {
 pub(super) struct Blends<'a, Mo> {
     /// The H_c blend fitted on all cases.
     pub(super) own: &'a Mo,
-    /// The H_pm blend fitted on all cases (its rigid law sets rho; it judges the cases whose
-    /// solve did not resolve H_pm).
+    /// The H_pm blend fitted on all cases (its rigid law sets rho; it judges the cases whose solve
+    /// did not resolve H_pm, with its correction where [`CornerParams::pm_corrected`]).
     pub(super) pm: &'a Mo,
+    /// The H_pm correction fitted with `pm`.
+    pub(super) pm_correction: &'a Correction,
     /// The H_c blend fitted without each fold of [`folds_of`] the H_c samples, in fold order
     /// (the smooth law's cross-validation fits).
     pub(super) folds: &'a [Mo],
@@ -62,7 +65,16 @@ pub(super) fn corner_fit<Mo: FilmModel>(
         .iter()
         .filter_map(|p| {
             let h = p.film(Film::Centre)?;
-            let h_pm = p.h_pm.unwrap_or_else(|| blends.pm.film(p.m, p.l, p.dd()));
+            let h_pm = p.h_pm.unwrap_or_else(|| {
+                let (m, l, d) = (p.m, p.l, p.dd());
+                let blend = blends.pm.film(m, l, d);
+                if params.pm_corrected {
+                    let asym = blends.pm.asymptotes(m, l, d);
+                    blends.pm_correction.apply(blend, asym, d)
+                } else {
+                    blend
+                }
+            });
             Some(CornerCase {
                 m: p.m,
                 l: p.l,

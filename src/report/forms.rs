@@ -43,8 +43,11 @@ H_pm). H_RP is held at the solver's rigid-piezoviscous limit alpha q_max = 1: b 
 beta = 2/3, e_RP = 0, f_RP = f_RI(D) D psi(D), psi = [(1 + a D^p)/(1 + a)]^q with pi(D) = \
 (alpha_bar(M = 1, L = 1) P_max)^(2/3) of the rigid solves = pi(1) D psi(D): a and p fitted to the \
 same solves, q set by the exact slender limit pi(D) H_c(D) -> 1.0496 (the line's constant). \
-H_EI and H_EP keep the exponents of asymptotic theory (M^(-2/15); M^(-1/12) L^(3/4)); \
-their constants and D corrections are fitted, H_EP's first held at NVM's, then all of them and \
+H_EI and H_EP keep the exponents of asymptotic theory (M^(-2/15); M^(-1/12) L^(3/4)). H_EI of \
+H_pm is held at its limit, the line's 2.488 M^(-1/5) carried over by the local inlet analysis of \
+the leading edge: a = 2.488 x 0.941415 = 2.3422, f_EI(D) = k^(2/15) [4 E(m)/(pi (1 + D))]^(2/3) \
+exact (k = a/b of the Hertz ellipse, E(m) its elliptic integral; 1 at D = 1), e_EI = 0. The \
+other constants and D corrections are fitted, H_EP's first held at NVM's, then all of them and \
 the blend (s0, s1, c_00, r: NVM's 1.5, 1.2, 1.8, 3/2) too (kept \
 only if physical, identified and better) with 40 or more converged cases. C = sum c_k phi_k is \
 the interior correction (as for line contacts, with ln D factors), its size chosen by 5-fold \

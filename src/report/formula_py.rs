@@ -88,11 +88,53 @@ def _psi(shape, D):
     return _pow((1.0 + a * _pow(D, p)) / (1.0 + a), q)
 
 
-def _point_asymptotes(x, ri_shape, rp_shape, M, L, D):
+def _agm(kc):
+    a, b, t, w = 1.0, kc, 0.0, 1.0
+    for _ in range(80):
+        c = 0.5 * (a - b)
+        t += w * c * c
+        a, b = 0.5 * (a + b), math.sqrt(a * b)
+        w *= 2.0
+        if abs(c) <= 1e-10 * a:
+            break
+    return math.pi / (2.0 * a), t
+
+
+def _d_from_kappa(kappa):
+    m = (1.0 - kappa) * (1.0 + kappa)
+    t = _agm(kappa)[1]
+    return kappa * kappa * (0.5 * m + t) / (0.5 * m - t)
+
+
+def _ei_d_factor(D):
+    """The exact D factor k^(2/15) [4 E(m)/(pi (1 + D))]^(2/3) of the point elastic-isoviscous law."""
+    if D == 1.0:
+        return 1.0
+    f = lambda u: math.log(_d_from_kappa(math.exp(u))) - math.log(D)
+    lo, hi = -1.0, 0.0
+    while f(lo) > 0.0:
+        lo, hi = 2.0 * lo, lo
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if mid in (lo, hi):
+            break
+        if f(mid) > 0.0:
+            hi = mid
+        else:
+            lo = mid
+    kappa = math.exp(0.5 * (lo + hi))
+    k_int, t = _agm(kappa)
+    e_int = k_int * (1.0 - 0.5 * (1.0 - kappa) * (1.0 + kappa) - t)
+    return (1.0 / kappa) ** (2.0 / 15.0) * (4.0 * e_int / (math.pi * (1.0 + D))) ** (2.0 / 3.0)
+
+
+def _point_asymptotes(x, ri_shape, rp_shape, ei_exact, M, L, D):
     f = _nvm_d_factors(D)
     f[0] = _psi(ri_shape, D) / D
     if rp_shape is not None:
         f[2] = f[0] * D * _psi(rp_shape, D)
+    if ei_exact:
+        f[1] = _ei_d_factor(D)
     return [
         _exp(x[0]) * f[0] * _pow(D, x[1]) / (M * M),
         _exp(x[2]) * _pow(M, x[3]) * f[1] * _pow(D, x[4]),
@@ -101,8 +143,8 @@ def _point_asymptotes(x, ri_shape, rp_shape, M, L, D):
     ]
 
 
-def _point_blend(x, ri_shape, rp_shape, M, L, D):
-    h_ri, h_ei, h_rp, h_ep = _point_asymptotes(x, ri_shape, rp_shape, M, L, D)
+def _point_blend(x, ri_shape, rp_shape, ei_exact, M, L, D):
+    h_ri, h_ei, h_rp, h_ep = _point_asymptotes(x, ri_shape, rp_shape, ei_exact, M, L, D)
     h_00 = _exp(x[14]) / D
     s = x[12] * (1.0 + _exp(-x[13] * h_ei / h_ri))
     r = x[15]
@@ -403,11 +445,12 @@ fn entry(m: &FittedModel) -> String {
             kriging(m.kriging.as_ref())
         ),
         Blend::Point(x) => format!(
-            "{{\"x\": [{}], \"ri_shape\": [{}], \"rp_shape\": {}, \"terms\": {}, \"side\": {}, \"corner\": {}, \"kriging\": {}}}",
+            "{{\"x\": [{}], \"ri_shape\": [{}], \"rp_shape\": {}, \"ei_exact\": {}, \"terms\": {}, \"side\": {}, \"corner\": {}, \"kriging\": {}}}",
             list(&x.x),
             list(&x.ri_shape),
             x.rp_shape
                 .map_or("None".to_string(), |r| format!("[{}]", list(&r))),
+            if x.ei_exact { "True" } else { "False" },
             terms(&m.correction),
             side(m.side.as_ref()),
             corner(m.corner.as_ref()),
@@ -445,7 +488,7 @@ def H(M, L, D=None, film="H_c"):
     if film not in POINT:
         raise ValueError(f"no point formula for {film} (fitted: {sorted(POINT)})")
     e = POINT[film]
-    shapes = (e["ri_shape"], e.get("rp_shape"))
+    shapes = (e["ri_shape"], e.get("rp_shape"), e.get("ei_exact", False))
     asym = _point_asymptotes(e["x"], *shapes, M, L, D)
     blend = _point_blend(e["x"], *shapes, M, L, D)
     if e.get("corner") is not None:

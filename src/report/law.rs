@@ -26,14 +26,15 @@ pub(super) struct Kept {
 }
 
 /// The law the film `film` keeps, given its samples `data`, its fitted blend `model` with its
-/// `correction`, the smooth law's selection `cv` and, for H_c, the fitted H_pm blend `pm`.
+/// `correction`, the smooth law's selection `cv` and, for H_c, the fitted H_pm blend and its
+/// correction `pm`.
 pub(super) fn kept<Mo: FilmModel>(
     film: Film,
     pts: &[FitPoint],
     data: &[Sample],
     (model, correction): (&Mo, &Correction),
     cv: Option<Selected<Mo>>,
-    pm: Option<&Mo>,
+    pm: Option<(&Mo, &Correction)>,
     r: &Recipe<Mo>,
 ) -> Kept {
     let Some(sel) = cv else {
@@ -70,12 +71,13 @@ pub(super) fn kept<Mo: FilmModel>(
             &mut best,
         );
     }
-    let (Some(params), Film::Centre, Some(pm)) = (r.corner, film, pm) else {
+    let (Some(params), Film::Centre, Some((pm, pm_correction))) = (r.corner, film, pm) else {
         return best;
     };
     let blends = Blends {
         own: model,
         pm,
+        pm_correction,
         folds: &sel.blends,
         wrap: r.wrap,
     };

@@ -364,6 +364,9 @@ fn fit_films<Mo: FilmModel>(
         ..ContactReport::default()
     };
     let mut models: Vec<(Film, Mo)> = vec![];
+    // The H_pm correction, with its blend in `models`: the H_c corner law judges by it the cases
+    // whose H_pm is not resolved.
+    let mut pm_correction: Option<Correction> = None;
     // With a corner law H_c is fitted after H_pm, whose rigid law sets its rho.
     let order = if r.corner.is_some() {
         [Film::PressureMax, Film::Centre, Film::Minimum]
@@ -390,6 +393,7 @@ fn fit_films<Mo: FilmModel>(
             continue;
         }
         let start = (r.start)(film);
+        let r = &r.for_film(film);
         let mut f = staged(&data, &start, r).map_err(|e| FitError::Film {
             contact: r.contact.to_string(),
             film: film.name(),
@@ -399,8 +403,12 @@ fn fit_films<Mo: FilmModel>(
         let pm = models
             .iter()
             .find(|(g, _)| *g == Film::PressureMax)
-            .map(|(_, m)| m);
+            .map(|(_, m)| m)
+            .zip(pm_correction.as_ref());
         let mut law = kept(film, pts, &data, (&f.model, &correction), cv, pm, r);
+        if film == Film::PressureMax {
+            pm_correction = Some(correction.clone());
+        }
         let estimates: Vec<Option<f64>> = pts
             .iter()
             .filter(|p| p.film(film).is_some())
