@@ -51,6 +51,13 @@ pub struct FitArgs {
     /// it to FILE and use it as --jump does.
     #[arg(long, value_name = "FILE")]
     pub jump_solves: Option<PathBuf>,
+    /// Hold the point H_pm elastic-isoviscous law at its limit, the line's carried over by the
+    /// local inlet analysis (2.3422 f_EI(D) M^(-2/15), f_EI exact), instead of fitting it: exact
+    /// as M -> infinity and closer to the solver a decade beyond the data at D >= 0.1, but worse
+    /// held out where the data are far from the limit (slender D); docs/method.md, "The point
+    /// elastic-isoviscous limit".
+    #[arg(long)]
+    pub point_ei_limit: bool,
 }
 
 /// Where the point H_c corner's place comes from.
@@ -76,6 +83,7 @@ pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
         a.json,
         !a.no_limit_solves,
         jump.as_ref(),
+        a.point_ei_limit,
     )
 }
 
@@ -157,6 +165,7 @@ pub fn fit_datasets(
     json: bool,
     limit_solves: bool,
     jump: Option<&JumpArg>,
+    point_ei_limit: bool,
 ) -> Result<(), CliError> {
     let out = out.unwrap_or_else(|| beside_dataset(&datasets[0], "report"));
     if let Some(d) = datasets.iter().find(|d| same_dir(d, &out)) {
@@ -167,6 +176,7 @@ pub fn fit_datasets(
         )));
     }
     let mut data = load_fit_input(datasets).map_err(|e| input(e.to_string()))?;
+    data.point_ei_limit = point_ei_limit;
     if !check.is_empty() {
         let c = load_fit_input(check).map_err(|e| input(format!("--check: {e}")))?;
         data = data

@@ -220,7 +220,15 @@ pub fn run_sweep(args: &SweepArgs) -> Result<(), CliError> {
         Ok(r) => {
             report_run(&spec.name, &r);
             if args.fit {
-                return crate::cli::fit::fit_datasets(&[dataset], &[], None, false, true, None);
+                return crate::cli::fit::fit_datasets(
+                    &[dataset],
+                    &[],
+                    None,
+                    false,
+                    true,
+                    None,
+                    false,
+                );
             }
             Ok(())
         }

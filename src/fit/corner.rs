@@ -61,9 +61,10 @@ pub struct CornerParams {
     /// Whether the cases whose H_pm is not resolved are judged (do they follow H_pm?) by the
     /// H_pm law with its correction (true) or by its bare blend. The line's such rows are Barus
     /// spike rows, where the correction, fitted without them, extrapolates (held out H_c 0.63 %
-    /// with the blend, 2.90 % with the law on the committed line data); the point H_pm blend
-    /// holds its elastic-isoviscous law at the limit, which the data approach slowly, and its
-    /// bare blend misjudged them (docs/validation.md, "The point elastic-isoviscous limit").
+    /// with the blend, 2.90 % with the law on the committed line data); a point H_pm blend held
+    /// at its elastic-isoviscous limit, which the data approach slowly, misjudges them (`ehlmap
+    /// fit --point-ei-limit` judges by the law; docs/validation.md, "The point
+    /// elastic-isoviscous limit").
     pub pm_corrected: bool,
 }
 
@@ -89,7 +90,7 @@ pub const POINT: CornerParams = CornerParams {
     level: 0,
     ln_d_powers: 2,
     ridges: &[[1e-2, 1e-3], [1e-3, 1e-4], [1e-2, 1e-4], [1e-1, 1e-3]],
-    pm_corrected: true,
+    pm_corrected: false,
 };
 
 /// The H_c law with its corner (module doc), on the H_c blend B that the fitted formula carries

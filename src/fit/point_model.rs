@@ -63,7 +63,7 @@ pub struct PointModel {
     /// Whether f_EI is the exact D factor of the local inlet analysis
     /// ([`crate::limits::point_ei::ei_d_factor`]; the H_c and H_pm fits) instead of NVM's (false
     /// in stored models before it).
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub ei_exact: bool,
 }
 

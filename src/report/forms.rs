@@ -2,6 +2,9 @@
 //! coefficients: the blend, its held asymptotes, the interior correction, the corner law and the
 //! kriging residual (the mathematics: docs/method.md, "Fit"; the code: [`crate::fit`]).
 
+use crate::fit::fitted::Blend;
+use crate::report::ContactReport;
+
 /// The line formula's form.
 pub(super) const LINE_FORM: &str =
     "Formula (Moes units): H = H_blend exp(C). H_blend = [ (H_RI^p + H_EI^p)^(s/p) + (H_RP^-q + \
@@ -29,7 +32,7 @@ of each data case, scales s and nugget chosen by the same folds, w fitted to the
 residuals; k falls to 0 away from the data and in every asymptotic limit. formula.py evaluates H.";
 
 /// The point formula's form.
-pub(super) const POINT_FORM: &str = "Formula (Moes point units, NVM 1994 form): H = H_blend exp(C). \
+const POINT_FORM: &str = "Formula (Moes point units, NVM 1994 form): H = H_blend exp(C). \
 H_blend = { [H_RI^r + (H_EI^-4 + H_00^-4)^(-r/4)]^(s/r) + (H_RP^-8 + H_EP^-8)^(-s/8) }^(1/s), \
 s = s0 (1 + exp(-s1 H_EI/H_RI)); H_RI = c_RI f_RI(D) D^e_RI M^-2, H_EI = a f_EI(D) D^e_EI \
 M^alpha, H_RP = b f_RP(D) D^e_RP L^beta, H_EP = d f_EP(D) D^e_EP M^gamma L^delta, \
@@ -43,11 +46,8 @@ H_pm). H_RP is held at the solver's rigid-piezoviscous limit alpha q_max = 1: b 
 beta = 2/3, e_RP = 0, f_RP = f_RI(D) D psi(D), psi = [(1 + a D^p)/(1 + a)]^q with pi(D) = \
 (alpha_bar(M = 1, L = 1) P_max)^(2/3) of the rigid solves = pi(1) D psi(D): a and p fitted to the \
 same solves, q set by the exact slender limit pi(D) H_c(D) -> 1.0496 (the line's constant). \
-H_EI and H_EP keep the exponents of asymptotic theory (M^(-2/15); M^(-1/12) L^(3/4)). H_EI of \
-H_pm is held at its limit, the line's 2.488 M^(-1/5) carried over by the local inlet analysis of \
-the leading edge: a = 2.488 x 0.941415 = 2.3422, f_EI(D) = k^(2/15) [4 E(m)/(pi (1 + D))]^(2/3) \
-exact (k = a/b of the Hertz ellipse, E(m) its elliptic integral; 1 at D = 1), e_EI = 0. The \
-other constants and D corrections are fitted, H_EP's first held at NVM's, then all of them and \
+H_EI and H_EP keep the exponents of asymptotic theory (M^(-2/15); M^(-1/12) L^(3/4)); \
+their constants and D corrections are fitted, H_EP's first held at NVM's, then all of them and \
 the blend (s0, s1, c_00, r: NVM's 1.5, 1.2, 1.8, 3/2) too (kept \
 only if physical, identified and better) with 40 or more converged cases. C = sum c_k phi_k is \
 the interior correction (as for line contacts, with ln D factors), its size chosen by 5-fold \
@@ -58,3 +58,23 @@ by the same folds, w fitted to the law's log residuals; k falls to 0 away from t
 every asymptotic limit. H_c is the film at the centre, H_pm the film at the pressure maximum on the \
 centre line, H_min the minimum film: each has its own fit. Where the data show the corner at \
 which H_c meets H_pm, H_c is the corner law of its section (with the asymptotes of its blend).";
+
+/// What the point form says when the H_pm elastic-isoviscous law is held at its limit (`ehlmap
+/// fit --point-ei-limit`).
+const POINT_EI_LIMIT: &str = " With --point-ei-limit, H_EI of H_pm is held at its limit, the \
+line's 2.488 M^(-1/5) carried over by the local inlet analysis of the leading edge: a = 2.488 x \
+0.941415 = 2.3422, f_EI(D) = k^(2/15) [4 E(m)/(pi (1 + D))]^(2/3) exact (k = a/b of the Hertz \
+ellipse, E(m) its elliptic integral; 1 at D = 1), e_EI = 0.";
+
+/// The point formula's form for the contact's report `c`.
+pub(super) fn point_form(c: &ContactReport) -> String {
+    let held = c
+        .h_pm
+        .as_ref()
+        .is_some_and(|q| matches!(&q.model.blend, Blend::Point(p) if p.ei_exact));
+    let mut s = POINT_FORM.to_string();
+    if held {
+        s.push_str(POINT_EI_LIMIT);
+    }
+    s
+}

@@ -6,7 +6,7 @@ use crate::fit::correction::{Term, Transition, LATTICE};
 use crate::fit::fitted::Blend;
 use crate::fit::heldout::{worst_and_rms, SizeScore};
 use crate::fit::stats::{ErrStats, RegionStats};
-use crate::report::forms::{LINE_FORM, POINT_FORM};
+use crate::report::forms::{point_form, LINE_FORM};
 use crate::report::{ContactReport, FitReport, QuantityFit, ASYMPTOTE_TARGET, MAX_ERROR_TARGET};
 use std::fmt::Write;
 
@@ -502,9 +502,9 @@ fn contact(md: &mut String, c: &ContactReport) {
         c.converged_cases, c.failed_cases
     );
     let form = if c.contact == "line" {
-        LINE_FORM
+        LINE_FORM.to_string()
     } else {
-        POINT_FORM
+        point_form(c)
     };
     let _ = writeln!(md, "{form}\n");
     for why in &c.skipped_films {

@@ -45,7 +45,7 @@ use crate::model::formulas::{
 };
 use crate::report::checks::{line_checks, point_checks, AsymptoteCheck};
 use crate::report::law::{kept, Kept};
-use crate::report::recipe::{line_recipe, point_recipe, Recipe};
+use crate::report::recipe::{line_recipe, point_recipe, with_point_ei_limit, Recipe};
 pub use crate::report::recipe::{
     A_EI_CENTRAL, A_EI_MIN, B_RP_CENTRAL, C_RI_CENTRAL, D_EP_CENTRAL, D_EP_MIN, LINE_RIDGES,
     MIN_CASES, POINT_RIDGES,
@@ -465,8 +465,12 @@ fn point_report(
     failed: usize,
     limit_solves: bool,
     jump: Option<&JumpTable>,
+    ei_limit: bool,
 ) -> Result<ContactReport, FitError> {
     let mut recipe = point_recipe(pts);
+    if ei_limit {
+        recipe = with_point_ei_limit(recipe);
+    }
     recipe.jump = jump.cloned();
     let need = (recipe.stage1.len() + SPARE_CASES).max(MIN_CASES);
     if pts.len() < need {
@@ -515,6 +519,7 @@ pub fn fit_report(input: &FitInput, limit_solves: bool) -> Result<FitReport, Fit
         input.failed_point,
         limit_solves,
         input.jump.as_ref(),
+        input.point_ei_limit,
     )?;
     line.families = input.line_families.clone();
     point.families = input.point_families.clone();

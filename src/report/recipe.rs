@@ -132,7 +132,7 @@ pub(super) struct Recipe<Mo> {
     /// also offers the corner coordinate ([`crate::fit::kriging`]). None: not given.
     pub(super) jump: Option<JumpTable>,
     /// The parameters held at their start for a film, whatever the free sets say (the point
-    /// elastic-isoviscous law of H_c and H_pm: [`point_held`]).
+    /// H_pm elastic-isoviscous law: [`point_held`]).
     pub(super) held: fn(Film) -> &'static [usize],
 }
 
@@ -155,11 +155,12 @@ fn none_held(_: Film) -> &'static [usize] {
     &[]
 }
 
-/// The point film whose elastic-isoviscous law is held at the line's limit carried over by the
-/// local inlet analysis ([`point_ei`]): H_pm holds a_EI and e_EI (indices 2 and 4). H_c has the
-/// same limit but keeps them fitted: its corner law, fitted on the H_c blend, was worse held out
-/// with the held law (tests/data/fit-point-05: 5.22 % / 0.79 % against 4.16 % / 0.57 %;
-/// docs/validation.md, "The point elastic-isoviscous limit"); H_min is set in the side lobes.
+/// With [`with_point_ei_limit`], the point film whose elastic-isoviscous law is held at the
+/// line's limit carried over by the local inlet analysis ([`point_ei`]): H_pm holds a_EI and e_EI
+/// (indices 2 and 4). H_c has the same limit but keeps them fitted: its corner law, fitted on the
+/// H_c blend, was worse held out with the held law (tests/data/fit-point-05: 5.22 % / 0.79 %
+/// against 4.16 % / 0.57 %; docs/validation.md, "The point elastic-isoviscous limit"); H_min is
+/// set in the side lobes.
 fn point_held(film: Film) -> &'static [usize] {
     match film {
         Film::PressureMax => &[2, 4],
@@ -220,10 +221,7 @@ fn point_free(pts: &[FitPoint]) -> Vec<usize> {
 
 /// The start of a point fit of `film`: NVM 1994 with the solver's rigid-isoviscous law (c_RI
 /// and its D factor) and rigid-piezoviscous law (b = c_RI pi(1), beta = 2/3, f_RP = f_RI(D) D
-/// psi(D), e_RP = 0; [`rigid_rp`]), both held, its elastic laws scaled by 0.6 for H_min. The
-/// elastic-isoviscous law of H_pm is the line's limit carried over by the local inlet analysis,
-/// held ([`point_held`]): a_EI = [`A_EI_CENTRAL`] [`point_ei::circular_over_line`], the exact
-/// f_EI(D) ([`point_ei::ei_d_factor`]), e_EI = 0.
+/// psi(D), e_RP = 0; [`rigid_rp`]), both held, its elastic laws scaled by 0.6 for H_min.
 fn point_start(film: Film) -> PointModel {
     let scale: f64 = if film == Film::Minimum { 0.6 } else { 1.0 };
     let mut start = PointModel::nvm();
@@ -236,12 +234,34 @@ fn point_start(film: Film) -> PointModel {
     for k in [2, 8] {
         start.x[k] += scale.ln();
     }
-    if !point_held(film).is_empty() {
+    start
+}
+
+/// [`point_start`] with the H_pm elastic-isoviscous law at the line's limit carried over by the
+/// local inlet analysis, held ([`point_held`]): a_EI = [`A_EI_CENTRAL`]
+/// [`point_ei::circular_over_line`], the exact f_EI(D) ([`point_ei::ei_d_factor`]), e_EI = 0.
+fn point_start_ei_limit(film: Film) -> PointModel {
+    let mut start = point_start(film);
+    if point_held(film).contains(&2) {
         start.x[2] = (A_EI_CENTRAL * point_ei::circular_over_line()).ln();
         start.x[4] = 0.0;
         start.ei_exact = true;
     }
     start
+}
+
+/// The point recipe with the H_pm elastic-isoviscous law held at its limit (`ehlmap fit
+/// --point-ei-limit`): [`point_start_ei_limit`], [`point_held`], and the H_c corner law judging
+/// the cases whose H_pm is not resolved by the corrected H_pm law (its bare blend, held at the
+/// limit that the data approach slowly, misjudges them: [`CornerParams::pm_corrected`]).
+pub(super) fn with_point_ei_limit(mut r: Recipe<PointModel>) -> Recipe<PointModel> {
+    r.start = point_start_ei_limit;
+    r.held = point_held;
+    r.corner = r.corner.map(|c| CornerParams {
+        pm_corrected: true,
+        ..c
+    });
+    r
 }
 
 /// The line recipe: Moes' form, stage 1 [`LINE_STAGE1`], stage 2 [`LINE_STAGE2`].
@@ -292,6 +312,6 @@ pub(super) fn point_recipe(pts: &[FitPoint]) -> Recipe<PointModel> {
         side_lobes: true,
         corner: Some(corner::POINT),
         jump: None,
-        held: point_held,
+        held: none_held,
     }
 }
