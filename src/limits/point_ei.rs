@@ -22,12 +22,10 @@
 //! becomes the line law of the centre line's load per unit length w' = 3w/(4a) (the equivalent
 //! line contact). H_pm has the same limit: the Hertzian pressure peaks at the centre. Outputs:
 //! [`ei_d_factor`], [`CIRCULAR_OVER_LINE`]. Corrections are of order l/b (the edge's curvature
-//! turns the entrainment, fluid leaves the centre line); the solver's films approach the law
-//! slowly (solver / law 0.938, 0.951, 0.960 at M = 1e3, 3.2e3, 1e4, D = 1; 1.029, 1.014, 1.008
-//! at D = 0.1: docs/validation.md, "The point elastic-isoviscous limit").
+//! turns the entrainment, fluid leaves the centre line), so the solver's films approach the law
+//! slowly (docs/validation.md, "The point elastic-isoviscous limit").
 
 use crate::model::hertz::ellipse_from_d;
-use std::cell::RefCell;
 use std::f64::consts::PI;
 
 /// The point H_c (and H_pm) elastic-isoviscous constant at D = 1 over the line's (module doc).
@@ -39,33 +37,13 @@ pub fn circular_over_line() -> f64 {
 /// [`circular_over_line`] to 6 digits, for the docs.
 pub const CIRCULAR_OVER_LINE: f64 = 0.941415;
 
-thread_local! {
-    /// The factors of the D values met on this thread (a fit meets a few D many times).
-    static FACTORS: RefCell<Vec<(u64, f64)>> = const { RefCell::new(Vec::new()) };
-}
-
-/// Most D values [`ei_d_factor`] keeps per thread.
-const CACHED: usize = 256;
-
 /// f_EI(D) = k^(2/15) [4 E(m)/(pi (1 + D))]^(2/3), the exact D factor of the point
 /// elastic-isoviscous law (1 at D = 1; module doc). NaN for D outside (0, 1].
 pub fn ei_d_factor(d: f64) -> f64 {
-    let key = d.to_bits();
-    if let Some(f) = FACTORS.with(|c| c.borrow().iter().find(|(k, _)| *k == key).map(|e| e.1)) {
-        return f;
-    }
-    let f = match ellipse_from_d(d) {
+    match ellipse_from_d(d) {
         Ok(e) => e.k.powf(2.0 / 15.0) * (4.0 * e.e / (PI * (1.0 + d))).powf(2.0 / 3.0),
         Err(_) => f64::NAN,
-    };
-    FACTORS.with(|c| {
-        let mut c = c.borrow_mut();
-        if c.len() >= CACHED {
-            c.clear();
-        }
-        c.push((key, f));
-    });
-    f
+    }
 }
 
 #[cfg(test)]
