@@ -5,7 +5,7 @@
 //! * `formula.py` (standard-library Python) reproduces the Rust evaluation to 1e-12 relative for
 //!   every film of both contacts, inside and far outside the data (python3 runs it), with every
 //!   kind of correction term, a side-lobe factor, a corner law, kriging residuals and the exact
-//!   D factor of the held point elastic-isoviscous law in play.
+//!   D factor of the held point elastic-isoviscous law with its approach factor in play.
 //! * The held-out procedure: every size it tries predicts each case by a fit that did not see
 //!   it, so its held-out errors are never below the fitted ones; and the formula's asymptotes are
 //!   the blend's, so far into each asymptotic corner the formula equals its asymptote.
@@ -318,6 +318,14 @@ fn formula_py_reproduces_the_rust_evaluation() {
         .model
         .blend;
     assert!(matches!(pm, Blend::Point(p) if p.ei_exact), "{pm:?}");
+    // The point H_c holds the law too, with its approach factor (fitted to the data's H_c cases
+    // at L = 0 and M >= 100; the H_pm cases there, where H_pm is resolved, are no more than its
+    // 6 coefficients, and H_pm keeps g = 1).
+    let c = &r.point.h_c.as_ref().expect("point H_c fitted").model.blend;
+    assert!(
+        matches!(c, Blend::Point(p) if p.ei_exact && p.x[16..].iter().all(|c| *c != 0.0)),
+        "{c:?}"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }
 

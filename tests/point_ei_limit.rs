@@ -5,13 +5,24 @@
 //! and 1.0006 (D = 0.25, 2049^2), falling towards 1 from 1.029 and 1.007 at M = 1000 (measured
 //! 2026-12-07, docs/validation.md, "The point elastic-isoviscous limit"). Where the contact is
 //! rounder the approach is slower (0.960 at M = 1e4, D = 1), so these two D are the check.
+//!
+//! The same solves check the formula that `ehlmap fit --point-ei-limit` derives from the
+//! committed 0.5 % point data (`tests/data/fit-point-05`, 420 cases, M <= 1000): H_EI held at
+//! the law for H_c and H_pm, times an approach factor fitted to the data's L = 0, M >= 100 cases
+//! that tends to 1 as M -> infinity. At M = 3162 the solver over the formula was 0.9934 (H_pm)
+//! and 1.0066 (H_c) at D = 0.1, 0.9987 and 1.0002 at D = 0.25 (2049^2 solves; docs/validation.md,
+//! "The approach to the point elastic-isoviscous limit"); the fitted H_EI law without the option
+//! was 2.1-2.4 % off at D = 0.1-0.25.
 
+use ehlmap::fit::dataset::load_fit_input;
+use ehlmap::fit::fitted::Blend;
 use ehlmap::limits::point_ei::{circular_over_line, ei_d_factor};
 use ehlmap::model::case::{Elasticity, Models, PointCase};
-use ehlmap::report::A_EI_CENTRAL;
+use ehlmap::report::{fit_report, A_EI_CENTRAL};
 use ehlmap::solve::point::PointSolveParams;
 use ehlmap::solve::Status;
 use ehlmap::strategy::accuracy::solve_point_to_accuracy;
+use std::path::PathBuf;
 
 /// The law's H_EI at (M, D).
 fn law(m: f64, d: f64) -> f64 {
@@ -19,12 +30,29 @@ fn law(m: f64, d: f64) -> f64 {
 }
 
 #[test]
-fn slender_point_films_beyond_the_data_approach_the_carried_over_line_limit() {
+fn slender_point_films_beyond_the_data_approach_the_limit_and_the_held_formula() {
     let m = 3162.28;
     let models = Models {
         elasticity: Elasticity::Elastic,
         ..Models::default()
     };
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/fit-point-05");
+    let mut input = load_fit_input(&[dir]).unwrap();
+    input.point_ei_limit = true;
+    let fit = fit_report(&input, false).unwrap();
+    let h_c = fit.point.h_c.expect("point H_c fitted").model;
+    let h_pm = fit.point.h_pm.expect("point H_pm fitted").model;
+    for q in [&h_c, &h_pm] {
+        let Blend::Point(b) = &q.blend else {
+            panic!("a point blend")
+        };
+        assert!(b.ei_exact, "H_EI held at the law");
+        assert!(b.x[16..].iter().any(|c| *c != 0.0), "an approach factor");
+        // g -> 1: far beyond the data the formula is the law (the correction, the corner law and
+        // the kriging vanish there too).
+        let far = q.eval(1e9, 0.0, 0.25) / law(1e9, 0.25);
+        assert!((far - 1.0).abs() < 5e-3, "M = 1e9: {far}");
+    }
     for (d, tol) in [(0.1, 0.02), (0.25, 0.01)] {
         let case = PointCase::with_models(m, 0.0, d, models).unwrap();
         let o = solve_point_to_accuracy(&case, &PointSolveParams::default(), 0.004, 1025).outputs;
@@ -39,5 +67,10 @@ fn slender_point_films_beyond_the_data_approach_the_carried_over_line_limit() {
         assert!(estimate <= 0.005, "D = {d}: {estimate}");
         assert!((r - 1.0).abs() <= tol, "D = {d}: {r}");
         assert!((r_pm - 1.0).abs() <= tol, "D = {d}: {r_pm}");
+        let f_c = o.h_c / h_c.eval(m, 0.0, d);
+        let f_pm = o.h_c_pmax / h_pm.eval(m, 0.0, d);
+        eprintln!("  solver / formula: H_c {f_c:.4}, H_pm {f_pm:.4}");
+        assert!((f_c - 1.0).abs() <= 0.01, "D = {d}: H_c {f_c}");
+        assert!((f_pm - 1.0).abs() <= 0.01, "D = {d}: H_pm {f_pm}");
     }
 }

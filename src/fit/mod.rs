@@ -1,6 +1,7 @@
 //! Fitting Moes/NVM-style film-thickness formulas to sweep results, and checking them.
 //!
-//! [`model`] (line, Moes 1992 form) and [`point_model`] (point, NVM 1994 form) define the
+//! [`model`] (line, Moes 1992 form) and [`point_model`] (point, NVM 1994 form, [`approach`] its
+//! elastic-isoviscous approach factor) define the
 //! blended-asymptote formulas ([`blend`]: either), [`lsq`] fits either in log space by Levenberg-Marquardt with
 //! parameter uncertainties, [`correction`] is the interior correction that vanishes in every
 //! asymptotic limit and [`heldout`] chooses its size by cross-validation, [`kriging`] is the residual's Gaussian-process
@@ -10,6 +11,7 @@
 //! region of the (M, L) plane, and the M range that meets a target), [`dataset`] reads the
 //! sweep rows a fit uses, [`fitted`] holds what a fit returns and [`error`] why a fit failed.
 
+pub mod approach;
 pub mod blend;
 pub mod corner;
 pub mod correction;

@@ -5,8 +5,9 @@
 //! (c(D) = 1 + 0.006 ln D + 0.63 D^(4/7)):
 //!
 //! H_RI = c_RI  f_RI(D) D^e_RI M^-2,            f_RI = [(1 + a D^p)/(1 + a)]^q / D
-//! H_EI = a M^alpha f_EI(D) D^e_EI,             f_EI = [c(D)/c(1)]^(-14/25) D^(-1/15) (NVM)
+//! H_EI = a M^alpha f_EI(D) D^e_EI g(M, D),     f_EI = [c(D)/c(1)]^(-14/25) D^(-1/15) (NVM)
 //!                                              or k^(2/15) [4 E(m)/(pi (1 + D))]^(2/3) (exact)
+//! g = exp(sum_j (c_j0 + c_j1 ln D + c_j2 (ln D)^2) (1 + M)^(-p_j)),  p = 4/15, 8/15,
 //! H_RP = b L^beta  f_RP(D) D^e_RP,             f_RP = [(1 + 0.691 D)/1.691]^(-2/3) (NVM)
 //!                                              or f_RI(D) D psi(D) (the solver's)
 //! H_EP = d M^gamma L^delta f_EP(D) D^e_EP,     f_EP = [c(D)/c(1)]^(-7/20) D^(-1/24)
@@ -14,7 +15,10 @@
 //! H = { [H_RI^r + (H_EI^-4 + H_00^-4)^(-r/4)]^(s/r) + (H_RP^-8 + H_EP^-8)^(-s/8) }^(1/s),
 //! s = s0 (1 + exp(-s1 H_EI/H_RI));
 //!
-//! at L = 0 the piezoviscous bracket is dropped. Parameters: the vector of
+//! at L = 0 the piezoviscous bracket is dropped. The approach factor g (1 in NVM's form, all
+//! c_jk = 0) is the slow approach of the solver's films to the exact EI limit, which vanishes as
+//! M -> infinity (corrections of order (l/b)^(1/2) ~ M^(-4/15) and its square, l the inlet
+//! length; [`crate::limits::point_ei`]); it is fitted only where H_EI is held at that limit. Parameters: the vector of
 //! [`POINT_PARAM_NAMES`] (constants as logarithms), the three constants (a, p, q) of f_RI and,
 //! when the RP law is the solver's, the three of psi(D) = [(1 + a D^p)/(1 + a)]^q
 //! ([`crate::limits::rigid_rp`]); none of them fitted. [`PointModel::nvm`] (all e_i = 0, NVM's f_RI: a = 0.796, p = 14/15,
@@ -30,7 +34,7 @@
 //! ([`crate::limits::rigid_point`]) and its D factor at the solver's own, exact in the slender
 //! limit ([`crate::limits::rigid_d_factor`]; e_RI = 0), since the fitted rows barely see the
 //! rigid-isoviscous regime; the fits hold the exponents of H_EI and H_EP at asymptotic theory's
-//! (NVM's), with `ehlmap fit --point-ei-limit` the H_pm fit H_EI at its limit with the exact
+//! (NVM's), with `ehlmap fit --point-ei-limit` the H_c and H_pm fits H_EI at its limit with the exact
 //! f_EI (`ei_exact`; [`crate::limits::point_ei`]), and H_RP at the solver's rigid-piezoviscous limit, beta = 2/3,
 //! b = c_RI pi(1), f_RP = f_RI(D) D psi(D), e_RP = 0 ([`crate::limits::rigid_rp`]). (Fit
 //! figures behind these choices: docs/validation.md, "Fit: the nightly sweeps" and "The held
@@ -42,17 +46,27 @@ use crate::limits::rigid_rp::psi;
 use serde::{Deserialize, Serialize};
 
 /// Names of the parameters, in vector order.
-pub const POINT_PARAM_NAMES: [&str; 16] = [
+pub const POINT_PARAM_NAMES: [&str; POINT_PARAMS] = [
     "ln_c_RI", "e_RI", "ln_a_EI", "alpha_EI", "e_EI", "ln_b_RP", "beta_RP", "e_RP", "ln_d_EP",
-    "gamma_EP", "delta_EP", "e_EP", "s0", "s1", "ln_c_00", "r",
+    "gamma_EP", "delta_EP", "e_EP", "s0", "s1", "ln_c_00", "r", "g1", "g1_lnD", "g1_lnD2", "g2",
+    "g2_lnD", "g2_lnD2",
 ];
 
-/// A point-contact film model: the 16 parameters of [`POINT_PARAM_NAMES`] (module doc).
+/// The number of point parameters: the NVM form's 16, then the 6 of the approach factor g.
+pub const POINT_PARAMS: usize = 22;
+
+/// The powers p_j of the approach factor's terms (1 + M)^(-p_j) (module doc): 4/15 and 8/15, the
+/// first two powers of (l/b)^(1/2) ~ H^(1/3) in Hertzian units (l the inlet length, b the
+/// semi-axis along rolling; [`crate::limits::point_ei`]).
+pub const APPROACH_POWERS: [f64; 2] = [4.0 / 15.0, 8.0 / 15.0];
+
+/// A point-contact film model: the parameters of [`POINT_PARAM_NAMES`] (module doc).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PointModel {
     /// The parameters of [`POINT_PARAM_NAMES`], in that order (constants c_RI, a, b, d, c_00 as
-    /// logarithms).
-    pub x: [f64; 16],
+    /// logarithms). Stored models of the NVM form's 16 read back with g = 1 (its 6 zero).
+    #[serde(deserialize_with = "point_params")]
+    pub x: [f64; POINT_PARAMS],
     /// The constants (a, p, q) of f_RI (not fitted; NVM's when absent from a stored model).
     #[serde(default = "nvm_ri_shape")]
     pub ri_shape: [f64; 3],
@@ -61,10 +75,27 @@ pub struct PointModel {
     #[serde(default)]
     pub rp_shape: Option<[f64; 3]>,
     /// Whether f_EI is the exact D factor of the local inlet analysis
-    /// ([`crate::limits::point_ei::ei_d_factor`]; the H_pm fit with `ehlmap fit
+    /// ([`crate::limits::point_ei::ei_d_factor`]; the H_c and H_pm fits with `ehlmap fit
     /// --point-ei-limit`) instead of NVM's (false in stored models before it).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub ei_exact: bool,
+}
+
+/// The parameter vector from a stored model: [`POINT_PARAMS`] values, or the NVM form's 16 (the
+/// approach factor's then 0).
+fn point_params<'de, De: serde::Deserializer<'de>>(
+    de: De,
+) -> Result<[f64; POINT_PARAMS], De::Error> {
+    let v: Vec<f64> = Vec::deserialize(de)?;
+    if v.len() != 16 && v.len() != POINT_PARAMS {
+        return Err(serde::de::Error::invalid_length(
+            v.len(),
+            &"16 or 22 point parameters",
+        ));
+    }
+    let mut x = [0.0; POINT_PARAMS];
+    x[..v.len()].copy_from_slice(&v);
+    Ok(x)
 }
 
 /// NVM's (a, p, q) of f_RI.
@@ -125,11 +156,36 @@ impl PointModel {
                 1.2,
                 1.8f64.ln(),
                 1.5,
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+                0.0,
             ],
             ri_shape: nvm_ri_shape(),
             rp_shape: None,
             ei_exact: false,
         }
+    }
+
+    /// Indices of the approach factor's coefficients (c_j0, c_j1, c_j2 for each of
+    /// [`APPROACH_POWERS`]; 0 in NVM's form).
+    pub const APPROACH: [usize; 6] = [16, 17, 18, 19, 20, 21];
+
+    /// The approach factor g(M, D) = exp(sum_j (c_j0 + c_j1 ln D + c_j2 (ln D)^2) (1 + M)^(-p_j))
+    /// of H_EI (module doc): 1 as M -> infinity, bounded as M -> 0.
+    pub fn approach(&self, m: f64, d: f64) -> f64 {
+        let ln_d = d.ln();
+        let c = &self.x[16..];
+        let sum: f64 = APPROACH_POWERS
+            .iter()
+            .enumerate()
+            .map(|(j, p)| {
+                (c[3 * j] + ln_d * (c[3 * j + 1] + ln_d * c[3 * j + 2])) * (1.0 + m).powf(-p)
+            })
+            .sum();
+        sum.exp()
     }
 
     /// The four asymptotes [H_RI, H_EI, H_RP, H_EP] at (M, L, D).
@@ -146,7 +202,7 @@ impl PointModel {
         }
         [
             x[0].exp() * f[0] * d.powf(x[1]) / (m * m),
-            x[2].exp() * m.powf(x[3]) * f[1] * d.powf(x[4]),
+            x[2].exp() * m.powf(x[3]) * f[1] * d.powf(x[4]) * self.approach(m, d),
             x[5].exp() * l.powf(x[6]) * f[2] * d.powf(x[7]),
             x[8].exp() * m.powf(x[9]) * l.powf(x[10]) * f[3] * d.powf(x[11]),
         ]
@@ -225,5 +281,36 @@ mod tests {
         }
         // docs/physics.md section 4: circular M = 20, L = 10 gives 4.71.
         assert!((p.eval(20.0, 10.0, 1.0) - 4.71).abs() < 0.01);
+    }
+
+    /// The approach factor g: its closed form, 1 as M -> infinity (the EI law exact there), and
+    /// bounded as M -> 0; a stored model of the NVM form's 16 parameters reads back with g = 1.
+    #[test]
+    fn the_approach_factor_tends_to_one_and_old_models_read_back() {
+        let mut p = PointModel::nvm();
+        let c = [0.4, -0.1, 0.02, -0.7, 0.05, -0.01];
+        p.x[16..].copy_from_slice(&c);
+        let (m, d) = (300.0f64, 0.2f64);
+        let ln_d = d.ln();
+        let want = ((c[0] + c[1] * ln_d + c[2] * ln_d * ln_d) * (1.0 + m).powf(-4.0 / 15.0)
+            + (c[3] + c[4] * ln_d + c[5] * ln_d * ln_d) * (1.0 + m).powf(-8.0 / 15.0))
+        .exp();
+        assert!((p.approach(m, d) / want - 1.0).abs() < 1e-14);
+        let nvm = PointModel::nvm();
+        let ratio = p.asymptotes(m, 0.0, d)[1] / nvm.asymptotes(m, 0.0, d)[1];
+        assert!((ratio / want - 1.0).abs() < 1e-14);
+        // The gap falls like M^(-4/15): below 1e-3 at M = 1e12.
+        assert!((p.approach(1e12, d) - 1.0).abs() < 1e-3);
+        assert!((p.approach(1e12, d) - 1.0).abs() < (p.approach(1e9, d) - 1.0).abs());
+        let bound = c.iter().map(|v| v.abs()).sum::<f64>() * (1.0 + ln_d * ln_d);
+        for m in [1e-12, 1e-3, 1.0] {
+            assert!(p.approach(m, d).ln().abs() <= bound);
+        }
+        let mut stored = serde_json::to_value(&nvm).unwrap();
+        stored["x"] = serde_json::json!(nvm.x[..16].to_vec());
+        let back: PointModel = serde_json::from_value(stored.clone()).unwrap();
+        assert_eq!(back, nvm);
+        stored["x"] = serde_json::json!(nvm.x[..15].to_vec());
+        assert!(serde_json::from_value::<PointModel>(stored).is_err());
     }
 }

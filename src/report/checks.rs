@@ -345,7 +345,7 @@ pub fn point_checks(
                     x[4],
                     x[3],
                     if fit.ei_exact {
-                        " (exact f_EI, held at the line's limit)"
+                        " g(M, D) (exact f_EI, held at the line's limit; g -> 1 as M -> inf)"
                     } else {
                         ""
                     }

@@ -59,12 +59,17 @@ every asymptotic limit. H_c is the film at the centre, H_pm the film at the pres
 centre line, H_min the minimum film: each has its own fit. Where the data show the corner at \
 which H_c meets H_pm, H_c is the corner law of its section (with the asymptotes of its blend).";
 
-/// What the point form says when the H_pm elastic-isoviscous law is held at its limit (`ehlmap
-/// fit --point-ei-limit`).
-const POINT_EI_LIMIT: &str = " With --point-ei-limit, H_EI of H_pm is held at its limit, the \
+/// What the point form says when the H_c and H_pm elastic-isoviscous laws are held at their
+/// limit (`ehlmap fit --point-ei-limit`).
+const POINT_EI_LIMIT: &str =
+    " With --point-ei-limit, H_EI of H_c and H_pm is held at its limit, the \
 line's 2.488 M^(-1/5) carried over by the local inlet analysis of the leading edge: a = 2.488 x \
 0.941415 = 2.3422, f_EI(D) = k^(2/15) [4 E(m)/(pi (1 + D))]^(2/3) exact (k = a/b of the Hertz \
-ellipse, E(m) its elliptic integral; 1 at D = 1), e_EI = 0.";
+ellipse, E(m) its elliptic integral; 1 at D = 1), e_EI = 0, times the fitted approach factor \
+g(M, D) = exp(sum_j (c_j0 + c_j1 ln D + c_j2 (ln D)^2) (1 + M)^(-p_j)), p = 4/15 and 8/15 \
+(parameters g1, g1_lnD, g1_lnD2, g2, ...), which tends to 1 as M -> infinity: the solver's films \
+approach the limit slowly. g is fitted first, by linear least squares on the cases at L = 0 and \
+M >= 100 (each case's H_EI from its film by inverting the L = 0 blend), and held in the fit.";
 
 /// The point formula's form for the contact's report `c`.
 pub(super) fn point_form(c: &ContactReport) -> String {

@@ -128,6 +128,15 @@ def _ei_d_factor(D):
     return (1.0 / kappa) ** (2.0 / 15.0) * (4.0 * e_int / (math.pi * (1.0 + D))) ** (2.0 / 3.0)
 
 
+def _approach(x, M, D):
+    ln_d = math.log(D)
+    total = 0.0
+    for j, p in enumerate((4.0 / 15.0, 8.0 / 15.0)):
+        c = x[16 + 3 * j : 19 + 3 * j]
+        total += (c[0] + ln_d * (c[1] + ln_d * c[2])) * _pow(1.0 + M, -p)
+    return _exp(total)
+
+
 def _point_asymptotes(x, ri_shape, rp_shape, ei_exact, M, L, D):
     f = _nvm_d_factors(D)
     f[0] = _psi(ri_shape, D) / D
@@ -137,7 +146,7 @@ def _point_asymptotes(x, ri_shape, rp_shape, ei_exact, M, L, D):
         f[1] = _ei_d_factor(D)
     return [
         _exp(x[0]) * f[0] * _pow(D, x[1]) / (M * M),
-        _exp(x[2]) * _pow(M, x[3]) * f[1] * _pow(D, x[4]),
+        _exp(x[2]) * _pow(M, x[3]) * f[1] * _pow(D, x[4]) * _approach(x, M, D),
         _exp(x[5]) * _pow(L, x[6]) * f[2] * _pow(D, x[7]),
         _exp(x[8]) * _pow(M, x[9]) * _pow(L, x[10]) * f[3] * _pow(D, x[11]),
     ]

@@ -158,7 +158,7 @@ fn samples(pts: &[FitPoint], film: Film) -> Vec<Sample> {
         .collect()
 }
 
-/// Fit the `r.stage1` parameters from `start`; with at least [`FULL_FIT_MIN_POINTS`] samples
+/// Fit the `r.stage1` parameters from `start` (as `r.pre` sets it from `data`); with at least [`FULL_FIT_MIN_POINTS`] samples
 /// refit all of `r.stage2` from there and keep it when it stays physical, identified (every sigma
 /// finite: J^T J not singular) and fits better (lower RMS log error). If it does not, try again
 /// with the `r.late` parameters held at their start; the first kept try wins, else stage 1.
@@ -169,6 +169,7 @@ fn staged<Mo: FilmModel>(
     start: &Mo,
     r: &Recipe<Mo>,
 ) -> Result<LsqFit<Mo>, FitError> {
+    let start = &(r.pre)(start, data);
     let mut f = fit(data, start, &r.stage1)?;
     if data.len() < FULL_FIT_MIN_POINTS || r.stage2.len() <= r.stage1.len() {
         return Ok(f);

@@ -6,11 +6,13 @@
 //! Line: [`line_recipe`] (Moes 1992 form). Point: [`point_recipe`] (NVM 1994 form, the free set
 //! depending on the D values and the L > 0 cases in the data).
 
+use crate::fit::approach::fit_approach;
 use crate::fit::corner::{self, CornerParams};
 use crate::fit::correction::{line_terms, point_terms, Coordinates};
 use crate::fit::dataset::FitPoint;
 use crate::fit::fitted::Blend;
 use crate::fit::heldout::{lattice, nested, Basis};
+use crate::fit::lsq::Sample;
 use crate::fit::model::{LineModel, PARAM_NAMES};
 use crate::fit::point_model::{PointModel, POINT_PARAM_NAMES};
 use crate::limits::jump::JumpTable;
@@ -134,6 +136,10 @@ pub(super) struct Recipe<Mo> {
     /// The parameters held at their start for a film, whatever the free sets say (the point
     /// H_pm elastic-isoviscous law: [`point_held`]).
     pub(super) held: fn(Film) -> &'static [usize],
+    /// What a fit on some samples starts from, given the start model (held parameters set from
+    /// the samples themselves, so each held-out fold sets them from its own training cases: the
+    /// point approach factor, [`point_pre`]; else the start, [`no_pre`]).
+    pub(super) pre: fn(&Mo, &[Sample]) -> Mo,
 }
 
 impl<Mo> Recipe<Mo> {
@@ -155,15 +161,14 @@ fn none_held(_: Film) -> &'static [usize] {
     &[]
 }
 
-/// With [`with_point_ei_limit`], the point film whose elastic-isoviscous law is held at the
-/// line's limit carried over by the local inlet analysis ([`point_ei`]): H_pm holds a_EI and e_EI
-/// (indices 2 and 4). H_c has the same limit but keeps them fitted: its corner law, fitted on the
-/// H_c blend, was worse held out with the held law (tests/data/fit-point-05: 5.22 % / 0.79 %
-/// against 4.16 % / 0.57 %; docs/validation.md, "The point elastic-isoviscous limit"); H_min is
-/// set in the side lobes.
+/// With [`with_point_ei_limit`], the point films whose elastic-isoviscous law is held at the
+/// line's limit carried over by the local inlet analysis ([`point_ei`]): H_c and H_pm hold a_EI
+/// and e_EI (indices 2 and 4), their approach factor set before the fit ([`point_pre`]; without
+/// it the held law cost H_c's corner law, docs/validation.md, "The approach to the point
+/// elastic-isoviscous limit"). H_min is set in the side lobes and keeps its fitted law.
 fn point_held(film: Film) -> &'static [usize] {
     match film {
-        Film::PressureMax => &[2, 4],
+        Film::PressureMax | Film::Centre => &[2, 4],
         _ => &[],
     }
 }
@@ -237,7 +242,7 @@ fn point_start(film: Film) -> PointModel {
     start
 }
 
-/// [`point_start`] with the H_pm elastic-isoviscous law at the line's limit carried over by the
+/// [`point_start`] with the H_c or H_pm elastic-isoviscous law at the line's limit carried over by the
 /// local inlet analysis, held ([`point_held`]): a_EI = [`A_EI_CENTRAL`]
 /// [`point_ei::circular_over_line`], the exact f_EI(D) ([`point_ei::ei_d_factor`]), e_EI = 0.
 fn point_start_ei_limit(film: Film) -> PointModel {
@@ -250,18 +255,35 @@ fn point_start_ei_limit(film: Film) -> PointModel {
     start
 }
 
-/// The point recipe with the H_pm elastic-isoviscous law held at its limit (`ehlmap fit
-/// --point-ei-limit`): [`point_start_ei_limit`], [`point_held`], and the H_c corner law judging
+/// The point recipe with the H_c and H_pm elastic-isoviscous laws held at their limit (`ehlmap fit
+/// --point-ei-limit`): [`point_start_ei_limit`], its approach factor fitted first and held
+/// ([`point_pre`]), [`point_held`], and the H_c corner law judging
 /// the cases whose H_pm is not resolved by the corrected H_pm law (its bare blend, held at the
 /// limit that the data approach slowly, misjudges them: [`CornerParams::pm_corrected`]).
 pub(super) fn with_point_ei_limit(mut r: Recipe<PointModel>) -> Recipe<PointModel> {
     r.start = point_start_ei_limit;
+    r.pre = point_pre;
     r.held = point_held;
     r.corner = r.corner.map(|c| CornerParams {
         pm_corrected: true,
         ..c
     });
     r
+}
+
+/// No change to the start before a fit.
+fn no_pre<Mo: Clone>(start: &Mo, _: &[Sample]) -> Mo {
+    start.clone()
+}
+
+/// Before a point fit whose H_EI is held at the exact limit (`ei_exact`): its approach factor
+/// from the data's elastic-isoviscous cases ([`fit_approach`]), then held.
+fn point_pre(start: &PointModel, data: &[Sample]) -> PointModel {
+    if start.ei_exact {
+        fit_approach(start, data).model
+    } else {
+        start.clone()
+    }
 }
 
 /// The line recipe: Moes' form, stage 1 [`LINE_STAGE1`], stage 2 [`LINE_STAGE2`].
@@ -280,6 +302,7 @@ pub(super) fn line_recipe() -> Recipe<LineModel> {
         corner: Some(corner::LINE),
         jump: None,
         held: none_held,
+        pre: no_pre,
     }
 }
 
@@ -313,5 +336,6 @@ pub(super) fn point_recipe(pts: &[FitPoint]) -> Recipe<PointModel> {
         corner: Some(corner::POINT),
         jump: None,
         held: none_held,
+        pre: no_pre,
     }
 }
