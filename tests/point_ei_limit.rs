@@ -6,13 +6,14 @@
 //! 2026-12-07, docs/validation.md, "The point elastic-isoviscous limit"). Where the contact is
 //! rounder the approach is slower (0.960 at M = 1e4, D = 1), so these two D are the check.
 //!
-//! The same solves check the formula that `ehlmap fit --point-ei-limit` derives from the
-//! committed 0.5 % point data (`tests/data/fit-point-05`, 420 cases, M <= 1000): H_EI held at
-//! the law for H_c and H_pm, times an approach factor fitted to the data's L = 0, M >= 100 cases
-//! that tends to 1 as M -> infinity. At M = 3162 the solver over the formula was 0.9934 (H_pm)
-//! and 1.0066 (H_c) at D = 0.1, 0.9987 and 1.0002 at D = 0.25 (2049^2 solves; docs/validation.md,
-//! "The approach to the point elastic-isoviscous limit"); the fitted H_EI law without the option
-//! was 2.1-2.4 % off at D = 0.1-0.25.
+//! The same solves check the H_pm formula that `ehlmap fit` derives from the committed 0.5 %
+//! point data (`tests/data/fit-point-05`, 420 cases, M <= 1000): its H_EI is held at the law
+//! times an approach factor fitted to the data's L = 0, M >= 100 cases, which tends to 1 as
+//! M -> infinity. At M = 3162 the solver over the formula was 0.9995 (D = 0.1) and 0.9984
+//! (D = 0.25) on these 1025^2 solves, 0.9997 at D = 0.25 on 2049^2 (docs/validation.md, "The
+//! approach to the point elastic-isoviscous limit"); the fitted H_EI law it replaces was 2.4 %
+//! and 2.1 % off there. Asserted: 0.5 %, issue 24's bound a decade beyond the data.
+//! (H_c keeps a fitted law, 2.1 % off at D = 0.25: not asserted.)
 
 use ehlmap::fit::dataset::load_fit_input;
 use ehlmap::fit::fitted::Blend;
@@ -30,28 +31,26 @@ fn law(m: f64, d: f64) -> f64 {
 }
 
 #[test]
-fn slender_point_films_beyond_the_data_approach_the_limit_and_the_held_formula() {
+fn point_films_beyond_the_data_approach_the_limit_and_the_fitted_h_pm_formula() {
     let m = 3162.28;
     let models = Models {
         elasticity: Elasticity::Elastic,
         ..Models::default()
     };
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/data/fit-point-05");
-    let mut input = load_fit_input(&[dir]).unwrap();
-    input.point_ei_limit = true;
+    let input = load_fit_input(&[dir]).unwrap();
     let fit = fit_report(&input, false).unwrap();
-    let h_c = fit.point.h_c.expect("point H_c fitted").model;
     let h_pm = fit.point.h_pm.expect("point H_pm fitted").model;
-    for q in [&h_c, &h_pm] {
-        let Blend::Point(b) = &q.blend else {
-            panic!("a point blend")
-        };
-        assert!(b.ei_exact, "H_EI held at the law");
-        assert!(b.x[16..].iter().any(|c| *c != 0.0), "an approach factor");
-        // g -> 1: far beyond the data the formula is the law (the correction, the corner law and
-        // the kriging vanish there too).
-        let far = q.eval(1e9, 0.0, 0.25) / law(1e9, 0.25);
-        assert!((far - 1.0).abs() < 5e-3, "M = 1e9: {far}");
+    let Blend::Point(b) = &h_pm.blend else {
+        panic!("a point blend")
+    };
+    assert!(b.ei_exact, "H_EI held at the law");
+    assert!(b.x[16..].iter().all(|c| *c != 0.0), "an approach factor");
+    // g -> 1: far beyond the data the formula is the law (the correction and the kriging vanish
+    // there too).
+    for d in [0.1, 0.25, 1.0] {
+        let far = h_pm.eval(1e9, 0.0, d) / law(1e9, d);
+        assert!((far - 1.0).abs() < 5e-3, "M = 1e9, D = {d}: {far}");
     }
     for (d, tol) in [(0.1, 0.02), (0.25, 0.01)] {
         let case = PointCase::with_models(m, 0.0, d, models).unwrap();
@@ -67,10 +66,8 @@ fn slender_point_films_beyond_the_data_approach_the_limit_and_the_held_formula()
         assert!(estimate <= 0.005, "D = {d}: {estimate}");
         assert!((r - 1.0).abs() <= tol, "D = {d}: {r}");
         assert!((r_pm - 1.0).abs() <= tol, "D = {d}: {r_pm}");
-        let f_c = o.h_c / h_c.eval(m, 0.0, d);
         let f_pm = o.h_c_pmax / h_pm.eval(m, 0.0, d);
-        eprintln!("  solver / formula: H_c {f_c:.4}, H_pm {f_pm:.4}");
-        assert!((f_c - 1.0).abs() <= 0.01, "D = {d}: H_c {f_c}");
-        assert!((f_pm - 1.0).abs() <= 0.01, "D = {d}: H_pm {f_pm}");
+        eprintln!("  solver / formula: H_pm {f_pm:.4}");
+        assert!((f_pm - 1.0).abs() <= 0.005, "D = {d}: H_pm {f_pm}");
     }
 }

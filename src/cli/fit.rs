@@ -51,11 +51,11 @@ pub struct FitArgs {
     /// it to FILE and use it as --jump does.
     #[arg(long, value_name = "FILE")]
     pub jump_solves: Option<PathBuf>,
-    /// Hold the point H_c and H_pm elastic-isoviscous laws at their limit, the line's carried
-    /// over by the local inlet analysis (2.3422 f_EI(D) M^(-2/15), f_EI exact), times an
-    /// approach factor fitted first to the data's L = 0, M >= 100 cases that tends to 1 as
-    /// M -> infinity, instead of fitting the laws: exact as M -> infinity and closer to the
-    /// solver a decade beyond the data; docs/method.md, "The point elastic-isoviscous limit".
+    /// Hold the point H_c elastic-isoviscous law at its limit as the H_pm fit always does: the
+    /// line's carried over by the local inlet analysis (2.3422 f_EI(D) M^(-2/15), f_EI exact)
+    /// times an approach factor fitted first to the data's L = 0, M >= 100 cases that tends to
+    /// 1 as M -> infinity, instead of a fitted law: exact as M -> infinity, but H_c's held-out
+    /// RMS rises; docs/method.md, "The approach factor".
     #[arg(long)]
     pub point_ei_limit: bool,
 }

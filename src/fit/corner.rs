@@ -61,10 +61,11 @@ pub struct CornerParams {
     /// Whether the cases whose H_pm is not resolved are judged (do they follow H_pm?) by the
     /// H_pm law with its correction (true) or by its bare blend. The line's such rows are Barus
     /// spike rows, where the correction, fitted without them, extrapolates (held out H_c 0.63 %
-    /// with the blend, 2.90 % with the law on the committed line data); a point H_pm blend held
-    /// at its elastic-isoviscous limit, which the data approach slowly, misjudges them (`ehlmap
-    /// fit --point-ei-limit` judges by the law; docs/validation.md, "The point
-    /// elastic-isoviscous limit").
+    /// with the blend, 2.90 % with the law on the committed line data); the point default
+    /// judges by the bare H_pm blend (its EI law held at the limit times the approach factor:
+    /// H_c held out 4.09 % / 0.55 % on `tests/data/fit-point-05`, 3.73 % / 0.69 % by the law),
+    /// `ehlmap fit --point-ei-limit`, whose H_c law is held too, by the law (docs/validation.md,
+    /// "The approach to the point elastic-isoviscous limit").
     pub pm_corrected: bool,
 }
 

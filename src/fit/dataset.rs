@@ -170,10 +170,10 @@ pub struct FitInput {
     /// --jump`): the point H_c kriging then also offers the corner coordinate. None: not given.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub jump: Option<JumpTable>,
-    /// Whether the point H_c and H_pm elastic-isoviscous laws are held at their limit, the
-    /// line's carried over by the local inlet analysis ([`crate::limits::point_ei`]), times the
-    /// approach factor fitted first ([`crate::fit::approach`]; `ehlmap fit --point-ei-limit`),
-    /// instead of fitted.
+    /// Whether the point H_c elastic-isoviscous law is held at its limit as H_pm's always is:
+    /// the line's carried over by the local inlet analysis ([`crate::limits::point_ei`]) times
+    /// the approach factor fitted first ([`crate::fit::approach`]; `ehlmap fit
+    /// --point-ei-limit`), instead of fitted.
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub point_ei_limit: bool,
 }

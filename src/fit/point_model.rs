@@ -34,8 +34,8 @@
 //! ([`crate::limits::rigid_point`]) and its D factor at the solver's own, exact in the slender
 //! limit ([`crate::limits::rigid_d_factor`]; e_RI = 0), since the fitted rows barely see the
 //! rigid-isoviscous regime; the fits hold the exponents of H_EI and H_EP at asymptotic theory's
-//! (NVM's), with `ehlmap fit --point-ei-limit` the H_c and H_pm fits H_EI at its limit with the exact
-//! f_EI (`ei_exact`; [`crate::limits::point_ei`]), and H_RP at the solver's rigid-piezoviscous limit, beta = 2/3,
+//! (NVM's), the H_pm fit (and with `ehlmap fit --point-ei-limit` the H_c fit) H_EI at its limit
+//! with the exact f_EI (`ei_exact`; [`crate::limits::point_ei`]) times g, and H_RP at the solver's rigid-piezoviscous limit, beta = 2/3,
 //! b = c_RI pi(1), f_RP = f_RI(D) D psi(D), e_RP = 0 ([`crate::limits::rigid_rp`]). (Fit
 //! figures behind these choices: docs/validation.md, "Fit: the nightly sweeps" and "The held
 //! asymptotes".)
@@ -75,7 +75,7 @@ pub struct PointModel {
     #[serde(default)]
     pub rp_shape: Option<[f64; 3]>,
     /// Whether f_EI is the exact D factor of the local inlet analysis
-    /// ([`crate::limits::point_ei::ei_d_factor`]; the H_c and H_pm fits with `ehlmap fit
+    /// ([`crate::limits::point_ei::ei_d_factor`]; the H_pm fit, and H_c's with `ehlmap fit
     /// --point-ei-limit`) instead of NVM's (false in stored models before it).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub ei_exact: bool,

@@ -59,10 +59,10 @@ every asymptotic limit. H_c is the film at the centre, H_pm the film at the pres
 centre line, H_min the minimum film: each has its own fit. Where the data show the corner at \
 which H_c meets H_pm, H_c is the corner law of its section (with the asymptotes of its blend).";
 
-/// What the point form says when the H_c and H_pm elastic-isoviscous laws are held at their
-/// limit (`ehlmap fit --point-ei-limit`).
+/// What the point form says when the H_pm elastic-isoviscous law is held at its limit (the
+/// default; H_c's too with `ehlmap fit --point-ei-limit`).
 const POINT_EI_LIMIT: &str =
-    " With --point-ei-limit, H_EI of H_c and H_pm is held at its limit, the \
+    " H_EI of H_pm (and of H_c with --point-ei-limit) is held at its limit, the \
 line's 2.488 M^(-1/5) carried over by the local inlet analysis of the leading edge: a = 2.488 x \
 0.941415 = 2.3422, f_EI(D) = k^(2/15) [4 E(m)/(pi (1 + D))]^(2/3) exact (k = a/b of the Hertz \
 ellipse, E(m) its elliptic integral; 1 at D = 1), e_EI = 0, times the fitted approach factor \

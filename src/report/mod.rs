@@ -158,18 +158,33 @@ fn samples(pts: &[FitPoint], film: Film) -> Vec<Sample> {
         .collect()
 }
 
-/// Fit the `r.stage1` parameters from `start` (as `r.pre` sets it from `data`); with at least [`FULL_FIT_MIN_POINTS`] samples
-/// refit all of `r.stage2` from there and keep it when it stays physical, identified (every sigma
-/// finite: J^T J not singular) and fits better (lower RMS log error). If it does not, try again
-/// with the `r.late` parameters held at their start; the first kept try wins, else stage 1.
-/// (Every rigid-piezoviscous law is held at the solver's limit, so none can run off when the
-/// data hardly see it: docs/validation.md, "Earlier fit changes".)
+/// [`stages`] from `start` as `r.pre` sets it from `data`. When `r.pre` would set the fitted
+/// blend's held parameters differently (the point approach factor depends on the blend's r and
+/// c_00), the stages run once more from the fitted blend with them set again.
 fn staged<Mo: FilmModel>(
     data: &[Sample],
     start: &Mo,
     r: &Recipe<Mo>,
 ) -> Result<LsqFit<Mo>, FitError> {
-    let start = &(r.pre)(start, data);
+    let f = stages(data, &(r.pre)(start, data), r)?;
+    let again = (r.pre)(&f.model, data);
+    if again.x() == f.model.x() {
+        return Ok(f);
+    }
+    Ok(stages(data, &again, r).unwrap_or(f))
+}
+
+/// Fit the `r.stage1` parameters from `start`; with at least [`FULL_FIT_MIN_POINTS`] samples
+/// refit all of `r.stage2` from there and keep it when it stays physical, identified (every sigma
+/// finite: J^T J not singular) and fits better (lower RMS log error). If it does not, try again
+/// with the `r.late` parameters held at their start; the first kept try wins, else stage 1.
+/// (Every rigid-piezoviscous law is held at the solver's limit, so none can run off when the
+/// data hardly see it: docs/validation.md, "Earlier fit changes".)
+fn stages<Mo: FilmModel>(
+    data: &[Sample],
+    start: &Mo,
+    r: &Recipe<Mo>,
+) -> Result<LsqFit<Mo>, FitError> {
     let mut f = fit(data, start, &r.stage1)?;
     if data.len() < FULL_FIT_MIN_POINTS || r.stage2.len() <= r.stage1.len() {
         return Ok(f);

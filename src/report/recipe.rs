@@ -161,12 +161,21 @@ fn none_held(_: Film) -> &'static [usize] {
     &[]
 }
 
-/// With [`with_point_ei_limit`], the point films whose elastic-isoviscous law is held at the
-/// line's limit carried over by the local inlet analysis ([`point_ei`]): H_c and H_pm hold a_EI
-/// and e_EI (indices 2 and 4), their approach factor set before the fit ([`point_pre`]; without
-/// it the held law cost H_c's corner law, docs/validation.md, "The approach to the point
-/// elastic-isoviscous limit"). H_min is set in the side lobes and keeps its fitted law.
+/// The point film whose elastic-isoviscous law is held at the line's limit carried over by the
+/// local inlet analysis ([`point_ei`]): H_pm holds a_EI and e_EI (indices 2 and 4), its approach
+/// factor set before the fit ([`point_pre`]). H_c keeps a fitted EI law (held, its law is
+/// exact as M -> infinity but worse held out: [`with_point_ei_limit`] offers it); H_min is set in
+/// the side lobes and keeps its fitted law (docs/validation.md, "The approach to the point
+/// elastic-isoviscous limit").
 fn point_held(film: Film) -> &'static [usize] {
+    match film {
+        Film::PressureMax => &[2, 4],
+        _ => &[],
+    }
+}
+
+/// [`point_held`] with H_c held too ([`with_point_ei_limit`]).
+fn point_held_with_centre(film: Film) -> &'static [usize] {
     match film {
         Film::PressureMax | Film::Centre => &[2, 4],
         _ => &[],
@@ -242,28 +251,41 @@ fn point_start(film: Film) -> PointModel {
     start
 }
 
-/// [`point_start`] with the H_c or H_pm elastic-isoviscous law at the line's limit carried over by the
-/// local inlet analysis, held ([`point_held`]): a_EI = [`A_EI_CENTRAL`]
-/// [`point_ei::circular_over_line`], the exact f_EI(D) ([`point_ei::ei_d_factor`]), e_EI = 0.
-fn point_start_ei_limit(film: Film) -> PointModel {
-    let mut start = point_start(film);
-    if point_held(film).contains(&2) {
-        start.x[2] = (A_EI_CENTRAL * point_ei::circular_over_line()).ln();
-        start.x[4] = 0.0;
-        start.ei_exact = true;
-    }
+/// The elastic-isoviscous law of `start` at the line's limit carried over by the local inlet
+/// analysis: a_EI = [`A_EI_CENTRAL`] [`point_ei::circular_over_line`], the exact f_EI(D)
+/// ([`point_ei::ei_d_factor`]), e_EI = 0.
+fn at_ei_limit(mut start: PointModel) -> PointModel {
+    start.x[2] = (A_EI_CENTRAL * point_ei::circular_over_line()).ln();
+    start.x[4] = 0.0;
+    start.ei_exact = true;
     start
 }
 
-/// The point recipe with the H_c and H_pm elastic-isoviscous laws held at their limit (`ehlmap fit
-/// --point-ei-limit`): [`point_start_ei_limit`], its approach factor fitted first and held
-/// ([`point_pre`]), [`point_held`], and the H_c corner law judging
-/// the cases whose H_pm is not resolved by the corrected H_pm law (its bare blend, held at the
-/// limit that the data approach slowly, misjudges them: [`CornerParams::pm_corrected`]).
+/// [`point_start`] with the H_pm elastic-isoviscous law at its limit ([`at_ei_limit`]), held
+/// ([`point_held`]).
+fn point_start_ei_limit(film: Film) -> PointModel {
+    match film {
+        Film::PressureMax => at_ei_limit(point_start(film)),
+        _ => point_start(film),
+    }
+}
+
+/// [`point_start_ei_limit`] with H_c's law at its limit too ([`point_held_with_centre`]).
+fn point_start_ei_limit_with_centre(film: Film) -> PointModel {
+    match film {
+        Film::PressureMax | Film::Centre => at_ei_limit(point_start(film)),
+        _ => point_start(film),
+    }
+}
+
+/// The point recipe with the H_c elastic-isoviscous law held at its limit as well as H_pm's
+/// (`ehlmap fit --point-ei-limit`): [`point_start_ei_limit_with_centre`], its approach factor
+/// fitted first and held ([`point_pre`]), [`point_held_with_centre`], and the H_c corner law
+/// judging the cases whose H_pm is not resolved by the corrected H_pm law (better held out with
+/// the held H_c: [`CornerParams::pm_corrected`]).
 pub(super) fn with_point_ei_limit(mut r: Recipe<PointModel>) -> Recipe<PointModel> {
-    r.start = point_start_ei_limit;
-    r.pre = point_pre;
-    r.held = point_held;
+    r.start = point_start_ei_limit_with_centre;
+    r.held = point_held_with_centre;
     r.corner = r.corner.map(|c| CornerParams {
         pm_corrected: true,
         ..c
@@ -306,8 +328,10 @@ pub(super) fn line_recipe() -> Recipe<LineModel> {
     }
 }
 
-/// The point recipe for the data `pts`. H_RI and H_RP are held at the solver's limits and the
-/// exponents of H_EI and H_EP at theory's ([`PointModel::ASYMPTOTES`]). Stage 1 also holds the
+/// The point recipe for the data `pts`. H_RI and H_RP are held at the solver's limits, H_pm's
+/// H_EI at its limit times the approach factor fitted first ([`point_start_ei_limit`],
+/// [`point_held`], [`point_pre`]), and the exponents of the other EI laws and of H_EP at
+/// theory's ([`PointModel::ASYMPTOTES`]). Stage 1 also holds the
 /// H_EP law's constant and D correction at NVM's: with few elastic cases they are not
 /// identifiable and run off when freed (docs/validation.md, "Earlier fit changes"). Stage 2
 /// (from `FULL_FIT_MIN_POINTS` cases) frees them and the blend, and is kept only when physical,
@@ -324,7 +348,7 @@ pub(super) fn point_recipe(pts: &[FitPoint]) -> Recipe<PointModel> {
     all.extend([12, 13, 14, 15]);
     Recipe {
         contact: "point",
-        start: point_start,
+        start: point_start_ei_limit,
         stage1: free,
         stage2: all,
         late: &[14, 15],
@@ -335,7 +359,7 @@ pub(super) fn point_recipe(pts: &[FitPoint]) -> Recipe<PointModel> {
         side_lobes: true,
         corner: Some(corner::POINT),
         jump: None,
-        held: none_held,
-        pre: no_pre,
+        held: point_held,
+        pre: point_pre,
     }
 }
