@@ -6,7 +6,9 @@
 //! asymptotes are known: H_EI = [(H^r - H_RI^r)^(-4/r) - H_00^-4]^(-1/4). With H_EI = E(M, D)
 //! g(M, D), E the law without g, ln g = sum_j (c_j0 + c_j1 ln D + c_j2 (ln D)^2) (1 + M)^(-p_j)
 //! is linear in the c's, which are the least-squares solution over the cases at L = 0 and
-//! M >= [`APPROACH_MIN_M`] (where H_EI carries the film: H_RI/H_EI < 1e-2 there for D >= 0.01).
+//! M >= [`APPROACH_MIN_M`], where H_EI carries most of the film (H_RI/H_EI of order 0.05 at
+//! D >= 0.1, about 0.35 at M = 139, D = 0.01, where the blend's form weighs more in the
+//! inversion).
 //!
 //! Inputs: the model (its H_RI, H_00, r and the EI law E; its own approach coefficients are
 //! ignored) and the samples. Output: the model with the approach coefficients set
