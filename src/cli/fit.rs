@@ -69,6 +69,20 @@ pub enum JumpArg {
     Solve(PathBuf),
 }
 
+/// How [`fit_datasets`] fits and reports: the defaults are `ehlmap sweep --fit`'s (the report
+/// printed, the limit solves run, no corner table, fitted H_c EI law).
+#[derive(Clone, Debug, Default)]
+pub struct FitOptions {
+    /// Print fit.json instead of the report.
+    pub json: bool,
+    /// Skip the solver's limit solves (`--no-limit-solves`).
+    pub no_limit_solves: bool,
+    /// Where the point H_c corner's place comes from (`--jump`, `--jump-solves`).
+    pub jump: Option<JumpArg>,
+    /// Hold the point H_c EI law at its limit too (`--point-ei-limit`).
+    pub point_ei_limit: bool,
+}
+
 /// Run `ehlmap fit`.
 pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
     let jump = match (&a.jump, &a.jump_solves) {
@@ -76,15 +90,13 @@ pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
         (None, Some(f)) => Some(JumpArg::Solve(f.clone())),
         (None, None) => None,
     };
-    fit_datasets(
-        &a.datasets,
-        &a.check,
-        a.out.clone(),
-        a.json,
-        !a.no_limit_solves,
-        jump.as_ref(),
-        a.point_ei_limit,
-    )
+    let opts = FitOptions {
+        json: a.json,
+        no_limit_solves: a.no_limit_solves,
+        jump,
+        point_ei_limit: a.point_ei_limit,
+    };
+    fit_datasets(&a.datasets, &a.check, a.out.clone(), &opts)
 }
 
 /// The solved point cases of the `datasets` with their raw H_pm (the fit input leaves H_pm out
@@ -156,17 +168,15 @@ fn jump_table(arg: &JumpArg, cases: &[Case]) -> Result<JumpTable, CliError> {
 }
 
 /// Fit the datasets and write the report, fit.json, formula.py and charts to `out` (default beside the
-/// first dataset), with the `check` datasets as the check set; prints the report (or fit.json
-/// with `json`). Also the second step of `ehlmap sweep --fit`.
+/// first dataset), with the `check` datasets as the check set and the options `opts`; prints the
+/// report (or fit.json with `opts.json`). Also the second step of `ehlmap sweep --fit`.
 pub fn fit_datasets(
     datasets: &[PathBuf],
     check: &[PathBuf],
     out: Option<PathBuf>,
-    json: bool,
-    limit_solves: bool,
-    jump: Option<&JumpArg>,
-    point_ei_limit: bool,
+    opts: &FitOptions,
 ) -> Result<(), CliError> {
+    let (json, limit_solves, jump) = (opts.json, !opts.no_limit_solves, opts.jump.as_ref());
     let out = out.unwrap_or_else(|| beside_dataset(&datasets[0], "report"));
     if let Some(d) = datasets.iter().find(|d| same_dir(d, &out)) {
         return Err(input(format!(
@@ -176,7 +186,7 @@ pub fn fit_datasets(
         )));
     }
     let mut data = load_fit_input(datasets).map_err(|e| input(e.to_string()))?;
-    data.point_ei_limit = point_ei_limit;
+    data.point_ei_limit = opts.point_ei_limit;
     if !check.is_empty() {
         let c = load_fit_input(check).map_err(|e| input(format!("--check: {e}")))?;
         data = data

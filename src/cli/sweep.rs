@@ -224,10 +224,7 @@ pub fn run_sweep(args: &SweepArgs) -> Result<(), CliError> {
                     &[dataset],
                     &[],
                     None,
-                    false,
-                    true,
-                    None,
-                    false,
+                    &crate::cli::fit::FitOptions::default(),
                 );
             }
             Ok(())

@@ -15,30 +15,29 @@
 //! H = { [H_RI^r + (H_EI^-4 + H_00^-4)^(-r/4)]^(s/r) + (H_RP^-8 + H_EP^-8)^(-s/8) }^(1/s),
 //! s = s0 (1 + exp(-s1 H_EI/H_RI));
 //!
-//! at L = 0 the piezoviscous bracket is dropped. The approach factor g (1 in NVM's form, all
-//! c_jk = 0) is the slow approach of the solver's films to the exact EI limit, which vanishes as
-//! M -> infinity (corrections of order (l/b)^(1/2) ~ M^(-4/15) and its square, l the inlet
-//! length; [`crate::limits::point_ei`]); it is fitted only where H_EI is held at that limit. Parameters: the vector of
-//! [`POINT_PARAM_NAMES`] (constants as logarithms), the three constants (a, p, q) of f_RI and,
-//! when the RP law is the solver's, the three of psi(D) = [(1 + a D^p)/(1 + a)]^q
-//! ([`crate::limits::rigid_rp`]); none of them fitted. [`PointModel::nvm`] (all e_i = 0, NVM's f_RI: a = 0.796, p = 14/15,
-//! q = -15/7, c_00 = 1.8, r = 3/2 and NVM's constants) reproduces NVM 1994 exactly
-//! (docs/physics.md section 4); the fit frees c_00 and r with the other blend parameters once
-//! the data are many (as the line model frees its blending powers).
-//!
-//! Why this D form: NVM's D factors carry the Hertzian geometry (the contact ellipse and the load
-//! per unit length at y = 0), which is what makes the elliptic EI and EP asymptotes tend to the
-//! line ones as D -> 0; the free exponent e_i only corrects the residual D trend over the swept D
-//! range. The M^-2 of H_RI is exact for a rigid isoviscous point contact (the pressure scales with
-//! 1/H^2 at fixed load); the fits hold its constant at the solver's own domain-extrapolated value
+//! at L = 0 the piezoviscous bracket is dropped. The approach factor g (1 in NVM's form, all c_jk =
+//! 0) is the slow approach of the solver's films to the exact EI limit, which vanishes as M ->
+//! infinity (corrections of order (l/b)^(1/2) ~ M^(-4/15) and its square, l the inlet length;
+//! [`crate::limits::point_ei`]); it is fitted only where H_EI is held at that limit. Parameters:
+//! the vector of [`POINT_PARAM_NAMES`] (constants as logarithms), the three constants (a, p, q) of
+//! f_RI and, when the RP law is the solver's, the three of psi(D) = [(1 + a D^p)/(1 + a)]^q
+//! ([`crate::limits::rigid_rp`]); none of them fitted. [`PointModel::nvm`] (all e_i = 0, NVM's
+//! f_RI: a = 0.796, p = 14/15, q = -15/7, c_00 = 1.8, r = 3/2 and NVM's constants) reproduces NVM
+//! 1994 exactly (docs/physics.md section 4); the fit frees c_00 and r with the other blend
+//! parameters once the data are many (as the line model frees its blending powers).  Why this D
+//! form: NVM's D factors carry the Hertzian geometry (the contact ellipse and the load per unit
+//! length at y = 0), which is what makes the elliptic EI and EP asymptotes tend to the line ones as
+//! D -> 0; the free exponent e_i only corrects the residual D trend over the swept D range. The
+//! M^-2 of H_RI is exact for a rigid isoviscous point contact (the pressure scales with 1/H^2 at
+//! fixed load); the fits hold its constant at the solver's own domain-extrapolated value
 //! ([`crate::limits::rigid_point`]) and its D factor at the solver's own, exact in the slender
 //! limit ([`crate::limits::rigid_d_factor`]; e_RI = 0), since the fitted rows barely see the
 //! rigid-isoviscous regime; the fits hold the exponents of H_EI and H_EP at asymptotic theory's
 //! (NVM's), the H_pm fit (and with `ehlmap fit --point-ei-limit` the H_c fit) H_EI at its limit
-//! with the exact f_EI (`ei_exact`; [`crate::limits::point_ei`]) times g, and H_RP at the solver's rigid-piezoviscous limit, beta = 2/3,
-//! b = c_RI pi(1), f_RP = f_RI(D) D psi(D), e_RP = 0 ([`crate::limits::rigid_rp`]). (Fit
-//! figures behind these choices: docs/validation.md, "Fit: the nightly sweeps" and "The held
-//! asymptotes".)
+//! with the exact f_EI (`ei_exact`; [`crate::limits::point_ei`]) times g, and H_RP at the solver's
+//! rigid-piezoviscous limit, beta = 2/3, b = c_RI pi(1), f_RP = f_RI(D) D psi(D), e_RP = 0
+//! ([`crate::limits::rigid_rp`]). (Fit figures behind these choices: docs/validation.md, "Fit: the
+//! nightly sweeps" and "The held asymptotes".)
 
 use crate::fit::model::FilmModel;
 use crate::limits::point_ei::ei_d_factor;
@@ -177,7 +176,7 @@ impl PointModel {
     /// of H_EI (module doc): 1 as M -> infinity, bounded as M -> 0.
     pub fn approach(&self, m: f64, d: f64) -> f64 {
         let ln_d = d.ln();
-        let c = &self.x[16..];
+        let c = &self.x[Self::APPROACH[0]..];
         let sum: f64 = APPROACH_POWERS
             .iter()
             .enumerate()

@@ -161,23 +161,16 @@ fn none_held(_: Film) -> &'static [usize] {
     &[]
 }
 
-/// The point film whose elastic-isoviscous law is held at the line's limit carried over by the
+/// The point films whose elastic-isoviscous law is held at the line's limit carried over by the
 /// local inlet analysis ([`point_ei`]): H_pm holds a_EI and e_EI (indices 2 and 4), its approach
-/// factor set before the fit ([`point_pre`]). H_c keeps a fitted EI law (held, its law is
-/// exact as M -> infinity but worse held out: [`with_point_ei_limit`] offers it); H_min is set in
-/// the side lobes and keeps its fitted law (docs/validation.md, "The approach to the point
-/// elastic-isoviscous limit").
-fn point_held(film: Film) -> &'static [usize] {
+/// factor set before the fit ([`point_pre`]); so does H_c with `CENTRE` ([`with_point_ei_limit`]),
+/// else it keeps a fitted EI law (held, its law is exact as M -> infinity but worse held out).
+/// H_min is set in the side lobes and keeps its fitted law (docs/validation.md, "The approach to
+/// the point elastic-isoviscous limit").
+fn point_held<const CENTRE: bool>(film: Film) -> &'static [usize] {
     match film {
         Film::PressureMax => &[2, 4],
-        _ => &[],
-    }
-}
-
-/// [`point_held`] with H_c held too ([`with_point_ei_limit`]).
-fn point_held_with_centre(film: Film) -> &'static [usize] {
-    match film {
-        Film::PressureMax | Film::Centre => &[2, 4],
+        Film::Centre if CENTRE => &[2, 4],
         _ => &[],
     }
 }
@@ -261,31 +254,25 @@ fn at_ei_limit(mut start: PointModel) -> PointModel {
     start
 }
 
-/// [`point_start`] with the H_pm elastic-isoviscous law at its limit ([`at_ei_limit`]), held
-/// ([`point_held`]).
-fn point_start_ei_limit(film: Film) -> PointModel {
-    match film {
-        Film::PressureMax => at_ei_limit(point_start(film)),
-        _ => point_start(film),
-    }
-}
-
-/// [`point_start_ei_limit`] with H_c's law at its limit too ([`point_held_with_centre`]).
-fn point_start_ei_limit_with_centre(film: Film) -> PointModel {
-    match film {
-        Film::PressureMax | Film::Centre => at_ei_limit(point_start(film)),
-        _ => point_start(film),
+/// [`point_start`] with the elastic-isoviscous law at its limit ([`at_ei_limit`]) for the films
+/// that [`point_held`] holds it for.
+fn point_start_ei_limit<const CENTRE: bool>(film: Film) -> PointModel {
+    let start = point_start(film);
+    if point_held::<CENTRE>(film).contains(&2) {
+        at_ei_limit(start)
+    } else {
+        start
     }
 }
 
 /// The point recipe with the H_c elastic-isoviscous law held at its limit as well as H_pm's
-/// (`ehlmap fit --point-ei-limit`): [`point_start_ei_limit_with_centre`], its approach factor
-/// fitted first and held ([`point_pre`]), [`point_held_with_centre`], and the H_c corner law
+/// (`ehlmap fit --point-ei-limit`): [`point_start_ei_limit`] and [`point_held`] with `CENTRE`,
+/// its approach factor fitted first and held ([`point_pre`]), and the H_c corner law
 /// judging the cases whose H_pm is not resolved by the corrected H_pm law (better held out with
 /// the held H_c: [`CornerParams::pm_corrected`]).
 pub(super) fn with_point_ei_limit(mut r: Recipe<PointModel>) -> Recipe<PointModel> {
-    r.start = point_start_ei_limit_with_centre;
-    r.held = point_held_with_centre;
+    r.start = point_start_ei_limit::<true>;
+    r.held = point_held::<true>;
     r.corner = r.corner.map(|c| CornerParams {
         pm_corrected: true,
         ..c
@@ -348,7 +335,7 @@ pub(super) fn point_recipe(pts: &[FitPoint]) -> Recipe<PointModel> {
     all.extend([12, 13, 14, 15]);
     Recipe {
         contact: "point",
-        start: point_start_ei_limit,
+        start: point_start_ei_limit::<false>,
         stage1: free,
         stage2: all,
         late: &[14, 15],
@@ -359,7 +346,7 @@ pub(super) fn point_recipe(pts: &[FitPoint]) -> Recipe<PointModel> {
         side_lobes: true,
         corner: Some(corner::POINT),
         jump: None,
-        held: point_held,
+        held: point_held::<false>,
         pre: point_pre,
     }
 }
