@@ -62,12 +62,6 @@ pub const LATTICE: f64 = 0.75;
 /// A lattice bump is kept when it reaches at least this value at some data case.
 pub const LATTICE_REACH: f64 = 0.1;
 
-/// A lattice bump is taken times powers of ln D only where it reaches at least this value at
-/// cases of both the smallest and the largest D of the data ([`lattice_terms_in_d`]): its centre
-/// within 1.76 spacings of such cases. Chosen on `tests/data/fit-point-05` among 0.1, 0.3, 0.5 and
-/// 0.8 (docs/validation.md).
-pub const LATTICE_REACH_IN_D: f64 = 0.5;
-
 /// The decay length of the [`Transition::Tail`] bump in a = ln(H_EI/H_RI).
 pub const TAIL: f64 = 8.0;
 
@@ -234,32 +228,12 @@ pub fn lattice_terms(z: &[Coordinates], level: u8) -> Vec<Term> {
 }
 
 /// [`lattice_terms`], then each of them times ln D, (ln D)^2, ... up to (ln D)^`ln_d_powers`
-/// (0: the bumps alone), in that order. A bump is taken times powers of ln D only where it
-/// reaches [`LATTICE_REACH_IN_D`] at cases of both the smallest and the largest D of the data, so
-/// that its polynomial in ln D is pinned at both ends of the D range: a bump that only the
-/// rounder ellipses' cases reach (their a range is the widest) would otherwise be free in ln D
-/// where the data of the smaller D end, and carry the fit's ln D trend beyond them (the point
-/// H_c a decade of M beyond the data, docs/validation.md).
+/// (0: the bumps alone), in that order.
 pub fn lattice_terms_in_d(z: &[Coordinates], level: u8, ln_d_powers: u8) -> Vec<Term> {
     let bumps = lattice_terms(z, level);
-    let (lo, hi) = z
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), zi| {
-            (lo.min(zi.ln_d), hi.max(zi.ln_d))
-        });
-    let seen_at = |t: &Term, ln_d: f64| {
-        z.iter()
-            .any(|zi| zi.ln_d == ln_d && t.eval(zi).abs() >= LATTICE_REACH_IN_D)
-    };
-    let pinned: Vec<Term> = bumps
-        .iter()
-        .copied()
-        .filter(|t| seen_at(t, lo) && seen_at(t, hi))
-        .collect();
     (0..=ln_d_powers)
         .flat_map(|n| {
-            let from = if n == 0 { &bumps } else { &pinned };
-            from.iter().map(move |t| Term {
+            bumps.iter().map(move |t| Term {
                 powers: [0, 0, 0, n, 0],
                 ..*t
             })
@@ -505,49 +479,6 @@ mod tests {
             assert_eq!(t.level, level);
             assert!(z.iter().any(|zi| t.eval(zi) >= LATTICE_REACH), "{t:?}");
         }
-    }
-
-    #[test]
-    fn ln_d_powers_only_for_bumps_seen_at_both_ends_of_the_d_range() {
-        // Point-like coordinates: the larger D reaches further in a (2 ... 10 against 2 ... 6).
-        let mut z = vec![];
-        for (d, a_max) in [(0.1f64, 6.0), (0.3, 8.0), (1.0, 10.0)] {
-            for k in 0..=16 {
-                let a = 2.0 + (a_max - 2.0) * f64::from(k) / 16.0;
-                z.push(Coordinates {
-                    a,
-                    b: f64::NAN,
-                    c: f64::NEG_INFINITY,
-                    ln_d: d.ln(),
-                    w: 0.0,
-                });
-            }
-        }
-        let bumps = lattice_terms(&z, 0);
-        let terms = lattice_terms_in_d(&z, 0, 2);
-        let with = |n: u8| -> Vec<[i8; 2]> {
-            terms
-                .iter()
-                .filter(|t| t.powers[3] == n)
-                .map(|t| t.at)
-                .collect()
-        };
-        assert_eq!(with(0), bumps.iter().map(|t| t.at).collect::<Vec<_>>());
-        assert_eq!(with(1), with(2));
-        // Centres i W, W = 0.75: the bumps with ln D reach 0.5 (|a - i W| <= 1.76 W) at a case of
-        // D = 0.1 (a <= 6) and of D = 1 (a >= 2): i from 1 to 9; the plain bumps are those of
-        // the a range widened by one spacing, 2 - W ... 10 + W: i from 1 to 15.
-        let at: Vec<i8> = with(1).iter().map(|ij| ij[0]).collect();
-        assert_eq!(at, (1..=9).collect::<Vec<i8>>());
-        assert_eq!(bumps.first().map(|t| t.at[0]), Some(1));
-        assert_eq!(bumps.last().map(|t| t.at[0]), Some(15));
-        // One D value: the bumps seen at it, all of them at LATTICE_REACH_IN_D.
-        let one: Vec<Coordinates> = z.iter().copied().filter(|zi| zi.ln_d == 0.0).collect();
-        let n1 = lattice_terms_in_d(&one, 0, 1)
-            .iter()
-            .filter(|t| t.powers[3] == 1)
-            .count();
-        assert_eq!(n1, 15); // i = 1 ... 15: |a - i W| <= 1.32 for some a in [2, 10]
     }
 
     #[test]

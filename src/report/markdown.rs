@@ -122,8 +122,8 @@ pub fn candidate_name(s: &SizeScore) -> String {
 fn d_factors(powers: u8) -> String {
     match powers {
         0 => String::new(),
-        1 => ", those seen at both ends of the D range also times ln D".to_string(),
-        n => format!(", those seen at both ends of the D range also times (ln D)^1..{n}"),
+        1 => ", each also times ln D".to_string(),
+        n => format!(", each also times (ln D)^1..{n}"),
     }
 }
 
