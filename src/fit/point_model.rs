@@ -24,8 +24,9 @@
 //! ([`crate::limits::rigid_rp`]); none of them fitted. [`PointModel::nvm`] (all e_i = 0, NVM's
 //! f_RI: a = 0.796, p = 14/15, q = -15/7, c_00 = 1.8, r = 3/2 and NVM's constants) reproduces NVM
 //! 1994 exactly (docs/physics.md section 4); the fit frees c_00 and r with the other blend
-//! parameters once the data are many (as the line model frees its blending powers).  Why this D
-//! form: NVM's D factors carry the Hertzian geometry (the contact ellipse and the load per unit
+//! parameters once the data are many (as the line model frees its blending powers).
+//!
+//! Why this D form: NVM's D factors carry the Hertzian geometry (the contact ellipse and the load per unit
 //! length at y = 0), which is what makes the elliptic EI and EP asymptotes tend to the line ones as
 //! D -> 0; the free exponent e_i only corrects the residual D trend over the swept D range. The
 //! M^-2 of H_RI is exact for a rigid isoviscous point contact (the pressure scales with 1/H^2 at
