@@ -33,7 +33,8 @@ pub struct FitArgs {
     #[arg(long)]
     pub json: bool,
     /// Skip the solver's asymptote limit solves (for point data they solve the limit cases on the
-    /// data's grid, at least 257^2: minutes for fine grids).
+    /// data's grid, at least 257^2, and the elastic-isoviscous case a decade of M beyond the data
+    /// on 513^2 to 2049^2, about 1 GB: minutes for fine grids).
     #[arg(long)]
     pub no_limit_solves: bool,
     /// A check dataset (repeatable): its cases are compared with the fitted formula, never
@@ -215,8 +216,9 @@ pub fn fit_datasets(
     }
     if limit_solves && !data.point.is_empty() {
         note!(
-            "the point asymptote checks solve the limit cases on the data's grid \
-             (minutes for fine grids; --no-limit-solves skips them)"
+            "the point asymptote checks solve the limit cases on the data's grid, and \
+             the elastic-isoviscous case a decade of M beyond the data on 513^2 to 2049^2 \
+             (minutes for fine grids, about 1 GB; --no-limit-solves skips them)"
         );
     }
     if let Some(j @ JumpArg::Solve(_)) = jump {

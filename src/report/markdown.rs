@@ -6,6 +6,7 @@ use crate::fit::correction::{Term, Transition, LATTICE};
 use crate::fit::fitted::Blend;
 use crate::fit::heldout::{worst_and_rms, SizeScore};
 use crate::fit::stats::{ErrStats, RegionStats};
+use crate::report::decade::decade_table;
 use crate::report::forms::{point_form, LINE_FORM};
 use crate::report::{ContactReport, FitReport, QuantityFit, ASYMPTOTE_TARGET, MAX_ERROR_TARGET};
 use std::fmt::Write;
@@ -566,6 +567,7 @@ fn contact(md: &mut String, c: &ContactReport) {
             );
         }
         md.push('\n');
+        decade_table(md, &c.asymptotes);
     }
 }
 

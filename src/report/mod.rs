@@ -20,6 +20,7 @@
 
 pub mod checks;
 mod corner;
+pub mod decade;
 mod forms;
 pub mod formula_py;
 mod kriging;
@@ -496,6 +497,18 @@ fn point_report(
     if limit_solves {
         let side = report.h_min.as_ref().and_then(|q| q.model.side.clone());
         report.asymptotes = point_checks(&models, side.as_ref(), pts);
+        // The checks a decade beyond the data compare the solver with the whole formula.
+        for a in &mut report.asymptotes {
+            let q = match a.quantity.as_str() {
+                "H_c" => report.h_c.as_ref(),
+                "H_pm" => report.h_pm.as_ref(),
+                _ => report.h_min.as_ref(),
+            };
+            if let (Some(b), Some(q)) = (a.decade.clone(), q) {
+                let h = q.model.eval(b.m, 0.0, b.d);
+                a.decade = Some(b.with_formula(h));
+            }
+        }
     }
     report.published = published("NVM 1994", pts, |p| nvm_point_hc(p.m, p.l, p.dd()));
     report
