@@ -100,6 +100,17 @@ pub fn rp_from_rigid(o: &Outputs, alpha_bar_1: f64, l: f64, film: Film) -> f64 {
     (c * l).powf(2.0 / 3.0)
 }
 
+/// The largest M of the cases (M, L) at L = `l`; the largest M of all cases when none is at `l`.
+pub fn largest_m_at(cases: &[(f64, f64)], l: f64) -> f64 {
+    let max_of = |it: &mut dyn Iterator<Item = f64>| it.fold(0.0, f64::max);
+    let m = max_of(&mut cases.iter().filter(|c| c.1 == l).map(|c| c.0));
+    if m > 0.0 {
+        m
+    } else {
+        max_of(&mut cases.iter().map(|c| c.0))
+    }
+}
+
 /// A limit solve: (M, outputs), None where it did not converge or was not trusted.
 pub type Solve = (f64, Option<Outputs>);
 
@@ -134,17 +145,8 @@ impl LimitSolves {
         rigid: Option<(Outputs, f64)>,
         solve: impl Fn(f64, f64, Elasticity) -> Option<(Outputs, f64)>,
     ) -> Self {
-        let max_of = |it: &mut dyn Iterator<Item = f64>| it.fold(0.0, f64::max);
-        let l_max = max_of(&mut cases.iter().map(|c| c.1));
-        let m_at = |l: f64| {
-            let m = max_of(&mut cases.iter().filter(|c| c.1 == l).map(|c| c.0));
-            if m > 0.0 {
-                m
-            } else {
-                max_of(&mut cases.iter().map(|c| c.0))
-            }
-        };
-        let (m_ei, m_ep) = (m_at(0.0), m_at(l_max));
+        let l_max = cases.iter().map(|c| c.1).fold(0.0, f64::max);
+        let (m_ei, m_ep) = (largest_m_at(cases, 0.0), largest_m_at(cases, l_max));
         let trend = |m_top: f64, l: f64| -> Vec<Solve> {
             TREND_FRACTIONS
                 .iter()

@@ -32,7 +32,7 @@ use crate::limits::line_ep::{LineEpLimit, EP_L, EP_M};
 use crate::limits::rigid_d_factor::{FarFieldRigid, CHECK_GRIDS};
 use crate::limits::rigid_point::{extrapolate, RigidPointSolves, DOMAIN_SCALES};
 use crate::limits::solves::{
-    line_solve, point_alpha_bar_1, point_solve, LimitSolves, Solve, POINT_CHECK_GRID,
+    largest_m_at, line_solve, point_alpha_bar_1, point_solve, LimitSolves, Solve, POINT_CHECK_GRID,
 };
 use crate::model::case::Elasticity;
 use crate::solve::film::Film;
@@ -311,38 +311,31 @@ pub fn point_checks(
     } else {
         vec![]
     };
-    // The elastic-isoviscous solve a decade of M beyond the data's largest L = 0 case at d.
-    let m_ei = {
-        let top = |l0: bool| {
-            at_d.iter()
-                .filter(|p| !l0 || p.l == 0.0)
-                .fold(0.0, |m: f64, p| m.max(p.m))
-        };
-        Some(top(true)).filter(|m| *m > 0.0).unwrap_or(top(false))
-    };
-    let (((mut s, domains), far), decade) = rayon::join(
+    // Beside them, the elastic-isoviscous solve a decade of M beyond the data's largest L = 0
+    // case at d.
+    let cases: Vec<(f64, f64)> = at_d.iter().map(|p| (p.m, p.l)).collect();
+    let ((mut s, domains), (far, decade)) = rayon::join(
         || {
             rayon::join(
                 || {
-                    rayon::join(
-                        || {
-                            let cases: Vec<(f64, f64)> = at_d.iter().map(|p| (p.m, p.l)).collect();
-                            LimitSolves::new(&cases, None, |m, l, el| {
-                                point_solve(m, l, d, el, grid, MAX_ERROR_ESTIMATE)
-                            })
-                        },
-                        || RigidPointSolves::run(d),
-                    )
+                    LimitSolves::new(&cases, None, |m, l, el| {
+                        point_solve(m, l, d, el, grid, MAX_ERROR_ESTIMATE)
+                    })
                 },
+                || RigidPointSolves::run(d),
+            )
+        },
+        || {
+            rayon::join(
                 || {
                     slender
                         .par_iter()
                         .filter_map(|&d| FarFieldRigid::run(d))
                         .collect::<Vec<_>>()
                 },
+                || BeyondSolves::run(largest_m_at(&cases, 0.0), d),
             )
         },
-        || BeyondSolves::run(m_ei, d),
     );
     let ab1 = point_alpha_bar_1(1.0, d, Elasticity::Rigid);
     s.rigid = domains

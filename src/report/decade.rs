@@ -45,10 +45,14 @@ pub fn decade_table(md: &mut String, rows: &[AsymptoteCheck]) {
             _ => "-".into(),
         };
         let within = match (b.ratio, b.error_bar.zip(b.solver)) {
-            (Some(r), Some((e, v))) if (r - 1.0).abs() <= DECADE_BOUND => {
-                format!("yes (bar {:.2} %)", 100.0 * e / v)
+            (Some(r), Some((e, v))) => {
+                let yes = (r - 1.0).abs() <= DECADE_BOUND;
+                format!(
+                    "{} (bar {:.2} %)",
+                    if yes { "yes" } else { "no" },
+                    100.0 * e / v
+                )
             }
-            (Some(_), Some((e, v))) => format!("no (bar {:.2} %)", 100.0 * e / v),
             _ => "-".into(),
         };
         let _ = writeln!(

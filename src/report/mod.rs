@@ -502,12 +502,16 @@ fn point_report(
             let q = match a.quantity.as_str() {
                 "H_c" => report.h_c.as_ref(),
                 "H_pm" => report.h_pm.as_ref(),
-                _ => report.h_min.as_ref(),
+                "H_min" => report.h_min.as_ref(),
+                _ => None,
             };
-            if let (Some(b), Some(q)) = (a.decade.clone(), q) {
-                let h = q.model.eval(b.m, 0.0, b.d);
-                a.decade = Some(b.with_formula(h));
-            }
+            a.decade = a.decade.take().map(|b| match q {
+                Some(q) => {
+                    let h = q.model.eval(b.m, 0.0, b.d);
+                    b.with_formula(h)
+                }
+                None => b,
+            });
         }
     }
     report.published = published("NVM 1994", pts, |p| nvm_point_hc(p.m, p.l, p.dd()));
