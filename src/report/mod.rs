@@ -21,6 +21,7 @@
 pub mod checks;
 mod corner;
 pub mod decade;
+mod digits;
 mod forms;
 pub mod formula_py;
 mod kriging;
@@ -29,6 +30,7 @@ pub mod markdown;
 pub mod mixed;
 mod recipe;
 mod side_lobes;
+mod support;
 pub mod surrogate;
 
 use crate::fit::correction::{Coordinates, Correction};
