@@ -21,7 +21,6 @@
 pub mod checks;
 mod corner;
 pub mod decade;
-mod digits;
 mod forms;
 pub mod formula_py;
 mod kriging;
@@ -30,7 +29,6 @@ pub mod markdown;
 pub mod mixed;
 mod recipe;
 mod side_lobes;
-mod support;
 pub mod surrogate;
 
 use crate::fit::correction::{Coordinates, Correction};
