@@ -102,13 +102,15 @@ pub fn rp_from_rigid(o: &Outputs, alpha_bar_1: f64, l: f64, film: Film) -> f64 {
 
 /// The largest M of the cases (M, L) at L = `l`; the largest M of all cases when none is at `l`.
 pub fn largest_m_at(cases: &[(f64, f64)], l: f64) -> f64 {
-    let max_of = |it: &mut dyn Iterator<Item = f64>| it.fold(0.0, f64::max);
-    let m = max_of(&mut cases.iter().filter(|c| c.1 == l).map(|c| c.0));
-    if m > 0.0 {
-        m
-    } else {
-        max_of(&mut cases.iter().map(|c| c.0))
-    }
+    let top = |any_l: bool| {
+        cases
+            .iter()
+            .filter(|c| any_l || c.1 == l)
+            .fold(0.0, |m: f64, c| m.max(c.0))
+    };
+    Some(top(false))
+        .filter(|m| *m > 0.0)
+        .unwrap_or_else(|| top(true))
 }
 
 /// A limit solve: (M, outputs), None where it did not converge or was not trusted.

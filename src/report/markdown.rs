@@ -7,6 +7,7 @@ use crate::fit::fitted::Blend;
 use crate::fit::heldout::{worst_and_rms, SizeScore};
 use crate::fit::stats::{ErrStats, RegionStats};
 use crate::report::decade::decade_table;
+use crate::report::digits::sig5;
 use crate::report::forms::{point_form, LINE_FORM};
 use crate::report::{ContactReport, FitReport, QuantityFit, ASYMPTOTE_TARGET, MAX_ERROR_TARGET};
 use std::fmt::Write;
@@ -37,18 +38,6 @@ fn table(md: &mut String, all: &ErrStats, rows: &[RegionStats]) {
         md.push_str(&stats_row(&rg.region, &rg.stats));
     }
     md.push('\n');
-}
-
-/// `v` with 5 significant digits (scientific notation outside [1e-4, 1e6)).
-pub fn sig5(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() {
-        return format!("{v}");
-    }
-    let e = v.abs().log10().floor() as i32;
-    if !(-4..6).contains(&e) {
-        return format!("{v:.4e}");
-    }
-    format!("{v:.*}", (4 - e).max(0) as usize)
 }
 
 /// `v/W - k` with the sign of k folded in ("a/W + 9", "a/W", "a/W - 2").

@@ -21,6 +21,7 @@
 pub mod checks;
 mod corner;
 pub mod decade;
+mod digits;
 mod forms;
 pub mod formula_py;
 mod kriging;
@@ -499,13 +500,11 @@ fn point_report(
         report.asymptotes = point_checks(&models, side.as_ref(), pts);
         // The checks a decade beyond the data compare the solver with the whole formula.
         for a in &mut report.asymptotes {
-            let q = match a.quantity.as_str() {
-                "H_c" => report.h_c.as_ref(),
-                "H_pm" => report.h_pm.as_ref(),
-                "H_min" => report.h_min.as_ref(),
-                _ => None,
-            };
-            a.decade = a.decade.take().map(|b| match q {
+            let fit = [&report.h_c, &report.h_pm, &report.h_min]
+                .into_iter()
+                .flatten()
+                .find(|q| q.quantity == a.quantity);
+            a.decade = a.decade.take().map(|b| match fit {
                 Some(q) => {
                     let h = q.model.eval(b.m, 0.0, b.d);
                     b.with_formula(h)
