@@ -16,6 +16,7 @@ use ehlmap::fit::dataset::load_fit_input;
 use ehlmap::fit::fitted::Blend;
 use ehlmap::fit::kriging::{self, Kriging, KrigingJump};
 use ehlmap::fit::side::{tensor_powers, SideLobe};
+use ehlmap::fit::support::FADE_WIDTH;
 use ehlmap::limits::jump::JumpTable;
 use ehlmap::report::formula_py::formula_py;
 use ehlmap::report::{fit_report, FitReport, QuantityFit};
@@ -93,10 +94,12 @@ fn with_lattice(mut r: FitReport) -> FitReport {
             branch: Correction {
                 terms: terms.clone(),
                 coef: coef(0.005, 3, n),
+                support: None,
             },
             deficit: Correction {
                 terms: terms.clone(),
                 coef: vec![-0.01; n],
+                support: None,
             },
             rho: 0.2,
         };
@@ -248,7 +251,9 @@ fn formula_py_reproduces_the_rust_evaluation() {
     std::fs::write(dir.join("formula.py"), formula_py(&r)).unwrap();
     // (M, L, D) inside and far outside the data, L = 0 included.
     let mut cases = vec![];
-    for m in [0.01, 0.3, 1.0, 3.7, 20.0, 150.0, 1000.0, 3e4, 1e5] {
+    for m in [
+        0.01, 0.3, 1.0, 3.7, 20.0, 150.0, 1000.0, 1800.0, 2600.0, 3800.0, 3e4, 1e5,
+    ] {
         for l in [0.0, 0.5, 4.0, 10.0, 25.0, 40.0] {
             for d in [0.01, 0.1, 0.15, 0.45, 1.0] {
                 cases.push((m, l, d));
@@ -257,6 +262,31 @@ fn formula_py_reproduces_the_rust_evaluation() {
     }
     let fs = films(&r);
     assert_eq!(fs.len(), 6, "every film of both contacts fitted");
+    // The point corrections fade beyond their cases (src/fit/support.rs), and some cases lie
+    // on the taper, so that formula.py's `_fade` is checked where it is neither 0 nor 1.
+    let pm = &r.point.h_pm.as_ref().expect("point H_pm fitted").model;
+    let support = pm
+        .correction
+        .support
+        .as_ref()
+        .expect("a point correction's support");
+    let on_taper = cases.iter().filter(|&&(m, l, d)| {
+        let z = Coordinates::new(pm.blend.asymptotes(m, l, d), d);
+        let f = support.fade(z.a, z.ln_d);
+        f > 0.0 && f < 1.0
+    });
+    assert!(on_taper.count() >= 3);
+    // A width beyond the largest a of the cases at each D, the formula is its blend.
+    for d in [0.1f64, 0.5, 1.0] {
+        let (_, hi) = support.range(d.ln());
+        let beyond = (0..80)
+            .map(|k| 10f64.powf(f64::from(k) / 10.0))
+            .map(|m| pm.blend.asymptotes(m, 0.0, d))
+            .find(|a| Coordinates::new(*a, d).a >= hi + FADE_WIDTH)
+            .expect("M up to 1e8 passes the data's a");
+        assert!(pm.correction.terms.len() > 10);
+        assert_eq!(pm.correction.log_factor(beyond, d), 0.0);
+    }
     let mut input = String::new();
     let mut want = vec![];
     for (point, q) in &fs {

@@ -251,6 +251,7 @@ pub fn fit_corner(
     let branch = Correction {
         terms: terms.to_vec(),
         coef,
+        support: None,
     };
     let y: Vec<f64> = (0..cases.len())
         .map(|i| {
@@ -265,6 +266,7 @@ pub fn fit_corner(
         deficit: Correction {
             terms: terms.to_vec(),
             coef,
+            support: None,
         },
         rho,
     })

@@ -32,6 +32,7 @@
 //! held-out error ([`crate::fit::heldout`]). Given the blend, the coefficients solve a linear
 //! least-squares problem in log space (SVD, [`fit_correction`]).
 
+use crate::fit::support::Support;
 use nalgebra::{DMatrix, DVector};
 use serde::{Deserialize, Serialize};
 
@@ -299,6 +300,11 @@ pub struct Correction {
     pub terms: Vec<Term>,
     /// Their coefficients c_k.
     pub coef: Vec<f64>,
+    /// Where the fitted cases are: the sum is tapered to 0 beyond their range of a at each D
+    /// ([`Support::fade`]; the point fits). None: applied everywhere (line fits, and stored
+    /// models before it).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub support: Option<Support>,
 }
 
 impl Correction {
@@ -310,13 +316,18 @@ impl Correction {
         self.log_factor_at(&Coordinates::new(asym, d))
     }
 
-    /// sum_k c_k phi_k at coordinates `z`.
+    /// sum_k c_k phi_k at coordinates `z`, times the support's fade where it has one.
     pub fn log_factor_at(&self, z: &Coordinates) -> f64 {
-        self.terms
+        let sum: f64 = self
+            .terms
             .iter()
             .zip(&self.coef)
             .map(|(t, c)| c * t.eval(z))
-            .sum()
+            .sum();
+        match &self.support {
+            Some(s) if sum != 0.0 => sum * s.fade(z.a, z.ln_d),
+            _ => sum,
+        }
     }
 
     /// The corrected film: `blend` (the blend's film at the case) times exp([`Self::log_factor`]).
@@ -365,6 +376,7 @@ pub fn fit_correction(
     c.iter().all(|v| v.is_finite()).then(|| Correction {
         terms: terms.to_vec(),
         coef: c.iter().copied().collect(),
+        support: None,
     })
 }
 

@@ -16,6 +16,7 @@
 use crate::fit::correction::{fit_correction, lattice_terms_in_d, Coordinates, Correction, Term};
 use crate::fit::lsq::{fit, Sample};
 use crate::fit::model::FilmModel;
+use crate::fit::support::Support;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -40,6 +41,9 @@ pub struct Basis {
     pub terms: Vec<Term>,
     /// The ridge weight.
     pub ridge: f64,
+    /// Whether the fitted correction fades beyond its cases' range of a at each D
+    /// ([`crate::fit::support`]; the point fits).
+    pub fade: bool,
 }
 
 /// The candidates of a nested term list: its first n terms for n = 0 ..= len, no ridge.
@@ -48,6 +52,7 @@ pub fn nested(terms: &[Term]) -> Vec<Basis> {
         .map(|n| Basis {
             terms: terms[..n].to_vec(),
             ridge: 0.0,
+            fade: false,
         })
         .collect()
 }
@@ -69,6 +74,7 @@ pub fn lattice(z: &[Coordinates], level: u8, ridges: &[f64], ln_d_powers: u8) ->
         .map(|&ridge| Basis {
             terms: terms.clone(),
             ridge,
+            fade: false,
         })
         .collect()
 }
@@ -303,7 +309,15 @@ pub fn correction_for<Mo: FilmModel>(
         .iter()
         .map(|s| s.h.ln() - blend.film(s.m, s.l, s.d).ln())
         .collect();
-    fit_correction(&z, &r, &basis.terms, basis.ridge)
+    let c = fit_correction(&z, &r, &basis.terms, basis.ridge)?;
+    Some(Correction {
+        support: if basis.fade {
+            Support::of(z.iter().map(|z| (z.ln_d, z.a)))
+        } else {
+            None
+        },
+        ..c
+    })
 }
 
 /// The fold of each sample (module doc): ranked by (M, L, D), the sample of rank k in fold

@@ -4,7 +4,7 @@
 //! elastic-isoviscous approach factor) define the
 //! blended-asymptote formulas ([`blend`]: either), [`lsq`] fits either in log space by Levenberg-Marquardt with
 //! parameter uncertainties, [`correction`] is the interior correction that vanishes in every
-//! asymptotic limit and [`heldout`] chooses its size by cross-validation, [`kriging`] is the residual's Gaussian-process
+//! asymptotic limit and [`heldout`] chooses its size by cross-validation ([`support`]: where its data are, beyond which a point correction fades), [`kriging`] is the residual's Gaussian-process
 //! posterior mean offered on top of it, [`side`] is the
 //! side-lobe factor of the point minimum film, [`corner`] the corner of the central film where it meets the
 //! film at the pressure maximum, [`stats`] turns formula-vs-data errors into tables (overall and per
@@ -25,3 +25,4 @@ pub mod model;
 pub mod point_model;
 pub mod side;
 pub mod stats;
+pub mod support;

@@ -52,7 +52,7 @@ pub struct JumpTable {
 }
 
 /// The interval of `x` among increasing `nodes` and its weight in [0, 1] (clamped).
-fn interval(nodes: &[f64], x: f64) -> (usize, usize, f64) {
+pub fn interval(nodes: &[f64], x: f64) -> (usize, usize, f64) {
     let n = nodes.len();
     if n < 2 || x <= nodes[0] {
         return (0, 0, 0.0);

@@ -14,6 +14,7 @@ use crate::fit::correction::{Correction, Transition, LATTICE, TAIL};
 use crate::fit::fitted::{Blend, FittedModel};
 use crate::fit::kriging::Kriging;
 use crate::fit::side::SideLobe;
+use crate::fit::support::{Support, FADE_WIDTH};
 use crate::report::{ContactReport, FitReport};
 use std::fmt::Write;
 
@@ -29,6 +30,7 @@ import math
 INF = float("inf")
 TAIL = {TAIL}
 LATTICE = {LATTICE}
+FADE_WIDTH = {FADE_WIDTH}
 
 
 def _pow(a, b):
@@ -189,8 +191,26 @@ def _coords(asym, D):
     return (a, b, c, math.log(D), w)
 
 
-def _correction(terms, asym, D):
-    """sum c_k phi_k; terms = [(transition, (i, j, k, l, n), c, (lattice i, j, level)), ...]."""
+def _taper(u):
+    if u <= 0.0:
+        return 1.0
+    if u >= 1.0:
+        return 0.0
+    return 0.5 * (1.0 + math.cos(math.pi * u))
+
+
+def _fade(support, a, ln_d):
+    """1 within the fitted cases' range of a at ln D, 0 FADE_WIDTH beyond it (ehlmap
+    src/fit/support.rs)."""
+    i, j, w = _interval(support["ln_d"], ln_d)
+    lo = (1.0 - w) * support["lo"][i] + w * support["lo"][j]
+    hi = (1.0 - w) * support["hi"][i] + w * support["hi"][j]
+    return _taper((a - hi) / FADE_WIDTH) * _taper((lo - a) / FADE_WIDTH)
+
+
+def _correction(terms, asym, D, support=None):
+    """sum c_k phi_k (times the fade of its support, when it has one); terms = [(transition,
+    (i, j, k, l, n), c, (lattice i, j, level)), ...]."""
     if not terms:
         return 0.0
     variables = _coords(asym, D)
@@ -217,6 +237,8 @@ def _correction(terms, asym, D):
                 if k > 0:
                     base *= v ** k
         total += coef * base
+    if support is not None and total != 0.0:
+        total *= _fade(support, a, math.log(D))
     return total
 
 
@@ -429,6 +451,18 @@ fn kriging(k: Option<&Kriging>) -> String {
     )
 }
 
+/// The range of a of a correction's cases at each ln D (None without one).
+fn support(s: Option<&Support>) -> String {
+    s.map_or("None".to_string(), |s| {
+        format!(
+            "{{\"ln_d\": [{}], \"lo\": [{}], \"hi\": [{}]}}",
+            list(&s.ln_d),
+            list(&s.lo),
+            list(&s.hi)
+        )
+    })
+}
+
 /// The corner law of an H_c (None without one).
 fn corner(c: Option<&Corner>) -> String {
     let Some(c) = c else {
@@ -454,13 +488,14 @@ fn entry(m: &FittedModel) -> String {
             kriging(m.kriging.as_ref())
         ),
         Blend::Point(x) => format!(
-            "{{\"x\": [{}], \"ri_shape\": [{}], \"rp_shape\": {}, \"ei_exact\": {}, \"terms\": {}, \"side\": {}, \"corner\": {}, \"kriging\": {}}}",
+            "{{\"x\": [{}], \"ri_shape\": [{}], \"rp_shape\": {}, \"ei_exact\": {}, \"terms\": {}, \"support\": {}, \"side\": {}, \"corner\": {}, \"kriging\": {}}}",
             list(&x.x),
             list(&x.ri_shape),
             x.rp_shape
                 .map_or("None".to_string(), |r| format!("[{}]", list(&r))),
             if x.ei_exact { "True" } else { "False" },
             terms(&m.correction),
+            support(m.correction.support.as_ref()),
             side(m.side.as_ref()),
             corner(m.corner.as_ref()),
             kriging(m.kriging.as_ref())
@@ -503,7 +538,7 @@ def H(M, L, D=None, film="H_c"):
     if e.get("corner") is not None:
         h = _corner(e["corner"], blend, asym, D)
     else:
-        h = blend * _exp(_correction(e["terms"], asym, D))
+        h = blend * _exp(_correction(e["terms"], asym, D, e.get("support")))
     if e.get("kriging") is not None:
         h = h * _exp(_kriging(e["kriging"], asym, M, L, D))
     return h * _side(e.get("side"), M, L, D)
@@ -514,7 +549,8 @@ def H(M, L, D=None, film="H_c"):
 pub fn formula_py(r: &FitReport) -> String {
     let mut s = HEADER
         .replace("{TAIL}", &f(TAIL))
-        .replace("{LATTICE}", &f(LATTICE));
+        .replace("{LATTICE}", &f(LATTICE))
+        .replace("{FADE_WIDTH}", &f(FADE_WIDTH));
     s.push_str(&table("LINE", &r.line));
     s.push('\n');
     s.push_str(&table("POINT", &r.point));

@@ -9,6 +9,7 @@ use crate::fit::stats::{ErrStats, RegionStats};
 use crate::report::decade::decade_table;
 use crate::report::digits::sig5;
 use crate::report::forms::{point_form, LINE_FORM};
+use crate::report::support::support_table;
 use crate::report::{ContactReport, FitReport, QuantityFit, ASYMPTOTE_TARGET, MAX_ERROR_TARGET};
 use std::fmt::Write;
 
@@ -207,6 +208,7 @@ fn heldout(md: &mut String, q: &QuantityFit) {
             let _ = writeln!(md, "| {} | {} |", term_name(t), sig5(*k));
         }
         md.push('\n');
+        support_table(md, c);
     }
 }
 

@@ -30,6 +30,7 @@ pub mod markdown;
 pub mod mixed;
 mod recipe;
 mod side_lobes;
+mod support;
 pub mod surrogate;
 
 use crate::fit::correction::{Coordinates, Correction};

@@ -204,10 +204,14 @@ pub const POINT_LN_D_POWERS: u8 = 2;
 
 /// The point candidates: the nested terms, then the level-0 lattice with each term also times
 /// powers of ln D up to [`POINT_LN_D_POWERS`] ([`crate::fit::heldout::lattice`]) with each of
-/// [`POINT_RIDGES`].
+/// [`POINT_RIDGES`]; each fades beyond its cases' range of a at each D
+/// ([`crate::fit::support`]).
 fn point_bases(z: &[Coordinates]) -> Vec<Basis> {
     let mut out = nested(&point_terms());
     out.extend(lattice(z, 0, &POINT_RIDGES, POINT_LN_D_POWERS));
+    for b in &mut out {
+        b.fade = true;
+    }
     out
 }
 
