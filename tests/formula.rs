@@ -16,7 +16,7 @@ use ehlmap::fit::dataset::load_fit_input;
 use ehlmap::fit::fitted::Blend;
 use ehlmap::fit::kriging::{self, Kriging, KrigingJump};
 use ehlmap::fit::side::{tensor_powers, SideLobe};
-use ehlmap::fit::support::FADE_WIDTH;
+use ehlmap::fit::support::{Support, FADE_WIDTH};
 use ehlmap::limits::jump::JumpTable;
 use ehlmap::report::formula_py::formula_py;
 use ehlmap::report::{fit_report, FitReport, QuantityFit};
@@ -245,7 +245,18 @@ fn with_lattice(mut r: FitReport) -> FitReport {
 
 #[test]
 fn formula_py_reproduces_the_rust_evaluation() {
-    let r = with_lattice(report());
+    let mut r = with_lattice(report());
+    // A point correction that fades beyond its cases (src/fit/support.rs; the fits give one to
+    // lattice corrections, and point-257's are nested): the support of M in [10, 1000] at the
+    // data's D, so that formula.py's `_fade` is checked on the taper and beyond it.
+    let pm = &mut r.point.h_pm.as_mut().expect("point H_pm fitted").model;
+    let blend = pm.blend.clone();
+    let a_of = |m: f64, d: f64| Coordinates::new(blend.asymptotes(m, 0.0, d), d).a;
+    pm.correction.support = Support::of(
+        [0.1f64, 0.25, 0.5, 1.0]
+            .iter()
+            .flat_map(|&d| [10.0, 1000.0].map(|m| (d.ln(), a_of(m, d)))),
+    );
     let dir = std::env::temp_dir().join(format!("ehlmap-formula-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("formula.py"), formula_py(&r)).unwrap();
@@ -262,21 +273,17 @@ fn formula_py_reproduces_the_rust_evaluation() {
     }
     let fs = films(&r);
     assert_eq!(fs.len(), 6, "every film of both contacts fitted");
-    // The point corrections fade beyond their cases (src/fit/support.rs), and some cases lie
-    // on the taper, so that formula.py's `_fade` is checked where it is neither 0 nor 1.
     let pm = &r.point.h_pm.as_ref().expect("point H_pm fitted").model;
-    let support = pm
-        .correction
-        .support
-        .as_ref()
-        .expect("a point correction's support");
+    let support = pm.correction.support.as_ref().expect("the support set");
     let on_taper = cases.iter().filter(|&&(m, l, d)| {
         let z = Coordinates::new(pm.blend.asymptotes(m, l, d), d);
         let f = support.fade(z.a, z.ln_d);
         f > 0.0 && f < 1.0
     });
     assert!(on_taper.count() >= 3);
-    // A width beyond the largest a of the cases at each D, the formula is its blend.
+    // A width beyond the largest a of the cases at each D, the correction is 0: the formula is
+    // its blend (times its kriging residual).
+    assert!(!pm.correction.terms.is_empty());
     for d in [0.1f64, 0.5, 1.0] {
         let (_, hi) = support.range(d.ln());
         let beyond = (0..80)
@@ -284,7 +291,6 @@ fn formula_py_reproduces_the_rust_evaluation() {
             .map(|m| pm.blend.asymptotes(m, 0.0, d))
             .find(|a| Coordinates::new(*a, d).a >= hi + FADE_WIDTH)
             .expect("M up to 1e8 passes the data's a");
-        assert!(pm.correction.terms.len() > 10);
         assert_eq!(pm.correction.log_factor(beyond, d), 0.0);
     }
     let mut input = String::new();

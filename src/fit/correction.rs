@@ -301,8 +301,8 @@ pub struct Correction {
     /// Their coefficients c_k.
     pub coef: Vec<f64>,
     /// Where the fitted cases are: the sum is tapered to 0 beyond their range of a at each D
-    /// ([`Support::fade`]; the point fits). None: applied everywhere (line fits, and stored
-    /// models before it).
+    /// ([`Support::fade`]; the point lattice corrections). None: applied everywhere (nested and
+    /// line corrections, and stored models before it).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub support: Option<Support>,
 }

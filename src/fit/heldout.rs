@@ -42,7 +42,7 @@ pub struct Basis {
     /// The ridge weight.
     pub ridge: f64,
     /// Whether the fitted correction fades beyond its cases' range of a at each D
-    /// ([`crate::fit::support`]; the point fits).
+    /// ([`crate::fit::support`]; the point lattice candidates).
     pub fade: bool,
 }
 

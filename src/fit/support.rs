@@ -1,4 +1,4 @@
-//! Where a point correction's data are: the range of a = ln(H_EI/H_RI) that the fitted cases
+//! Where a point lattice correction's data are: the range of a = ln(H_EI/H_RI) that the fitted cases
 //! span at each D, and the taper that takes the correction to 0 beyond it.
 //!
 //! Equation: with the distinct ln D of the cases as nodes and, at each, the smallest and largest

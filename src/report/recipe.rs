@@ -204,14 +204,17 @@ pub const POINT_LN_D_POWERS: u8 = 2;
 
 /// The point candidates: the nested terms, then the level-0 lattice with each term also times
 /// powers of ln D up to [`POINT_LN_D_POWERS`] ([`crate::fit::heldout::lattice`]) with each of
-/// [`POINT_RIDGES`]; each fades beyond its cases' range of a at each D
-/// ([`crate::fit::support`]).
+/// [`POINT_RIDGES`]; the lattice fades beyond its cases' range of a at each D
+/// ([`crate::fit::support`]: its bumps are local, and those past the data are set by their
+/// tails), the nested terms (global functions of the transitions, each set by all the cases) do
+/// not.
 fn point_bases(z: &[Coordinates]) -> Vec<Basis> {
     let mut out = nested(&point_terms());
-    out.extend(lattice(z, 0, &POINT_RIDGES, POINT_LN_D_POWERS));
-    for b in &mut out {
+    let mut grid = lattice(z, 0, &POINT_RIDGES, POINT_LN_D_POWERS);
+    for b in &mut grid {
         b.fade = true;
     }
+    out.extend(grid);
     out
 }
 
