@@ -302,6 +302,13 @@ fn files() -> Vec<(&'static str, String)> {
         ),
         ("empty-dataset/.keep", String::new()),
         ("a-file", "a regular file".to_string()),
+        (
+            "anchors-elsewhere.json",
+            r#"{"factor": 3.1622776601683795, "grids": [513, 1025, 2049], "anchors": [
+                {"m": 3162.2776601683795, "d": 0.5, "h_c": 0.9, "h_c_error_bar": 0.001,
+                 "h_pm": 0.9, "h_pm_error_bar": 0.001, "wall_s": 1.0}]}"#
+                .to_string(),
+        ),
     ]
 }
 
@@ -634,6 +641,19 @@ fn table() -> Vec<Bad> {
         input(
             "no solved point cases",
             "fit {data}/smoke-line --no-limit-solves --jump-solves {dir}/j.json --out {dir}/r",
+        ),
+        input(
+            "--anchors",
+            "fit {data}/point-257 --no-limit-solves --anchors {dir}/a-file --out {dir}/r",
+        ),
+        input(
+            "not those of these data",
+            "fit {data}/point-257 --no-limit-solves --anchors {dir}/anchors-elsewhere.json \
+             --out {dir}/r",
+        ),
+        input(
+            "no point case at L = 0, M >= 100",
+            "fit {data}/smoke-line --no-limit-solves --anchor-solves {dir}/a.json --out {dir}/r",
         ),
         input(
             "--out",

@@ -356,10 +356,10 @@ fn formula_py_reproduces_the_rust_evaluation() {
     assert!(matches!(pm, Blend::Point(p) if p.ei_exact), "{pm:?}");
     // The point H_c holds the law too, with its approach factor (fitted to the data's H_c cases
     // at L = 0 and M >= 100; the H_pm cases there, where H_pm is resolved, are no more than its
-    // 6 coefficients, and H_pm keeps g = 1).
+    // 6 coefficients of two powers, and H_pm keeps g = 1; the third power needs anchors).
     let c = &r.point.h_c.as_ref().expect("point H_c fitted").model.blend;
     assert!(
-        matches!(c, Blend::Point(p) if p.ei_exact && p.x[16..].iter().all(|c| *c != 0.0)),
+        matches!(c, Blend::Point(p) if p.ei_exact && p.x[16..22].iter().all(|c| *c != 0.0)),
         "{c:?}"
     );
     std::fs::remove_dir_all(&dir).ok();

@@ -45,7 +45,11 @@ fn point_films_beyond_the_data_approach_the_limit_and_the_fitted_h_pm_formula() 
         panic!("a point blend")
     };
     assert!(b.ei_exact, "H_EI held at the law");
-    assert!(b.x[16..].iter().all(|c| *c != 0.0), "an approach factor");
+    assert!(b.x[16..22].iter().all(|c| *c != 0.0), "an approach factor");
+    assert!(
+        b.x[22..].iter().all(|c| *c == 0.0),
+        "its third power only with anchors"
+    );
     // g -> 1: far beyond the data the formula is the law (the correction and the kriging vanish
     // there too).
     for d in [0.1, 0.25, 1.0] {

@@ -3,6 +3,7 @@
 //! too few cases is reported as skipped; exit 2 only when nothing could be fitted (or a dataset
 //! cannot be read: the datasets are the input), exit 1 when the report cannot be written.
 
+use crate::cli::anchor_arg::{anchors, AnchorArg};
 use crate::cli::error::{input, io, CliError};
 use crate::cli::output::{beside_dataset, note, outln, prepare_dir};
 use ehlmap::fit::dataset::load_fit_input;
@@ -52,6 +53,16 @@ pub struct FitArgs {
     /// it to FILE and use it as --jump does.
     #[arg(long, value_name = "FILE")]
     pub jump_solves: Option<PathBuf>,
+    /// Read the point approach factor's anchors (a file written by --anchor-solves for the same
+    /// data): the approach factor of the point elastic-isoviscous law is then fitted to them
+    /// too, with a third power of M (docs/method.md, "The approach factor").
+    #[arg(long, value_name = "FILE", conflicts_with = "anchor_solves")]
+    pub anchors: Option<PathBuf>,
+    /// Solve the point approach factor's anchors: the L = 0 case at sqrt(10) times the largest
+    /// M of the data's L = 0 cases at each D, on 513^2, 1025^2 and 2049^2, extrapolated to zero
+    /// spacing (1-30 s per D, about 1 GB); write them to FILE and use them as --anchors does.
+    #[arg(long, value_name = "FILE")]
+    pub anchor_solves: Option<PathBuf>,
     /// Hold the point H_c elastic-isoviscous law at its limit as the H_pm fit always does: the
     /// line's carried over by the local inlet analysis (2.3422 f_EI(D) M^(-2/15), f_EI exact)
     /// times an approach factor fitted first to the data's L = 0, M >= 100 cases that tends to
@@ -82,6 +93,8 @@ pub struct FitOptions {
     pub jump: Option<JumpArg>,
     /// Hold the point H_c EI law at its limit too (`--point-ei-limit`).
     pub point_ei_limit: bool,
+    /// Where the point approach factor's anchors come from (`--anchors`, `--anchor-solves`).
+    pub anchors: Option<AnchorArg>,
 }
 
 /// Run `ehlmap fit`.
@@ -96,6 +109,11 @@ pub fn run_fit(a: &FitArgs) -> Result<(), CliError> {
         no_limit_solves: a.no_limit_solves,
         jump,
         point_ei_limit: a.point_ei_limit,
+        anchors: match (&a.anchors, &a.anchor_solves) {
+            (Some(f), _) => Some(AnchorArg::Read(f.clone())),
+            (None, Some(f)) => Some(AnchorArg::Solve(f.clone())),
+            (None, None) => None,
+        },
     };
     fit_datasets(&a.datasets, &a.check, a.out.clone(), &opts)
 }
@@ -204,6 +222,9 @@ pub fn fit_datasets(
         Some(JumpArg::Solve(_)) => jump_cases(datasets)?,
         None => vec![],
     };
+    if let Some(a @ AnchorArg::Read(_)) = &opts.anchors {
+        data.anchors = anchors(a, &data.point)?;
+    }
     // The report's directory before the fit (its limit solves can take minutes).
     prepare_dir("--out", &out)?;
     let cases = data.line.len() + data.point.len();
@@ -223,6 +244,9 @@ pub fn fit_datasets(
     }
     if let Some(j @ JumpArg::Solve(_)) = jump {
         data.jump = Some(jump_table(j, &solve_for)?);
+    }
+    if let Some(a @ AnchorArg::Solve(_)) = &opts.anchors {
+        data.anchors = anchors(a, &data.point)?;
     }
     let report = fit_report(&data, limit_solves).map_err(|e| input(e.to_string()))?;
     let text = serde_json::to_string_pretty(&report).expect("report serialises");

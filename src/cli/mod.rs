@@ -6,6 +6,7 @@
 //! closes it early stops the command quietly (exit code 0), never a panic. This is the only
 //! module that parses arguments, prints or chooses exit codes.
 
+pub mod anchor_arg;
 pub mod bench;
 pub mod case;
 pub mod chart;

@@ -18,7 +18,7 @@
 //! ([`crate::limits::point_ei`]).
 
 use crate::fit::lsq::Sample;
-use crate::fit::point_model::{PointModel, APPROACH_POWERS};
+use crate::fit::point_model::{approach_term, PointModel, APPROACH_POWERS};
 use nalgebra::{DMatrix, DVector};
 
 /// The smallest M of the cases that set the approach factor.
@@ -29,7 +29,8 @@ pub const APPROACH_MIN_M: f64 = 100.0;
 pub struct ApproachFit {
     /// The model with the approach coefficients set.
     pub model: PointModel,
-    /// The cases that set them (L = 0, M >= [`APPROACH_MIN_M`], an invertible blend).
+    /// The cases that set them (L = 0, M >= [`APPROACH_MIN_M`], an invertible blend), anchors
+    /// included.
     pub cases: usize,
     /// RMS of ln(H_EI of the case / H_EI of the law with g); 0 when no coefficient was fitted.
     pub rms_log: f64,
@@ -42,8 +43,8 @@ fn distinct(mut v: Vec<f64>) -> usize {
     v.len()
 }
 
-/// The approach factor of `model` fitted to `data` (module doc).
-pub fn fit_approach(model: &PointModel, data: &[Sample]) -> ApproachFit {
+/// The approach factor of `model` fitted to `data` and the `anchors` (module doc).
+pub fn fit_approach(model: &PointModel, data: &[Sample], anchors: &[Sample]) -> ApproachFit {
     let mut base = model.clone();
     for k in PointModel::APPROACH {
         base.x[k] = 0.0;
@@ -53,6 +54,7 @@ pub fn fit_approach(model: &PointModel, data: &[Sample]) -> ApproachFit {
     let rows: Vec<(f64, f64, f64)> = data
         .iter()
         .filter(|s| s.l == 0.0 && s.m >= APPROACH_MIN_M)
+        .chain(anchors.iter().filter(|s| s.l == 0.0))
         .filter_map(|s| {
             let [h_ri, e, _, _] = base.asymptotes(s.m, 0.0, s.d);
             let h_00 = base.x[14].exp() / s.d;
@@ -65,6 +67,7 @@ pub fn fit_approach(model: &PointModel, data: &[Sample]) -> ApproachFit {
     let terms: Vec<usize> = PointModel::APPROACH
         .iter()
         .copied()
+        .filter(|k| (k - PointModel::APPROACH[0]) / 3 < 2 || !anchors.is_empty())
         .filter(|k| match (k - PointModel::APPROACH[0]) % 3 {
             0 => true,
             1 => n_d >= 2,
@@ -82,7 +85,7 @@ pub fn fit_approach(model: &PointModel, data: &[Sample]) -> ApproachFit {
     let basis = |k: usize, m: f64, ln_d: f64| {
         let j = (k - PointModel::APPROACH[0]) / 3;
         let n = (k - PointModel::APPROACH[0]) % 3;
-        ln_d.powi(n as i32) * (1.0 + m).powf(-APPROACH_POWERS[j])
+        ln_d.powi(n as i32) * approach_term(m, APPROACH_POWERS[j])
     };
     let a = DMatrix::from_fn(rows.len(), terms.len(), |i, c| {
         basis(terms[c], rows[i].0, rows[i].1)
@@ -108,27 +111,29 @@ mod tests {
     use super::*;
 
     /// Films made by a model with a known approach factor are fitted back exactly: the
-    /// inversion of the L = 0 blend and the linear least squares are consistent.
+    /// inversion of the L = 0 blend and the linear least squares are consistent; the third power
+    /// only with anchors.
     #[test]
     fn a_known_approach_factor_is_recovered() {
         let mut truth = PointModel::nvm();
         truth.ei_exact = true;
-        let c = [0.3, -0.4, -0.05, -0.6, 0.25, 0.04];
+        let c = [0.3, -0.4, -0.05, -0.6, 0.25, 0.04, 0.0, 0.0, 0.0];
         truth.x[16..].copy_from_slice(&c);
+        let sample = |truth: &PointModel, m: f64, l: f64, d: f64| Sample {
+            m,
+            l,
+            d,
+            h: truth.eval(m, l, d),
+        };
         let mut data = vec![];
         for m in [50.0, 139.0, 373.0, 1000.0, 3162.0] {
             for d in [0.01, 0.1, 0.5, 1.0] {
                 for l in [0.0, 5.0] {
-                    data.push(Sample {
-                        m,
-                        l,
-                        d,
-                        h: truth.eval(m, l, d),
-                    });
+                    data.push(sample(&truth, m, l, d));
                 }
             }
         }
-        let f = fit_approach(&truth, &data);
+        let f = fit_approach(&truth, &data, &[]);
         assert_eq!(f.cases, 16, "L = 0 and M >= 100 only");
         for (k, want) in c.iter().enumerate() {
             assert!(
@@ -138,14 +143,34 @@ mod tests {
             );
         }
         assert!(f.rms_log < 1e-10);
+        // With the third power, anchors beyond the data pin it.
+        let mut three = truth.clone();
+        three.x[22..].copy_from_slice(&[0.5, 0.1, -0.02]);
+        let data3: Vec<Sample> = data.iter().map(|s| sample(&three, s.m, s.l, s.d)).collect();
+        let anchors: Vec<Sample> = [0.01, 0.1, 0.5, 1.0]
+            .iter()
+            .flat_map(|&d| [1e4, 3e4].map(|m| sample(&three, m, 0.0, d)))
+            .collect();
+        let f3 = fit_approach(&three, &data3, &anchors);
+        assert_eq!(f3.cases, 24);
+        for k in 16..25 {
+            assert!(
+                (f3.model.x[k] - three.x[k]).abs() < 1e-6,
+                "{k}: {:?}",
+                f3.model.x
+            );
+        }
+        let without = fit_approach(&three, &data3, &[]);
+        assert!(without.model.x[22..].iter().all(|v| *v == 0.0));
+        assert!(without.rms_log > 1e-6);
         // One D: only the constant terms; one M: none.
         let one_d: Vec<Sample> = data.iter().copied().filter(|s| s.d == 0.5).collect();
-        let g = fit_approach(&truth, &one_d);
+        let g = fit_approach(&truth, &one_d, &[]);
         assert_eq!(g.model.x[17], 0.0);
         assert_eq!(g.model.x[18], 0.0);
         assert!(g.model.x[16] != 0.0 && g.model.x[19] != 0.0);
         let one_m: Vec<Sample> = data.iter().copied().filter(|s| s.m == 373.0).collect();
-        let h = fit_approach(&truth, &one_m);
+        let h = fit_approach(&truth, &one_m, &[]);
         assert!(h.model.x[16..].iter().all(|v| *v == 0.0));
     }
 }

@@ -32,6 +32,7 @@
 
 use crate::discrete::point::domain::{PointDomain, PointDomainParams};
 use crate::fit::error::FitError;
+use crate::limits::anchors::Anchor;
 use crate::limits::jump::JumpTable;
 #[cfg(doc)]
 use crate::model::case::Models;
@@ -128,7 +129,7 @@ impl FitPoint {
     }
 
     /// D, or 1 for a line contact.
-    pub(crate) fn dd(&self) -> f64 {
+    pub fn dd(&self) -> f64 {
         self.d.unwrap_or(1.0)
     }
 }
@@ -170,6 +171,10 @@ pub struct FitInput {
     /// --jump`): the point H_c kriging then also offers the corner coordinate. None: not given.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub jump: Option<JumpTable>,
+    /// The point approach factor's anchors, from solves ([`crate::limits::anchors`], `ehlmap fit
+    /// --anchors`): the approach factor is fitted to them too. Empty: not given.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub anchors: Vec<Anchor>,
     /// Whether the point H_c elastic-isoviscous law is held at its limit as H_pm's always is:
     /// the line's carried over by the local inlet analysis ([`crate::limits::point_ei`]) times
     /// the approach factor fitted first ([`crate::fit::approach`]; `ehlmap fit

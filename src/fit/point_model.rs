@@ -7,7 +7,8 @@
 //! H_RI = c_RI  f_RI(D) D^e_RI M^-2,            f_RI = [(1 + a D^p)/(1 + a)]^q / D
 //! H_EI = a M^alpha f_EI(D) D^e_EI g(M, D),     f_EI = [c(D)/c(1)]^(-14/25) D^(-1/15) (NVM)
 //!                                              or k^(2/15) [4 E(m)/(pi (1 + D))]^(2/3) (exact)
-//! g = exp(sum_j (c_j0 + c_j1 ln D + c_j2 (ln D)^2) (1 + M)^(-p_j)),  p = 4/15, 8/15,
+//! g = exp(sum_j (c_j0 + c_j1 ln D + c_j2 (ln D)^2) (1 + M_g)^(-p_j)),  p = 4/15, 8/15, 12/15,
+//! M_g = (M^2 + M_0^2)^(1/2), M_0 = 100,
 //! H_RP = b L^beta  f_RP(D) D^e_RP,             f_RP = [(1 + 0.691 D)/1.691]^(-2/3) (NVM)
 //!                                              or f_RI(D) D psi(D) (the solver's)
 //! H_EP = d M^gamma L^delta f_EP(D) D^e_EP,     f_EP = [c(D)/c(1)]^(-7/20) D^(-1/24)
@@ -17,8 +18,10 @@
 //!
 //! at L = 0 the piezoviscous bracket is dropped. The approach factor g (1 in NVM's form, all c_jk =
 //! 0) is the slow approach of the solver's films to the exact EI limit, which vanishes as M ->
-//! infinity (corrections of order (l/b)^(1/2) ~ M^(-4/15) and its square, l the inlet length;
-//! [`crate::limits::point_ei`]); it is fitted only where H_EI is held at that limit. Parameters:
+//! infinity (corrections of order (l/b)^(1/2) ~ M^(-4/15), its square and cube, l the inlet
+//! length; [`crate::limits::point_ei`]); it is fitted only where H_EI is held at that limit, to
+//! cases at M >= M_0 (and limit solves beyond the data, [`crate::limits::anchors`]), so M_g holds
+//! it near its value at M_0 below M_0, where no case sets it. Parameters:
 //! the vector of [`POINT_PARAM_NAMES`] (constants as logarithms), the three constants (a, p, q) of
 //! f_RI and, when the RP law is the solver's, the three of psi(D) = [(1 + a D^p)/(1 + a)]^q
 //! ([`crate::limits::rigid_rp`]); none of them fitted. [`PointModel::nvm`] (all e_i = 0, NVM's
@@ -49,22 +52,33 @@ use serde::{Deserialize, Serialize};
 pub const POINT_PARAM_NAMES: [&str; POINT_PARAMS] = [
     "ln_c_RI", "e_RI", "ln_a_EI", "alpha_EI", "e_EI", "ln_b_RP", "beta_RP", "e_RP", "ln_d_EP",
     "gamma_EP", "delta_EP", "e_EP", "s0", "s1", "ln_c_00", "r", "g1", "g1_lnD", "g1_lnD2", "g2",
-    "g2_lnD", "g2_lnD2",
+    "g2_lnD", "g2_lnD2", "g3", "g3_lnD", "g3_lnD2",
 ];
 
-/// The number of point parameters: the NVM form's 16, then the 6 of the approach factor g.
-pub const POINT_PARAMS: usize = 22;
+/// The number of point parameters: the NVM form's 16, then the 9 of the approach factor g.
+pub const POINT_PARAMS: usize = 25;
 
-/// The powers p_j of the approach factor's terms (1 + M)^(-p_j) (module doc): 4/15 and 8/15, the
-/// first two powers of (l/b)^(1/2) ~ H^(1/3) in Hertzian units (l the inlet length, b the
-/// semi-axis along rolling; [`crate::limits::point_ei`]).
-pub const APPROACH_POWERS: [f64; 2] = [4.0 / 15.0, 8.0 / 15.0];
+/// The powers p_j of the approach factor's terms (1 + M_g)^(-p_j) (module doc): 4/15, 8/15 and
+/// 12/15, the first three powers of (l/b)^(1/2) ~ H^(1/3) in Hertzian units (l the inlet length,
+/// b the semi-axis along rolling; [`crate::limits::point_ei`]).
+pub const APPROACH_POWERS: [f64; 3] = [4.0 / 15.0, 8.0 / 15.0, 12.0 / 15.0];
+
+/// M_0 of the approach factor's M_g = (M^2 + M_0^2)^(1/2) (module doc): the smallest M of the
+/// cases that set it ([`crate::fit::approach`]), so that g is held near its value there below
+/// it, where no case fits it.
+pub const APPROACH_M0: f64 = 100.0;
+
+/// The approach factor's term (1 + M_g)^(-p), M_g = (M^2 + M_0^2)^(1/2) (module doc).
+pub fn approach_term(m: f64, p: f64) -> f64 {
+    (1.0 + m.hypot(APPROACH_M0)).powf(-p)
+}
 
 /// A point-contact film model: the parameters of [`POINT_PARAM_NAMES`] (module doc).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PointModel {
     /// The parameters of [`POINT_PARAM_NAMES`], in that order (constants c_RI, a, b, d, c_00 as
-    /// logarithms). Stored models of the NVM form's 16 read back with g = 1 (its 6 zero).
+    /// logarithms). Stored models of the NVM form's 16 read back with g = 1 (its 9 zero); those
+    /// of 22 (an approach factor in 1 + M, two powers) are refused: refit them.
     #[serde(deserialize_with = "point_params")]
     pub x: [f64; POINT_PARAMS],
     /// The constants (a, p, q) of f_RI (not fitted; NVM's when absent from a stored model).
@@ -90,7 +104,7 @@ fn point_params<'de, De: serde::Deserializer<'de>>(
     if v.len() != 16 && v.len() != POINT_PARAMS {
         return Err(serde::de::Error::invalid_length(
             v.len(),
-            &"16 or 22 point parameters",
+            &"16 or 25 point parameters (a model of 22 has an older approach factor: refit it)",
         ));
     }
     let mut x = [0.0; POINT_PARAMS];
@@ -162,6 +176,9 @@ impl PointModel {
                 0.0,
                 0.0,
                 0.0,
+                0.0,
+                0.0,
+                0.0,
             ],
             ri_shape: nvm_ri_shape(),
             rp_shape: None,
@@ -171,10 +188,10 @@ impl PointModel {
 
     /// Indices of the approach factor's coefficients (c_j0, c_j1, c_j2 for each of
     /// [`APPROACH_POWERS`]; 0 in NVM's form).
-    pub const APPROACH: [usize; 6] = [16, 17, 18, 19, 20, 21];
+    pub const APPROACH: [usize; 9] = [16, 17, 18, 19, 20, 21, 22, 23, 24];
 
-    /// The approach factor g(M, D) = exp(sum_j (c_j0 + c_j1 ln D + c_j2 (ln D)^2) (1 + M)^(-p_j))
-    /// of H_EI (module doc): 1 as M -> infinity, bounded as M -> 0.
+    /// The approach factor g(M, D) = exp(sum_j (c_j0 + c_j1 ln D + c_j2 (ln D)^2) (1 + M_g)^(-p_j))
+    /// of H_EI (module doc, [`approach_term`]): 1 as M -> infinity, bounded as M -> 0.
     pub fn approach(&self, m: f64, d: f64) -> f64 {
         let ln_d = d.ln();
         let c = &self.x[Self::APPROACH[0]..];
@@ -182,7 +199,7 @@ impl PointModel {
             .iter()
             .enumerate()
             .map(|(j, p)| {
-                (c[3 * j] + ln_d * (c[3 * j + 1] + ln_d * c[3 * j + 2])) * (1.0 + m).powf(-p)
+                (c[3 * j] + ln_d * (c[3 * j + 1] + ln_d * c[3 * j + 2])) * approach_term(m, *p)
             })
             .sum();
         sum.exp()
@@ -288,14 +305,24 @@ mod tests {
     #[test]
     fn the_approach_factor_tends_to_one_and_old_models_read_back() {
         let mut p = PointModel::nvm();
-        let c = [0.4, -0.1, 0.02, -0.7, 0.05, -0.01];
+        let c = [0.4, -0.1, 0.02, -0.7, 0.05, -0.01, 0.3, 0.02, -0.03];
         p.x[16..].copy_from_slice(&c);
         let (m, d) = (300.0f64, 0.2f64);
         let ln_d = d.ln();
-        let want = ((c[0] + c[1] * ln_d + c[2] * ln_d * ln_d) * (1.0 + m).powf(-4.0 / 15.0)
-            + (c[3] + c[4] * ln_d + c[5] * ln_d * ln_d) * (1.0 + m).powf(-8.0 / 15.0))
+        let mg = (m * m + 100.0 * 100.0).sqrt();
+        let want = ((c[0] + c[1] * ln_d + c[2] * ln_d * ln_d) * (1.0 + mg).powf(-4.0 / 15.0)
+            + (c[3] + c[4] * ln_d + c[5] * ln_d * ln_d) * (1.0 + mg).powf(-8.0 / 15.0)
+            + (c[6] + c[7] * ln_d + c[8] * ln_d * ln_d) * (1.0 + mg).powf(-12.0 / 15.0))
         .exp();
         assert!((p.approach(m, d) / want - 1.0).abs() < 1e-14);
+        // Below M_0 = 100 g is flat: M_g = M_0 (1 + (M/M_0)^2 / 2 + ...).
+        let at = |m: f64| p.approach(m, d).ln();
+        assert!(
+            (at(1.0) - at(0.0)).abs() < 1e-5 * at(0.0).abs(),
+            "{}",
+            at(0.0)
+        );
+        assert!((at(100.0) - at(0.0)).abs() > 1e-2 * at(0.0).abs());
         let nvm = PointModel::nvm();
         let ratio = p.asymptotes(m, 0.0, d)[1] / nvm.asymptotes(m, 0.0, d)[1];
         assert!((ratio / want - 1.0).abs() < 1e-14);
@@ -310,7 +337,9 @@ mod tests {
         stored["x"] = serde_json::json!(nvm.x[..16].to_vec());
         let back: PointModel = serde_json::from_value(stored.clone()).unwrap();
         assert_eq!(back, nvm);
-        stored["x"] = serde_json::json!(nvm.x[..15].to_vec());
-        assert!(serde_json::from_value::<PointModel>(stored).is_err());
+        for n in [15, 22] {
+            stored["x"] = serde_json::json!(nvm.x[..n].to_vec());
+            assert!(serde_json::from_value::<PointModel>(stored.clone()).is_err());
+        }
     }
 }

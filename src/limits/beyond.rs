@@ -80,7 +80,11 @@ pub struct BeyondSolves {
 impl BeyondSolves {
     /// Solve at [`BEYOND_FACTOR`] `m_ei`, L = 0, `d` on every grid.
     pub fn run(m_ei: f64, d: f64) -> Self {
-        let m = BEYOND_FACTOR * m_ei;
+        Self::at(BEYOND_FACTOR * m_ei, d)
+    }
+
+    /// Solve at (m, 0, d) on every grid of [`BEYOND_GRIDS`].
+    pub fn at(m: f64, d: f64) -> Self {
         let solves = BEYOND_GRIDS
             .iter()
             .map(|&g| {

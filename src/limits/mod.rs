@@ -1,7 +1,9 @@
 //! The asymptote limit solves: the solver's own rigid, isoviscous and piezoviscous limits that
 //! the fitted laws are checked against; the point elastic-isoviscous solve a decade of M beyond
-//! the data ([`beyond`]); and the solves that place the point H_c corner ([`jump`]).
+//! the data ([`beyond`]); the anchors of the point approach factor half a decade beyond it
+//! ([`anchors`]); and the solves that place the point H_c corner ([`jump`]).
 
+pub mod anchors;
 pub mod beyond;
 pub mod jump;
 pub mod line_ep;

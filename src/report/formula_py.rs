@@ -132,10 +132,11 @@ def _ei_d_factor(D):
 
 def _approach(x, M, D):
     ln_d = math.log(D)
+    m_g = math.hypot(M, 100.0)
     total = 0.0
-    for j, p in enumerate((4.0 / 15.0, 8.0 / 15.0)):
+    for j, p in enumerate((4.0 / 15.0, 8.0 / 15.0, 12.0 / 15.0)):
         c = x[16 + 3 * j : 19 + 3 * j]
-        total += (c[0] + ln_d * (c[1] + ln_d * c[2])) * _pow(1.0 + M, -p)
+        total += (c[0] + ln_d * (c[1] + ln_d * c[2])) * _pow(1.0 + m_g, -p)
     return _exp(total)
 
 

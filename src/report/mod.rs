@@ -42,6 +42,7 @@ use crate::fit::lsq::{fit, LsqFit, Sample};
 use crate::fit::model::FilmModel;
 use crate::fit::side::{SideChoice, SideLobe};
 use crate::fit::stats::{d_table, err_stats, region_table, target_range, ErrStats, RegionStats};
+use crate::limits::anchors::Anchor;
 use crate::limits::jump::JumpTable;
 use crate::model::formulas::{
     dowson_toyoda_line_hc_moes, hamrock_dowson_hc_moes, moes_line_hc, nvm_point_hc,
@@ -169,8 +170,9 @@ fn staged<Mo: FilmModel>(
     start: &Mo,
     r: &Recipe<Mo>,
 ) -> Result<LsqFit<Mo>, FitError> {
-    let f = stages(data, &(r.pre)(start, data), r)?;
-    let again = (r.pre)(&f.model, data);
+    let anchors: Vec<Sample> = r.anchors.iter().map(|a| a.1).collect();
+    let f = stages(data, &(r.pre)(start, data, &anchors), r)?;
+    let again = (r.pre)(&f.model, data, &anchors);
     if again.x() == f.model.x() {
         return Ok(f);
     }
@@ -340,7 +342,10 @@ fn corrected<Mo: FilmModel>(
         .iter()
         .map(|s| Coordinates::new(f.model.asymptotes(s.m, s.l, s.d), s.d))
         .collect();
-    let bases = (r.bases)(&z);
+    let mut bases = (r.bases)(&z);
+    for b in &mut bases {
+        b.fade &= r.fades;
+    }
     let fit_blend = |train: &[Sample]| staged(train, start, r).ok().map(|f| f.model);
     let free = if data.len() >= FULL_FIT_MIN_POINTS {
         &r.stage2
@@ -484,6 +489,7 @@ fn point_report(
     failed: usize,
     limit_solves: bool,
     jump: Option<&JumpTable>,
+    anchors: &[Anchor],
     ei_limit: bool,
 ) -> Result<ContactReport, FitError> {
     let mut recipe = point_recipe(pts);
@@ -491,6 +497,7 @@ fn point_report(
         recipe = with_point_ei_limit(recipe);
     }
     recipe.jump = jump.cloned();
+    recipe.anchors = anchor_samples(anchors);
     let need = (recipe.stage1.len() + SPARE_CASES).max(MIN_CASES);
     if pts.len() < need {
         return Ok(skipped("point", pts.len(), failed, need));
@@ -523,6 +530,26 @@ fn point_report(
     Ok(report)
 }
 
+/// The anchors' films as L = 0 samples, by film (those within their error-bar bound:
+/// [`Anchor::film`]).
+fn anchor_samples(anchors: &[Anchor]) -> Vec<(Film, Sample)> {
+    let mut out = vec![];
+    for a in anchors {
+        for film in [Film::Centre, Film::PressureMax] {
+            if let Some(h) = a.film(film) {
+                let s = Sample {
+                    m: a.m,
+                    l: 0.0,
+                    d: a.d,
+                    h,
+                };
+                out.push((film, s));
+            }
+        }
+    }
+    out
+}
+
 /// Each fitted film's errors on the check cases that carry it ([`QuantityFit::check`]).
 fn add_checks(r: &mut ContactReport, checks: &[FitPoint]) {
     for (film, q) in [
@@ -552,6 +579,7 @@ pub fn fit_report(input: &FitInput, limit_solves: bool) -> Result<FitReport, Fit
         input.failed_point,
         limit_solves,
         input.jump.as_ref(),
+        &input.anchors,
         input.point_ei_limit,
     )?;
     line.families = input.line_families.clone();

@@ -136,10 +136,18 @@ pub(super) struct Recipe<Mo> {
     /// The parameters held at their start for a film, whatever the free sets say (the point
     /// H_pm elastic-isoviscous law: [`point_held`]).
     pub(super) held: fn(Film) -> &'static [usize],
-    /// What a fit on some samples starts from, given the start model (held parameters set from
-    /// the samples themselves, so each held-out fold sets them from its own training cases: the
-    /// point approach factor, [`point_pre`]; else the start, [`no_pre`]).
-    pub(super) pre: fn(&Mo, &[Sample]) -> Mo,
+    /// What a fit on some samples starts from, given the start model and the anchors (held
+    /// parameters set from the samples themselves, so each held-out fold sets them from its own
+    /// training cases: the point approach factor, [`point_pre`]; else the start, [`no_pre`]).
+    pub(super) pre: fn(&Mo, &[Sample], &[Sample]) -> Mo,
+    /// The solver's limit films beyond the data that [`Recipe::pre`] also fits to, by film
+    /// ([`crate::limits::anchors`]; the point approach factor); [`Recipe::for_film`] keeps the
+    /// film's own.
+    pub(super) anchors: Vec<(Film, Sample)>,
+    /// Whether the lattice corrections fade beyond their cases ([`crate::fit::support`]): the
+    /// point H_c and H_pm, whose laws are evaluated at the coordinates they are fitted at (not
+    /// H_min, the centre line's law times the side-lobe factor).
+    pub(super) fades: bool,
 }
 
 impl<Mo> Recipe<Mo> {
@@ -151,6 +159,13 @@ impl<Mo> Recipe<Mo> {
             stage1: keep(&self.stage1),
             stage2: keep(&self.stage2),
             jump: self.jump.clone(),
+            anchors: self
+                .anchors
+                .iter()
+                .copied()
+                .filter(|(f, _)| *f == film)
+                .collect(),
+            fades: self.fades && film != Film::Minimum,
             ..*self
         }
     }
@@ -288,15 +303,15 @@ pub(super) fn with_point_ei_limit(mut r: Recipe<PointModel>) -> Recipe<PointMode
 }
 
 /// No change to the start before a fit.
-fn no_pre<Mo: Clone>(start: &Mo, _: &[Sample]) -> Mo {
+fn no_pre<Mo: Clone>(start: &Mo, _: &[Sample], _: &[Sample]) -> Mo {
     start.clone()
 }
 
 /// Before a point fit whose H_EI is held at the exact limit (`ei_exact`): its approach factor
-/// from the data's elastic-isoviscous cases ([`fit_approach`]), then held.
-fn point_pre(start: &PointModel, data: &[Sample]) -> PointModel {
+/// from the data's elastic-isoviscous cases and the anchors ([`fit_approach`]), then held.
+fn point_pre(start: &PointModel, data: &[Sample], anchors: &[Sample]) -> PointModel {
     if start.ei_exact {
-        fit_approach(start, data).model
+        fit_approach(start, data, anchors).model
     } else {
         start.clone()
     }
@@ -319,6 +334,8 @@ pub(super) fn line_recipe() -> Recipe<LineModel> {
         jump: None,
         held: none_held,
         pre: no_pre,
+        anchors: vec![],
+        fades: false,
     }
 }
 
@@ -355,5 +372,7 @@ pub(super) fn point_recipe(pts: &[FitPoint]) -> Recipe<PointModel> {
         jump: None,
         held: point_held::<false>,
         pre: point_pre,
+        anchors: vec![],
+        fades: true,
     }
 }
