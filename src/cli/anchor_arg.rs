@@ -17,6 +17,18 @@ pub enum AnchorArg {
     Solve(PathBuf),
 }
 
+/// Refuses `--anchor-solves` for data without a case to anchor (checked before anything is
+/// written).
+pub fn solvable(pts: &[FitPoint]) -> Result<(), CliError> {
+    let data: Vec<(f64, f64, f64)> = pts.iter().map(|p| (p.m, p.l, p.dd())).collect();
+    if cases(&data, APPROACH_MIN_M).is_empty() {
+        return Err(input(format!(
+            "--anchor-solves: the data have no point case at L = 0, M >= {APPROACH_MIN_M}"
+        )));
+    }
+    Ok(())
+}
+
 /// The anchors of `arg` for the point cases `pts`: read (refused when the file's cases are not
 /// the data's: another dataset's anchors would pin g where these data stop elsewhere), or solved
 /// and written.
@@ -48,11 +60,7 @@ pub fn anchors(arg: &AnchorArg, pts: &[FitPoint]) -> Result<Vec<Anchor>, CliErro
             file
         }
         AnchorArg::Solve(path) => {
-            if want.is_empty() {
-                return Err(input(format!(
-                    "--anchor-solves: the data have no point case at L = 0, M >= {APPROACH_MIN_M}"
-                )));
-            }
+            solvable(pts)?;
             note!(
                 "--anchor-solves: {} elastic-isoviscous solves half a decade of M beyond the \
                  data (one per D) on 513^2, 1025^2 and 2049^2 (1-30 s each, about 1 GB)",

@@ -3,7 +3,7 @@
 //! too few cases is reported as skipped; exit 2 only when nothing could be fitted (or a dataset
 //! cannot be read: the datasets are the input), exit 1 when the report cannot be written.
 
-use crate::cli::anchor_arg::{anchors, AnchorArg};
+use crate::cli::anchor_arg::{anchors, solvable, AnchorArg};
 use crate::cli::error::{input, io, CliError};
 use crate::cli::output::{beside_dataset, note, outln, prepare_dir};
 use ehlmap::fit::dataset::load_fit_input;
@@ -222,8 +222,10 @@ pub fn fit_datasets(
         Some(JumpArg::Solve(_)) => jump_cases(datasets)?,
         None => vec![],
     };
-    if let Some(a @ AnchorArg::Read(_)) = &opts.anchors {
-        data.anchors = anchors(a, &data.point)?;
+    match &opts.anchors {
+        Some(a @ AnchorArg::Read(_)) => data.anchors = anchors(a, &data.point)?,
+        Some(AnchorArg::Solve(_)) => solvable(&data.point)?,
+        None => {}
     }
     // The report's directory before the fit (its limit solves can take minutes).
     prepare_dir("--out", &out)?;
