@@ -18,7 +18,7 @@
 //! ([`crate::limits::point_ei`]).
 
 use crate::fit::lsq::Sample;
-use crate::fit::point_model::{approach_term, PointModel, APPROACH_POWERS};
+use crate::fit::point_model::{approach_term, PointModel, APPROACH_M0, APPROACH_POWERS};
 use nalgebra::{DMatrix, DVector};
 
 /// The smallest M of the cases that set the approach factor.
@@ -49,6 +49,8 @@ pub fn fit_approach(model: &PointModel, data: &[Sample], anchors: &[Sample]) -> 
     for k in PointModel::APPROACH {
         base.x[k] = 0.0;
     }
+    base.approach_m0 = 0.0;
+    let m0 = if anchors.is_empty() { 0.0 } else { APPROACH_M0 };
     let r = base.x[15];
     // Each qualifying case's (M, ln D, ln(H_EI / E)).
     let rows: Vec<(f64, f64, f64)> = data
@@ -85,7 +87,7 @@ pub fn fit_approach(model: &PointModel, data: &[Sample], anchors: &[Sample]) -> 
     let basis = |k: usize, m: f64, ln_d: f64| {
         let j = (k - PointModel::APPROACH[0]) / 3;
         let n = (k - PointModel::APPROACH[0]) % 3;
-        ln_d.powi(n as i32) * approach_term(m, APPROACH_POWERS[j])
+        ln_d.powi(n as i32) * approach_term(m, m0, APPROACH_POWERS[j])
     };
     let a = DMatrix::from_fn(rows.len(), terms.len(), |i, c| {
         basis(terms[c], rows[i].0, rows[i].1)
@@ -95,6 +97,7 @@ pub fn fit_approach(model: &PointModel, data: &[Sample], anchors: &[Sample]) -> 
         return none;
     };
     let mut out = base;
+    out.approach_m0 = m0;
     for (t, v) in terms.iter().zip(c.iter()) {
         out.x[*t] = *v;
     }
@@ -135,6 +138,7 @@ mod tests {
         }
         let f = fit_approach(&truth, &data, &[]);
         assert_eq!(f.cases, 16, "L = 0 and M >= 100 only");
+        assert_eq!(f.model.approach_m0, 0.0, "M_g = M without anchors");
         for (k, want) in c.iter().enumerate() {
             assert!(
                 (f.model.x[16 + k] - want).abs() < 1e-8,
@@ -146,6 +150,7 @@ mod tests {
         // With the third power, anchors beyond the data pin it.
         let mut three = truth.clone();
         three.x[22..].copy_from_slice(&[0.5, 0.1, -0.02]);
+        three.approach_m0 = APPROACH_M0;
         let data3: Vec<Sample> = data.iter().map(|s| sample(&three, s.m, s.l, s.d)).collect();
         let anchors: Vec<Sample> = [0.01, 0.1, 0.5, 1.0]
             .iter()
@@ -153,6 +158,7 @@ mod tests {
             .collect();
         let f3 = fit_approach(&three, &data3, &anchors);
         assert_eq!(f3.cases, 24);
+        assert_eq!(f3.model.approach_m0, APPROACH_M0);
         for k in 16..25 {
             assert!(
                 (f3.model.x[k] - three.x[k]).abs() < 1e-6,

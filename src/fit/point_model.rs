@@ -8,7 +8,7 @@
 //! H_EI = a M^alpha f_EI(D) D^e_EI g(M, D),     f_EI = [c(D)/c(1)]^(-14/25) D^(-1/15) (NVM)
 //!                                              or k^(2/15) [4 E(m)/(pi (1 + D))]^(2/3) (exact)
 //! g = exp(sum_j (c_j0 + c_j1 ln D + c_j2 (ln D)^2) (1 + M_g)^(-p_j)),  p = 4/15, 8/15, 12/15,
-//! M_g = (M^2 + M_0^2)^(1/2), M_0 = 100,
+//! M_g = (M^2 + M_0^2)^(1/2), M_0 = 100 with anchors and 0 without,
 //! H_RP = b L^beta  f_RP(D) D^e_RP,             f_RP = [(1 + 0.691 D)/1.691]^(-2/3) (NVM)
 //!                                              or f_RI(D) D psi(D) (the solver's)
 //! H_EP = d M^gamma L^delta f_EP(D) D^e_EP,     f_EP = [c(D)/c(1)]^(-7/20) D^(-1/24)
@@ -20,8 +20,9 @@
 //! 0) is the slow approach of the solver's films to the exact EI limit, which vanishes as M ->
 //! infinity (corrections of order (l/b)^(1/2) ~ M^(-4/15), its square and cube, l the inlet
 //! length; [`crate::limits::point_ei`]); it is fitted only where H_EI is held at that limit, to
-//! cases at M >= M_0 (and limit solves beyond the data, [`crate::limits::anchors`]), so M_g holds
-//! it near its value at M_0 below M_0, where no case sets it. Parameters:
+//! cases at M >= 100 and, given anchors (limit solves beyond the data,
+//! [`crate::limits::anchors`]), to them with the third power, M_g then holding g near its value
+//! at M_0 below M_0, where no case sets it. Parameters:
 //! the vector of [`POINT_PARAM_NAMES`] (constants as logarithms), the three constants (a, p, q) of
 //! f_RI and, when the RP law is the solver's, the three of psi(D) = [(1 + a D^p)/(1 + a)]^q
 //! ([`crate::limits::rigid_rp`]); none of them fitted. [`PointModel::nvm`] (all e_i = 0, NVM's
@@ -63,22 +64,22 @@ pub const POINT_PARAMS: usize = 25;
 /// b the semi-axis along rolling; [`crate::limits::point_ei`]).
 pub const APPROACH_POWERS: [f64; 3] = [4.0 / 15.0, 8.0 / 15.0, 12.0 / 15.0];
 
-/// M_0 of the approach factor's M_g = (M^2 + M_0^2)^(1/2) (module doc): the smallest M of the
-/// cases that set it ([`crate::fit::approach`]), so that g is held near its value there below
-/// it, where no case fits it.
+/// M_0 of the approach factor's M_g = (M^2 + M_0^2)^(1/2) when it has anchors (module doc): the
+/// smallest M of the cases that set it ([`crate::fit::approach`]), so that g is held near its
+/// value there below it, where no case fits it.
 pub const APPROACH_M0: f64 = 100.0;
 
 /// The approach factor's term (1 + M_g)^(-p), M_g = (M^2 + M_0^2)^(1/2) (module doc).
-pub fn approach_term(m: f64, p: f64) -> f64 {
-    (1.0 + m.hypot(APPROACH_M0)).powf(-p)
+pub fn approach_term(m: f64, m0: f64, p: f64) -> f64 {
+    (1.0 + m.hypot(m0)).powf(-p)
 }
 
 /// A point-contact film model: the parameters of [`POINT_PARAM_NAMES`] (module doc).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct PointModel {
     /// The parameters of [`POINT_PARAM_NAMES`], in that order (constants c_RI, a, b, d, c_00 as
-    /// logarithms). Stored models of the NVM form's 16 read back with g = 1 (its 9 zero); those
-    /// of 22 (an approach factor in 1 + M, two powers) are refused: refit them.
+    /// logarithms). Stored models of the NVM form's 16 read back with g = 1 (its 9 zero), those of
+    /// 22 (two powers of g) with the third power's 3 zero.
     #[serde(deserialize_with = "point_params")]
     pub x: [f64; POINT_PARAMS],
     /// The constants (a, p, q) of f_RI (not fitted; NVM's when absent from a stored model).
@@ -93,18 +94,26 @@ pub struct PointModel {
     /// --point-ei-limit`) instead of NVM's (false in stored models before it).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub ei_exact: bool,
+    /// M_0 of the approach factor's M_g (module doc): [`APPROACH_M0`] when it was fitted with
+    /// anchors, else 0 (M_g = M; and in stored models before it).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub approach_m0: f64,
 }
 
-/// The parameter vector from a stored model: [`POINT_PARAMS`] values, or the NVM form's 16 (the
-/// approach factor's then 0).
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
+}
+
+/// The parameter vector from a stored model: [`POINT_PARAMS`] values, the NVM form's 16 (the
+/// approach factor's then 0) or the 22 of an approach factor with two powers (the third's 0).
 fn point_params<'de, De: serde::Deserializer<'de>>(
     de: De,
 ) -> Result<[f64; POINT_PARAMS], De::Error> {
     let v: Vec<f64> = Vec::deserialize(de)?;
-    if v.len() != 16 && v.len() != POINT_PARAMS {
+    if ![16, 22, POINT_PARAMS].contains(&v.len()) {
         return Err(serde::de::Error::invalid_length(
             v.len(),
-            &"16 or 25 point parameters (a model of 22 has an older approach factor: refit it)",
+            &"16, 22 or 25 point parameters",
         ));
     }
     let mut x = [0.0; POINT_PARAMS];
@@ -183,6 +192,7 @@ impl PointModel {
             ri_shape: nvm_ri_shape(),
             rp_shape: None,
             ei_exact: false,
+            approach_m0: 0.0,
         }
     }
 
@@ -199,7 +209,8 @@ impl PointModel {
             .iter()
             .enumerate()
             .map(|(j, p)| {
-                (c[3 * j] + ln_d * (c[3 * j + 1] + ln_d * c[3 * j + 2])) * approach_term(m, *p)
+                (c[3 * j] + ln_d * (c[3 * j + 1] + ln_d * c[3 * j + 2]))
+                    * approach_term(m, self.approach_m0, *p)
             })
             .sum();
         sum.exp()
@@ -307,6 +318,7 @@ mod tests {
         let mut p = PointModel::nvm();
         let c = [0.4, -0.1, 0.02, -0.7, 0.05, -0.01, 0.3, 0.02, -0.03];
         p.x[16..].copy_from_slice(&c);
+        p.approach_m0 = 100.0;
         let (m, d) = (300.0f64, 0.2f64);
         let ln_d = d.ln();
         let mg = (m * m + 100.0 * 100.0).sqrt();
@@ -337,9 +349,19 @@ mod tests {
         stored["x"] = serde_json::json!(nvm.x[..16].to_vec());
         let back: PointModel = serde_json::from_value(stored.clone()).unwrap();
         assert_eq!(back, nvm);
-        for n in [15, 22] {
-            stored["x"] = serde_json::json!(nvm.x[..n].to_vec());
-            assert!(serde_json::from_value::<PointModel>(stored.clone()).is_err());
-        }
+        // A model with two powers of g and M_g = M (before anchors) reads back as it was.
+        let mut two = nvm.clone();
+        two.x[16..22].copy_from_slice(&c[..6]);
+        let mut stored = serde_json::to_value(&two).unwrap();
+        assert!(stored.get("approach_m0").is_none());
+        stored["x"] = serde_json::json!(two.x[..22].to_vec());
+        let back: PointModel = serde_json::from_value(stored.clone()).unwrap();
+        assert_eq!(back, two);
+        let plain = ((c[0] + c[1] * ln_d + c[2] * ln_d * ln_d) * (1.0 + m).powf(-4.0 / 15.0)
+            + (c[3] + c[4] * ln_d + c[5] * ln_d * ln_d) * (1.0 + m).powf(-8.0 / 15.0))
+        .exp();
+        assert!((back.approach(m, d) / plain - 1.0).abs() < 1e-14);
+        stored["x"] = serde_json::json!(nvm.x[..15].to_vec());
+        assert!(serde_json::from_value::<PointModel>(stored).is_err());
     }
 }

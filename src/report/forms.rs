@@ -70,22 +70,28 @@ const POINT_EI_LIMIT: &str =
 line's 2.488 M^(-1/5) carried over by the local inlet analysis of the leading edge: a = 2.488 x \
 0.941415 = 2.3422, f_EI(D) = k^(2/15) [4 E(m)/(pi (1 + D))]^(2/3) exact (k = a/b of the Hertz \
 ellipse, E(m) its elliptic integral; 1 at D = 1), e_EI = 0, times the fitted approach factor \
-g(M, D) = exp(sum_j (c_j0 + c_j1 ln D + c_j2 (ln D)^2) (1 + M_g)^(-p_j)), M_g = (M^2 + 100^2)^(1/2), \
-p = 4/15, 8/15 and 12/15 (parameters g1, g1_lnD, g1_lnD2, g2, ..., g3_lnD2), which tends to 1 as \
-M -> infinity: the solver's films approach the limit slowly. g is fitted first, by linear least \
-squares on the cases at L = 0 and M >= 100 (each case's H_EI from its film by inverting the L = 0 \
-blend) and, with `--anchors`, on the solver's films half a decade of M beyond the data (the third \
-power only then), and held in the fit.";
+g(M, D) = exp(sum_j (c_j0 + c_j1 ln D + c_j2 (ln D)^2) (1 + M_g)^(-p_j)), p = 4/15, 8/15 and \
+12/15 (parameters g1, g1_lnD, g1_lnD2, g2, ..., g3_lnD2), which tends to 1 as M -> infinity: \
+the solver's films approach the limit slowly. g is fitted first, by linear least squares on the \
+cases at L = 0 and M >= 100 (each case's H_EI from its film by inverting the L = 0 blend) and, \
+with `--anchors`, on the solver's films half a decade of M beyond the data; M_g = M without \
+anchors (the third power then 0), M_g = (M^2 + 100^2)^(1/2) with them (`approach_m0` in \
+fit.json), and held in the fit.";
 
 /// The point formula's form for the contact's report `c`.
 pub(super) fn point_form(c: &ContactReport) -> String {
-    let held = c
-        .h_pm
-        .as_ref()
-        .is_some_and(|q| matches!(&q.model.blend, Blend::Point(p) if p.ei_exact));
+    let held = c.h_pm.as_ref().and_then(|q| match &q.model.blend {
+        Blend::Point(p) if p.ei_exact => Some(p.approach_m0),
+        _ => None,
+    });
     let mut s = POINT_FORM.to_string();
-    if held {
+    if let Some(m0) = held {
         s.push_str(POINT_EI_LIMIT);
+        if m0 > 0.0 {
+            s.push_str(&format!(" This fit had anchors: M_0 = {m0}."));
+        } else {
+            s.push_str(" This fit had no anchors: M_g = M.");
+        }
     }
     s
 }

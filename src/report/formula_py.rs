@@ -130,9 +130,9 @@ def _ei_d_factor(D):
     return (1.0 / kappa) ** (2.0 / 15.0) * (4.0 * e_int / (math.pi * (1.0 + D))) ** (2.0 / 3.0)
 
 
-def _approach(x, M, D):
+def _approach(x, m0, M, D):
     ln_d = math.log(D)
-    m_g = math.hypot(M, 100.0)
+    m_g = math.hypot(M, m0)
     total = 0.0
     for j, p in enumerate((4.0 / 15.0, 8.0 / 15.0, 12.0 / 15.0)):
         c = x[16 + 3 * j : 19 + 3 * j]
@@ -140,7 +140,7 @@ def _approach(x, M, D):
     return _exp(total)
 
 
-def _point_asymptotes(x, ri_shape, rp_shape, ei_exact, M, L, D):
+def _point_asymptotes(x, ri_shape, rp_shape, ei_exact, m0, M, L, D):
     f = _nvm_d_factors(D)
     f[0] = _psi(ri_shape, D) / D
     if rp_shape is not None:
@@ -149,14 +149,14 @@ def _point_asymptotes(x, ri_shape, rp_shape, ei_exact, M, L, D):
         f[1] = _ei_d_factor(D)
     return [
         _exp(x[0]) * f[0] * _pow(D, x[1]) / (M * M),
-        _exp(x[2]) * _pow(M, x[3]) * f[1] * _pow(D, x[4]) * _approach(x, M, D),
+        _exp(x[2]) * _pow(M, x[3]) * f[1] * _pow(D, x[4]) * _approach(x, m0, M, D),
         _exp(x[5]) * _pow(L, x[6]) * f[2] * _pow(D, x[7]),
         _exp(x[8]) * _pow(M, x[9]) * _pow(L, x[10]) * f[3] * _pow(D, x[11]),
     ]
 
 
-def _point_blend(x, ri_shape, rp_shape, ei_exact, M, L, D):
-    h_ri, h_ei, h_rp, h_ep = _point_asymptotes(x, ri_shape, rp_shape, ei_exact, M, L, D)
+def _point_blend(x, ri_shape, rp_shape, ei_exact, m0, M, L, D):
+    h_ri, h_ei, h_rp, h_ep = _point_asymptotes(x, ri_shape, rp_shape, ei_exact, m0, M, L, D)
     h_00 = _exp(x[14]) / D
     s = x[12] * (1.0 + _exp(-x[13] * h_ei / h_ri))
     r = x[15]
@@ -489,12 +489,13 @@ fn entry(m: &FittedModel) -> String {
             kriging(m.kriging.as_ref())
         ),
         Blend::Point(x) => format!(
-            "{{\"x\": [{}], \"ri_shape\": [{}], \"rp_shape\": {}, \"ei_exact\": {}, \"terms\": {}, \"support\": {}, \"side\": {}, \"corner\": {}, \"kriging\": {}}}",
+            "{{\"x\": [{}], \"ri_shape\": [{}], \"rp_shape\": {}, \"ei_exact\": {}, \"approach_m0\": {}, \"terms\": {}, \"support\": {}, \"side\": {}, \"corner\": {}, \"kriging\": {}}}",
             list(&x.x),
             list(&x.ri_shape),
             x.rp_shape
                 .map_or("None".to_string(), |r| format!("[{}]", list(&r))),
             if x.ei_exact { "True" } else { "False" },
+            f(x.approach_m0),
             terms(&m.correction),
             support(m.correction.support.as_ref()),
             side(m.side.as_ref()),
@@ -533,7 +534,7 @@ def H(M, L, D=None, film="H_c"):
     if film not in POINT:
         raise ValueError(f"no point formula for {film} (fitted: {sorted(POINT)})")
     e = POINT[film]
-    shapes = (e["ri_shape"], e.get("rp_shape"), e.get("ei_exact", False))
+    shapes = (e["ri_shape"], e.get("rp_shape"), e.get("ei_exact", False), e.get("approach_m0", 0.0))
     asym = _point_asymptotes(e["x"], *shapes, M, L, D)
     blend = _point_blend(e["x"], *shapes, M, L, D)
     if e.get("corner") is not None:
