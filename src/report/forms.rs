@@ -51,7 +51,7 @@ their constants and D corrections are fitted, H_EP's first held at NVM's, then a
 the blend (s0, s1, c_00, r: NVM's 1.5, 1.2, 1.8, 3/2) too (kept \
 only if physical, identified and better) with 40 or more converged cases. C = sum c_k phi_k is \
 the interior correction (as for line contacts, with ln D factors), its size chosen by 5-fold \
-held-out error; a lattice correction is multiplied by F = t((a - a_hi)/2) t((a_lo - a)/2), t(u) = 1 for u <= 0, \
+held-out error; a lattice correction of H_c or H_pm is multiplied by F = t((a - a_hi)/2) t((a_lo - a)/2), t(u) = 1 for u <= 0, \
 (1 + cos(pi u))/2 for 0 < u < 1, 0 for u >= 1, with a_lo(ln D) and a_hi(ln D) the smallest and \
 largest a = ln(H_EI/H_RI) of the fitted cases at each of their D, linear in ln D between them \
 and held beyond (the support table below; formula.py `_fade`): beyond the data the formula is \
