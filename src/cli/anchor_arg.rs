@@ -17,11 +17,16 @@ pub enum AnchorArg {
     Solve(PathBuf),
 }
 
+/// The anchor cases (M, D) of the point cases `pts` ([`cases`]).
+fn wanted(pts: &[FitPoint]) -> Vec<(f64, f64)> {
+    let data: Vec<(f64, f64, f64)> = pts.iter().map(|p| (p.m, p.l, p.dd())).collect();
+    cases(&data, APPROACH_MIN_M)
+}
+
 /// Refuses `--anchor-solves` for data without a case to anchor (checked before anything is
 /// written).
 pub fn solvable(pts: &[FitPoint]) -> Result<(), CliError> {
-    let data: Vec<(f64, f64, f64)> = pts.iter().map(|p| (p.m, p.l, p.dd())).collect();
-    if cases(&data, APPROACH_MIN_M).is_empty() {
+    if wanted(pts).is_empty() {
         return Err(input(format!(
             "--anchor-solves: the data have no point case at L = 0, M >= {APPROACH_MIN_M}"
         )));
@@ -33,8 +38,7 @@ pub fn solvable(pts: &[FitPoint]) -> Result<(), CliError> {
 /// the data's: another dataset's anchors would pin g where these data stop elsewhere), or solved
 /// and written.
 pub fn anchors(arg: &AnchorArg, pts: &[FitPoint]) -> Result<Vec<Anchor>, CliError> {
-    let data: Vec<(f64, f64, f64)> = pts.iter().map(|p| (p.m, p.l, p.dd())).collect();
-    let want = cases(&data, APPROACH_MIN_M);
+    let want = wanted(pts);
     let file = match arg {
         AnchorArg::Read(path) => {
             let text = std::fs::read_to_string(path)

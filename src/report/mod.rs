@@ -49,7 +49,9 @@ use crate::model::formulas::{
 };
 use crate::report::checks::{line_checks, point_checks, AsymptoteCheck};
 use crate::report::law::{kept, Kept};
-use crate::report::recipe::{line_recipe, point_recipe, with_point_ei_limit, Recipe};
+use crate::report::recipe::{
+    anchor_samples, line_recipe, point_recipe, with_point_ei_limit, Recipe,
+};
 pub use crate::report::recipe::{
     A_EI_CENTRAL, A_EI_MIN, B_RP_CENTRAL, C_RI_CENTRAL, D_EP_CENTRAL, D_EP_MIN, LINE_RIDGES,
     MIN_CASES, POINT_RIDGES,
@@ -342,10 +344,7 @@ fn corrected<Mo: FilmModel>(
         .iter()
         .map(|s| Coordinates::new(f.model.asymptotes(s.m, s.l, s.d), s.d))
         .collect();
-    let mut bases = (r.bases)(&z);
-    for b in &mut bases {
-        b.fade &= r.fades;
-    }
+    let bases = (r.bases)(&z, r.fades);
     let fit_blend = |train: &[Sample]| staged(train, start, r).ok().map(|f| f.model);
     let free = if data.len() >= FULL_FIT_MIN_POINTS {
         &r.stage2
@@ -528,26 +527,6 @@ fn point_report(
             hamrock_dowson_hc_moes(p.m, p.l, g, p.dd())
         }));
     Ok(report)
-}
-
-/// The anchors' films as L = 0 samples, by film (those within their error-bar bound:
-/// [`Anchor::film`]).
-fn anchor_samples(anchors: &[Anchor]) -> Vec<(Film, Sample)> {
-    let mut out = vec![];
-    for a in anchors {
-        for film in [Film::Centre, Film::PressureMax] {
-            if let Some(h) = a.film(film) {
-                let s = Sample {
-                    m: a.m,
-                    l: 0.0,
-                    d: a.d,
-                    h,
-                };
-                out.push((film, s));
-            }
-        }
-    }
-    out
 }
 
 /// Each fitted film's errors on the check cases that carry it ([`QuantityFit::check`]).

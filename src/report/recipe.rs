@@ -15,6 +15,7 @@ use crate::fit::heldout::{lattice, nested, Basis};
 use crate::fit::lsq::Sample;
 use crate::fit::model::{LineModel, PARAM_NAMES};
 use crate::fit::point_model::{PointModel, POINT_PARAM_NAMES};
+use crate::limits::anchors::Anchor;
 use crate::limits::jump::JumpTable;
 use crate::limits::{point_ei, rigid_d_factor, rigid_point, rigid_rp};
 use crate::solve::film::Film;
@@ -122,8 +123,9 @@ pub(super) struct Recipe<Mo> {
     pub(super) physical: fn(&Mo) -> bool,
     pub(super) names: &'static [&'static str],
     pub(super) wrap: fn(Mo) -> Blend,
-    /// The candidate corrections for data at these coordinates ([`crate::fit::heldout`]).
-    pub(super) bases: fn(&[Coordinates]) -> Vec<Basis>,
+    /// The candidate corrections for data at these coordinates ([`crate::fit::heldout`]), the
+    /// lattice ones fading beyond their cases when the flag ([`Recipe::fades`]) says so.
+    pub(super) bases: fn(&[Coordinates], bool) -> Vec<Basis>,
     /// Whether H_min is fitted as the centre line's minimum times the side-lobe factor
     /// ([`crate::fit::side`]) when the data carry H_min,cl (point contacts).
     pub(super) side_lobes: bool,
@@ -201,7 +203,7 @@ pub const LATTICE_LEVELS: [u8; 2] = [0, 1];
 
 /// The line candidates: the nested terms, then the lattice ([`crate::fit::heldout::lattice`]) at
 /// each of [`LATTICE_LEVELS`] with each of [`LINE_RIDGES`].
-fn line_bases(z: &[Coordinates]) -> Vec<Basis> {
+fn line_bases(z: &[Coordinates], _fade: bool) -> Vec<Basis> {
     let mut out = nested(&line_terms());
     for level in LATTICE_LEVELS {
         out.extend(lattice(z, level, &LINE_RIDGES, 0));
@@ -219,15 +221,15 @@ pub const POINT_LN_D_POWERS: u8 = 2;
 
 /// The point candidates: the nested terms, then the level-0 lattice with each term also times
 /// powers of ln D up to [`POINT_LN_D_POWERS`] ([`crate::fit::heldout::lattice`]) with each of
-/// [`POINT_RIDGES`]; the lattice fades beyond its cases' range of a at each D
+/// [`POINT_RIDGES`]; with `fade` the lattice fades beyond its cases' range of a at each D
 /// ([`crate::fit::support`]: its bumps are local, and those past the data are set by their
 /// tails), the nested terms (global functions of the transitions, each set by all the cases) do
 /// not.
-fn point_bases(z: &[Coordinates]) -> Vec<Basis> {
+fn point_bases(z: &[Coordinates], fade: bool) -> Vec<Basis> {
     let mut out = nested(&point_terms());
     let mut grid = lattice(z, 0, &POINT_RIDGES, POINT_LN_D_POWERS);
     for b in &mut grid {
-        b.fade = true;
+        b.fade = fade;
     }
     out.extend(grid);
     out
@@ -300,6 +302,25 @@ pub(super) fn with_point_ei_limit(mut r: Recipe<PointModel>) -> Recipe<PointMode
         ..c
     });
     r
+}
+
+/// The anchors' films as L = 0 samples, by film (those within their error-bar bound:
+/// [`Anchor::film`]), for [`Recipe::anchors`].
+pub(super) fn anchor_samples(anchors: &[Anchor]) -> Vec<(Film, Sample)> {
+    let at = |a: &Anchor, h| Sample {
+        m: a.m,
+        l: 0.0,
+        d: a.d,
+        h,
+    };
+    anchors
+        .iter()
+        .flat_map(|a| {
+            [Film::Centre, Film::PressureMax]
+                .into_iter()
+                .filter_map(move |film| a.film(film).map(|h| (film, at(a, h))))
+        })
+        .collect()
 }
 
 /// No change to the start before a fit.
