@@ -54,8 +54,9 @@ pub struct FitArgs {
     #[arg(long, value_name = "FILE")]
     pub jump_solves: Option<PathBuf>,
     /// Read the point approach factor's anchors (a file written by --anchor-solves for the same
-    /// data): the approach factor of the point elastic-isoviscous law is then fitted to them
-    /// too, with a third power of M (docs/method.md, "The approach factor").
+    /// data): the point H_c elastic-isoviscous law is then held as H_pm's is (--point-ei-limit
+    /// implied) and the approach factor of both is fitted to them too, with a third power of M
+    /// (docs/method.md, "Anchors").
     #[arg(long, value_name = "FILE", conflicts_with = "anchor_solves")]
     pub anchors: Option<PathBuf>,
     /// Solve the point approach factor's anchors: the L = 0 case at sqrt(10) times the largest
@@ -66,8 +67,9 @@ pub struct FitArgs {
     /// Hold the point H_c elastic-isoviscous law at its limit as the H_pm fit always does: the
     /// line's carried over by the local inlet analysis (2.3422 f_EI(D) M^(-2/15), f_EI exact)
     /// times an approach factor fitted first to the data's L = 0, M >= 100 cases that tends to
-    /// 1 as M -> infinity, instead of a fitted law: exact as M -> infinity, but H_c's held-out
-    /// RMS rises; docs/method.md, "The approach factor".
+    /// 1 as M -> infinity, instead of a fitted law: exact as M -> infinity, but without anchors
+    /// H_c's held-out max rises; implied by --anchors and --anchor-solves; docs/method.md, "The
+    /// approach factor".
     #[arg(long)]
     pub point_ei_limit: bool,
 }

@@ -34,6 +34,7 @@
 use crate::fit::blend::Blend;
 use crate::fit::correction::{lattice_terms_in_d, solve_ridge, Coordinates, Correction, Term};
 use crate::fit::heldout::{worst_and_rms, RMS_SLACK};
+use crate::fit::support::Support;
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -67,6 +68,10 @@ pub struct CornerParams {
     /// `ehlmap fit --point-ei-limit`, whose H_c law is held too, by the law (docs/validation.md,
     /// "The approach to the point elastic-isoviscous limit").
     pub pm_corrected: bool,
+    /// Whether both corrections fade beyond the range of a that their cases span at each D
+    /// ([`crate::fit::support`]), so that beyond the data the law is its blend (the point
+    /// recipe's flag, set by [`crate::report`]; false in [`LINE`] and [`POINT`]).
+    pub fade: bool,
 }
 
 /// The line corner law: level 1 (the corner is sharp in M), ridges chosen on the committed line
@@ -83,6 +88,7 @@ pub const LINE: CornerParams = CornerParams {
         [1e-4, 3e-5],
     ],
     pm_corrected: false,
+    fade: false,
 };
 
 /// The point corner law: level 0 bumps times 1, ln D and (ln D)^2 (the corner moves with D),
@@ -92,6 +98,7 @@ pub const POINT: CornerParams = CornerParams {
     ln_d_powers: 2,
     ridges: &[[1e-2, 1e-3], [1e-3, 1e-4], [1e-2, 1e-4], [1e-1, 1e-3]],
     pm_corrected: false,
+    fade: false,
 };
 
 /// The H_c law with its corner (module doc), on the H_c blend B that the fitted formula carries
@@ -221,14 +228,16 @@ pub fn one_sided(
 }
 
 /// The corner law on the H_c blend `base` fitted to `cases` with the `terms` and the ridge
-/// weights (R, h) (module doc). None when rho is not positive, a class of cases is empty or a
-/// solve fails.
+/// weights (R, h) (module doc), both corrections fading beyond the cases' range of a at each D
+/// with `fade` ([`Support`]: 1 at every case, so the fit is the same). None when rho is not
+/// positive, a class of cases is empty or a solve fails.
 pub fn fit_corner(
     cases: &[CornerCase],
     base: &Blend,
     rho: f64,
     terms: &[Term],
     ridges: [f64; 2],
+    fade: bool,
 ) -> Option<Corner> {
     let follows: Vec<bool> = cases.iter().map(|c| c.follows).collect();
     if follows.iter().all(|&f| f) || !follows.iter().any(|&f| f) || rho.is_nan() || rho <= 0.0 {
@@ -248,10 +257,13 @@ pub fn fit_corner(
     let (coef, _) = one_sided(&phi, &y, &follows, ridges[0], true)?;
     // ln(R / H_c) = C_R - y at each case.
     let c_r = &phi * DVector::from_column_slice(&coef);
+    let support = fade
+        .then(|| Support::of(z.iter().map(|z| (z.ln_d, z.a))))
+        .flatten();
     let branch = Correction {
         terms: terms.to_vec(),
         coef,
-        support: None,
+        support: support.clone(),
     };
     let y: Vec<f64> = (0..cases.len())
         .map(|i| {
@@ -266,7 +278,7 @@ pub fn fit_corner(
         deficit: Correction {
             terms: terms.to_vec(),
             coef,
-            support: None,
+            support,
         },
         rho,
     })
@@ -323,7 +335,7 @@ pub fn select_corner(
                     .filter(|&i| fold[i] != f)
                     .map(|i| cases[i])
                     .collect();
-                fit_corner(&train, b, rho, &terms, ridges)
+                fit_corner(&train, b, rho, &terms, ridges, params.fade)
             })
             .collect::<Option<_>>()?;
         for (f, (b, law)) in bases.iter().zip(&laws).enumerate() {
@@ -342,7 +354,7 @@ pub fn select_corner(
     let best = scored.iter().map(|s| s.1).fold(f64::INFINITY, f64::min);
     let kept = scored.iter().position(|s| s.1 <= RMS_SLACK * best)?;
     let ridges = scored[kept].0;
-    let law = fit_corner(cases, base, rho, &terms, ridges)?;
+    let law = fit_corner(cases, base, rho, &terms, ridges, params.fade)?;
     let n_follow = cases.iter().filter(|c| c.follows).count();
     let choice = CornerChoice {
         ridges,
@@ -563,6 +575,47 @@ mod tests {
         };
         let (_, flat_in, _) = followed(&cases, &own, &flat);
         assert!(flat_in > 2.0 * worst_in, "{flat_in} against {worst_in}");
+        // Faded beyond the data: the same law at every case, the law without its corrections
+        // (rho r alone) half a decade of a = ln(H_EI/H_RI) past the largest a of the cases at
+        // each D (M = 1e5 here, 1000 in the data).
+        let faded = CornerParams {
+            fade: true,
+            ..POINT
+        };
+        let (law_f, _, _) = followed(&cases, &own, &faded);
+        for c in &cases {
+            let (a, b) = (eval(&law_f, &own, c), eval(&law, &own, c));
+            assert!((a / b - 1.0).abs() < 1e-12, "{c:?}: {a} against {b}");
+        }
+        let zero = |c: &Correction| Correction {
+            terms: c.terms.clone(),
+            coef: vec![0.0; c.coef.len()],
+            support: None,
+        };
+        let bare = Corner {
+            branch: zero(&law_f.branch),
+            deficit: zero(&law_f.deficit),
+            rho: law_f.rho,
+        };
+        assert!(law_f.branch.support.is_some() && law_f.deficit.support.is_some());
+        let mut moved = 0.0f64;
+        for d in [0.1, 0.25, 0.5, 1.0] {
+            for l in [0.0, 5.0, 20.0] {
+                let c = CornerCase {
+                    m: 1e5,
+                    l,
+                    d,
+                    h: 1.0,
+                    follows: true,
+                };
+                let bare = eval(&bare, &own, &c);
+                let ratio = eval(&law_f, &own, &c) / bare;
+                assert!((ratio - 1.0).abs() < 1e-12, "D = {d}, L = {l}: {ratio}");
+                moved = moved.max((eval(&law, &own, &c) / bare - 1.0).abs());
+            }
+        }
+        // (Unfaded, the corrections' ln D polynomials still move the law there.)
+        eprintln!("unfaded at M = 1e5: {moved:e} off the law without corrections");
     }
 
     #[test]
@@ -574,7 +627,7 @@ mod tests {
             .map(|c| Coordinates::new(own.asymptotes(c.m, c.l, 1.0), 1.0))
             .collect();
         let terms = lattice_terms_in_d(&z, LINE.level, LINE.ln_d_powers);
-        let law = fit_corner(&cases, &own, rho(), &terms, LINE.ridges[0]).expect("fits");
+        let law = fit_corner(&cases, &own, rho(), &terms, LINE.ridges[0], false).expect("fits");
         for (name, m, l) in [
             ("RI", 1e-12, 0.0),
             ("RI, L > 0", 1e-12, 1e-3),

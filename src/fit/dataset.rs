@@ -178,7 +178,7 @@ pub struct FitInput {
     /// Whether the point H_c elastic-isoviscous law is held at its limit as H_pm's always is:
     /// the line's carried over by the local inlet analysis ([`crate::limits::point_ei`]) times
     /// the approach factor fitted first ([`crate::fit::approach`]; `ehlmap fit
-    /// --point-ei-limit`), instead of fitted.
+    /// --point-ei-limit`), instead of fitted. Anchors imply it ([`crate::report`]).
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub point_ei_limit: bool,
 }

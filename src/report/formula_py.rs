@@ -315,14 +315,15 @@ def _logistic(t):
 
 def _corner(k, blend, asym, D):
     """H_c through its corner on its blend: R exp(-rho (max(0, h) / rho)^power), R = blend
-    exp(rho r + C_R), h = rho r + C_h (ehlmap src/fit/corner.rs)."""
+    exp(rho r + C_R), h = rho r + C_h, C_R and C_h faded beyond their supports when they have
+    them (ehlmap src/fit/corner.rs)."""
     a, b, _, _, w = _coords(asym, D)
     r = _logistic(-a)
     if w > 0.0 and math.isfinite(b):
         r = (1.0 - w) * r + w * _logistic(b)
     rho = k["rho"]
-    ln_r = rho * r + _correction(k["branch"], asym, D)
-    h = rho * r + _correction(k["deficit"], asym, D)
+    ln_r = rho * r + _correction(k["branch"], asym, D, k.get("branch_support"))
+    h = rho * r + _correction(k["deficit"], asym, D, k.get("deficit_support"))
     right = blend * _exp(ln_r)
     return right * _exp(-(rho * (max(0.0, h) / rho) ** k["power"]))
 
@@ -470,9 +471,11 @@ fn corner(c: Option<&Corner>) -> String {
         return "None".to_string();
     };
     format!(
-        "{{\"branch\": {}, \"deficit\": {}, \"rho\": {}, \"power\": {}}}",
+        "{{\"branch\": {}, \"deficit\": {}, \"branch_support\": {}, \"deficit_support\": {}, \"rho\": {}, \"power\": {}}}",
         terms(&c.branch),
         terms(&c.deficit),
+        support(c.branch.support.as_ref()),
+        support(c.deficit.support.as_ref()),
         f(c.rho),
         f(DEFICIT_POWER)
     )

@@ -3,7 +3,7 @@
 //! kriging residual. Each is cross-validated on the smooth law's folds; the lowest held-out RMS
 //! wins, the simpler law on a tie (in that order).
 
-use crate::fit::corner::{Corner, CornerChoice};
+use crate::fit::corner::{Corner, CornerChoice, CornerParams};
 use crate::fit::correction::Correction;
 use crate::fit::dataset::FitPoint;
 use crate::fit::heldout::{HeldOut, Selected};
@@ -73,6 +73,11 @@ pub(super) fn kept<Mo: FilmModel>(
     }
     let (Some(params), Film::Centre, Some((pm, pm_correction))) = (r.corner, film, pm) else {
         return best;
+    };
+    // The corner law's corrections fade beyond the data where the recipe's lattice does.
+    let params = CornerParams {
+        fade: r.fades,
+        ..params
     };
     let blends = Blends {
         own: model,

@@ -492,7 +492,8 @@ fn point_report(
     ei_limit: bool,
 ) -> Result<ContactReport, FitError> {
     let mut recipe = point_recipe(pts);
-    if ei_limit {
+    // Anchors pin the approach factor of every held EI law: with them H_c's is held too.
+    if ei_limit || !anchors.is_empty() {
         recipe = with_point_ei_limit(recipe);
     }
     recipe.jump = jump.cloned();
