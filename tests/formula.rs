@@ -262,19 +262,16 @@ fn formula_py_reproduces_the_rust_evaluation() {
     let c = &mut r.point.h_c.as_mut().expect("point H_c fitted").model;
     let blend = c.blend.clone();
     let a_of = |m: f64, d: f64| Coordinates::new(blend.asymptotes(m, 0.0, d), d).a;
-    let corner = c.corner.as_mut().expect("the point H_c corner law");
-    for (k, (lo, hi)) in [(10.0, 1000.0), (3.0, 300.0)].into_iter().enumerate() {
-        let s = Support::of(
+    let support = |lo: f64, hi: f64| {
+        Support::of(
             [0.1f64, 0.25, 0.5, 1.0]
                 .iter()
                 .flat_map(|&d| [lo, hi].map(|m| (d.ln(), a_of(m, d)))),
-        );
-        if k == 0 {
-            corner.branch.support = s;
-        } else {
-            corner.deficit.support = s;
-        }
-    }
+        )
+    };
+    let corner = c.corner.as_mut().expect("the point H_c corner law");
+    corner.branch.support = support(10.0, 1000.0);
+    corner.deficit.support = support(3.0, 300.0);
     let dir = std::env::temp_dir().join(format!("ehlmap-formula-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("formula.py"), formula_py(&r)).unwrap();
